@@ -1,0 +1,263 @@
+//! The abstract syntax tree of the `.ray` language (SPEC section 2).
+//!
+//! Every node carries the [`Span`] of the source text it came from, so that
+//! evaluation errors can point at the exact construct.
+
+use std::rc::Rc;
+
+use super::source::Span;
+
+/// A name as written in the source, with its position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ident {
+    /// The name itself.
+    pub name: Rc<str>,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// A numeric expression.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expr {
+    /// What kind of expression this is.
+    pub kind: ExprKind,
+    /// The whole expression's source range.
+    pub span: Span,
+}
+
+/// The kinds of numeric expression.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExprKind {
+    /// A literal such as `3` or `0.75`.
+    Number(f64),
+    /// A variable reference (a `let` or a parameter; `time` is predefined).
+    Var(Rc<str>),
+    /// The constant `pi`.
+    Pi,
+    /// Unary minus.
+    Neg(Box<Expr>),
+    /// A binary arithmetic operation.
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// `sin(e)`, `cos(e)` or `sqrt(e)`.
+    Call(Func, Box<Expr>),
+}
+
+/// Binary arithmetic operators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+}
+
+/// The built-in numeric functions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Func {
+    /// `sin`
+    Sin,
+    /// `cos`
+    Cos,
+    /// `sqrt`
+    Sqrt,
+}
+
+/// A condition of an `if`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cond {
+    /// What kind of condition this is.
+    pub kind: CondKind,
+    /// The whole condition's source range.
+    pub span: Span,
+}
+
+/// The kinds of condition.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CondKind {
+    /// `a | b`
+    Or(Box<Cond>, Box<Cond>),
+    /// `a & b`
+    And(Box<Cond>, Box<Cond>),
+    /// `!a`
+    Not(Box<Cond>),
+    /// A comparison of two numbers.
+    Compare(CmpOp, Expr, Expr),
+}
+
+/// Comparison operators: `=` and `<` from SPEC 2, the others an allowed extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CmpOp {
+    /// `=` (exact float equality)
+    Eq,
+    /// `!=`
+    Ne,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+}
+
+/// Three expressions separated by commas: a point, a vector, a rotation or a colour.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Triple {
+    /// The three components, in order.
+    pub parts: [Expr; 3],
+    /// The source range of all three.
+    pub span: Span,
+}
+
+/// `kd e ks e phong e color r, g, b`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// Diffuse coefficient.
+    pub kd: Expr,
+    /// Specular (and reflection) coefficient.
+    pub ks: Expr,
+    /// Phong exponent.
+    pub phong: Expr,
+    /// Colour, components 0..255 in the language.
+    pub color: Triple,
+    /// The whole texture's source range.
+    pub span: Span,
+}
+
+/// An object expression.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Obj {
+    /// What kind of object expression this is.
+    pub kind: ObjKind,
+    /// The whole object expression's source range.
+    pub span: Span,
+}
+
+/// The kinds of object expression.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ObjKind {
+    /// A variable bound by `object`.
+    Var(Rc<str>),
+    /// `sphere center c radius r texture end`
+    Sphere {
+        /// Centre.
+        center: Triple,
+        /// Radius.
+        radius: Expr,
+        /// Surface texture.
+        texture: Texture,
+    },
+    /// `plane rotation r shift d texture end`
+    Plane {
+        /// Rotation applied to the up normal (0, 1, 0).
+        rotation: Triple,
+        /// Signed distance from the origin along the normal.
+        shift: Expr,
+        /// Surface texture.
+        texture: Texture,
+    },
+    /// `box center c length l texture end`
+    Box {
+        /// Centre.
+        center: Triple,
+        /// Full sizes along x, y, z.
+        length: Triple,
+        /// Surface texture.
+        texture: Texture,
+    },
+    /// `translate o by v end`
+    Translate(Box<Obj>, Triple),
+    /// `rotate o by r end`
+    Rotate(Box<Obj>, Triple),
+    /// `scale o by k end`
+    Scale(Box<Obj>, Expr),
+    /// `group o* end`
+    Group(Vec<Obj>),
+}
+
+/// An instruction (SPEC 2 `instruction`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Instr {
+    /// What kind of instruction this is.
+    pub kind: InstrKind,
+    /// The whole instruction's source range.
+    pub span: Span,
+}
+
+/// The kinds of instruction.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InstrKind {
+    /// `let x = e`
+    Let(Ident, Expr),
+    /// `object x = o`
+    Object(Ident, Obj),
+    /// `p(e, ...)`
+    Call(Ident, Vec<Expr>),
+    /// `put o`
+    Put(Obj),
+    /// `if c then ... [else ...] end`
+    If(Cond, Vec<Instr>, Option<Vec<Instr>>),
+}
+
+/// `camera distance d angle a end`
+#[derive(Debug, Clone, PartialEq)]
+pub struct CameraDef {
+    /// Distance of the eye from the origin, on +z.
+    pub distance: Expr,
+    /// Horizontal field of view, radians.
+    pub angle: Expr,
+    /// Source range of the whole definition.
+    pub span: Span,
+}
+
+/// `light vector r intensity i end` (or `light rotation ...`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LightDef {
+    /// Rotation applied to the up direction (0, 1, 0).
+    pub rotation: Triple,
+    /// Intensity, 0..1.
+    pub intensity: Expr,
+    /// Source range of the whole definition.
+    pub span: Span,
+}
+
+/// `proc name(params) body end`
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProcDef {
+    /// The procedure's name.
+    pub name: Ident,
+    /// Formal parameters, in order.
+    pub params: Vec<Ident>,
+    /// The instructions run at each call.
+    pub body: Vec<Instr>,
+    /// Source range of the whole definition.
+    pub span: Span,
+}
+
+/// One top-level item. A file is a sequence of items in the order of SPEC 2;
+/// the interactive session accepts them in any order (SPEC 7).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Item {
+    /// A camera definition (replaces any earlier one).
+    Camera(CameraDef),
+    /// `ambient e` (replaces any earlier one).
+    Ambient(Expr),
+    /// A directional light (adds one).
+    Light(LightDef),
+    /// A procedure definition.
+    Proc(Rc<ProcDef>),
+    /// An instruction run at top level.
+    Instr(Instr),
+}
+
+/// A parsed program: a whole file or one input of the session.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Program {
+    /// The items, in source order.
+    pub items: Vec<Item>,
+}

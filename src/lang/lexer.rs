@@ -1,0 +1,1 @@
+//! Turning source text into tokens with spans.

@@ -1,0 +1,98 @@
+//! Source texts and positions in them.
+//!
+//! Spans name their source by [`SourceId`], so that an error raised while
+//! running a procedure defined in an earlier input of the session still points
+//! at the right text.
+
+use std::sync::Arc;
+
+/// Identifies one source text inside a [`SourceMap`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SourceId(pub u32);
+
+/// A range of bytes `start..end` in one source text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// Which source text.
+    pub source: SourceId,
+    /// First byte.
+    pub start: u32,
+    /// One past the last byte.
+    pub end: u32,
+}
+
+impl Span {
+    /// A span of `start..end` in `source`.
+    pub fn new(source: SourceId, start: usize, end: usize) -> Span {
+        Span { source, start: start as u32, end: end as u32 }
+    }
+
+    /// The smallest span covering both `self` and `other` (same source).
+    pub fn to(self, other: Span) -> Span {
+        Span { source: self.source, start: self.start.min(other.start), end: self.end.max(other.end) }
+    }
+}
+
+/// One source text: a file, standard input, or one input of the session.
+#[derive(Debug, Clone)]
+pub struct SourceFile {
+    /// The name shown in diagnostics (a path, `<stdin>`, `<input>`).
+    pub name: String,
+    /// The text itself.
+    pub text: Arc<str>,
+    /// Line number of the text's first line, minus one: a piece of a script
+    /// that starts at line 17 has `line_offset` 16, so diagnostics show the
+    /// script's own line numbers.
+    pub line_offset: usize,
+}
+
+impl SourceFile {
+    /// The 1-based (line, column) of byte `offset`, columns counted in characters.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = offset.min(self.text.len());
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count();
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count();
+        (line + 1 + self.line_offset, column + 1)
+    }
+}
+
+/// All the source texts a run or a session has seen.
+#[derive(Debug, Clone, Default)]
+pub struct SourceMap {
+    files: Vec<SourceFile>,
+}
+
+impl SourceMap {
+    /// An empty map.
+    pub fn new() -> SourceMap {
+        SourceMap::default()
+    }
+
+    /// Adds a text and returns its id.
+    pub fn add(&mut self, name: impl Into<String>, text: impl Into<Arc<str>>, line_offset: usize) -> SourceId {
+        self.files.push(SourceFile { name: name.into(), text: text.into(), line_offset });
+        SourceId((self.files.len() - 1) as u32)
+    }
+
+    /// The text with this id.
+    pub fn get(&self, id: SourceId) -> &SourceFile {
+        &self.files[id.0 as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_col_counts_from_one_and_honours_the_offset() {
+        let mut map = SourceMap::new();
+        let id = map.add("a.ray", "ab\ncd\n", 0);
+        assert_eq!(map.get(id).line_col(0), (1, 1));
+        assert_eq!(map.get(id).line_col(4), (2, 2));
+        let id = map.add("b.ray", "x\ny", 16);
+        assert_eq!(map.get(id).line_col(2), (18, 1));
+    }
+}

@@ -1,0 +1,11 @@
+//! rayrepl: an interpreter and ray tracer for the `.ray` scene language.
+//!
+//! The pipeline, one module per arrow: text → tokens → AST with spans
+//! ([`lang::parser`]) → evaluation ([`lang::eval`]) → a scene of flat
+//! primitives ([`scene`]) → BVH ([`render::bvh`]) → rays and shading
+//! ([`render`]) → image file ([`output`]) or terminal preview ([`repl`]).
+
+pub mod lang;
+pub mod output;
+pub mod render;
+pub mod scene;

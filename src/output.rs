@@ -1,0 +1,1 @@
+//! Writing images and animations: PNG, PPM, GIF, frame names.

@@ -1,0 +1,1 @@
+//! The interactive session (SPEC 7) and piped scripts.

@@ -1,0 +1,120 @@
+//! The evaluated scene: camera, lights, ambient light and flat primitives.
+//!
+//! Everything here is in f64 and in world coordinates: the evaluator bakes
+//! every transformation into the primitives (SPEC 4), so the renderer only
+//! ever sees spheres, one-sided planes and oriented boxes.
+
+pub mod transform;
+
+use glam::{DMat3, DVec3};
+
+/// The camera of SPEC 5: eye at (0, 0, distance), looking towards -z.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Camera {
+    /// Distance of the eye from the origin along +z.
+    pub distance: f64,
+    /// Horizontal field of view in radians.
+    pub angle: f64,
+}
+
+/// A directional light (SPEC 6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// Unit vector pointing towards the light: R(rotation) * (0, 1, 0).
+    pub direction: DVec3,
+    /// Intensity, 0..1.
+    pub intensity: f64,
+}
+
+/// A surface's texture, converted for rendering (colour components 0..1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Colour, each component in 0..1 (the language's 0..255 divided by 255).
+    pub color: DVec3,
+    /// Diffuse coefficient, 0..1.
+    pub kd: f64,
+    /// Specular and reflection coefficient, 0..1.
+    pub ks: f64,
+    /// Phong exponent, > 0.
+    pub phong: f64,
+}
+
+/// The geometry of one primitive, in world coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// A sphere.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius, > 0.
+        radius: f64,
+    },
+    /// The plane `{p : normal·p = shift}`, seen from the side `normal` points to;
+    /// it bounds the solid half-space `normal·p <= shift`.
+    Plane {
+        /// Unit normal.
+        normal: DVec3,
+        /// Signed distance from the origin.
+        shift: f64,
+    },
+    /// An oriented box.
+    Box {
+        /// Centre.
+        center: DVec3,
+        /// Half sizes along the box's own axes, all > 0.
+        half: DVec3,
+        /// Columns are the box's own x, y, z axes in world space (a rotation matrix).
+        axes: DMat3,
+    },
+}
+
+/// One sphere, plane or box with its material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Primitive {
+    /// Where it is.
+    pub shape: Shape,
+    /// What it looks like.
+    pub material: Material,
+}
+
+/// Which parts of a scene depend on `time` (so an animation rebuilds only those).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TimeUse {
+    /// The camera's distance or angle depends on `time`.
+    pub camera: bool,
+    /// The ambient intensity depends on `time`.
+    pub ambient: bool,
+    /// Some light depends on `time`.
+    pub lights: bool,
+}
+
+/// A scene ready to render.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The camera.
+    pub camera: Camera,
+    /// Ambient intensity Ia, 0..1.
+    pub ambient: f64,
+    /// Directional lights.
+    pub lights: Vec<Light>,
+    /// Primitives whose existence and shape do not depend on `time`: the same
+    /// for every frame of an animation.
+    pub primitives: Vec<Primitive>,
+    /// Primitives that depend on `time` (directly, or because a condition or a
+    /// procedure argument that led to their `put` did).
+    pub timed_primitives: Vec<Primitive>,
+    /// Which of camera, ambient and lights depend on `time`.
+    pub time_use: TimeUse,
+}
+
+impl Scene {
+    /// All primitives, static ones first.
+    pub fn all_primitives(&self) -> impl Iterator<Item = &Primitive> {
+        self.primitives.iter().chain(&self.timed_primitives)
+    }
+
+    /// Whether anything in the scene depends on `time`.
+    pub fn depends_on_time(&self) -> bool {
+        self.time_use.camera || self.time_use.ambient || self.time_use.lights || !self.timed_primitives.is_empty()
+    }
+}
