@@ -631,6 +631,26 @@ fn values_bound_under_a_time_condition_are_timed() {
 }
 
 #[test]
+fn variables_a_time_condition_may_rebind_are_timed_even_when_it_does_not() {
+    // At time 1 the branch is not taken, yet `x` must count as depending on
+    // `time`: at time 6 it is 1, so the sphere cannot be built once for all frames.
+    let text = "
+        let x = 0
+        object o = sphere center 0, 0, 0 radius 1 $T end
+        let other = 0
+        if time > 5 then if 1 = 1 then let x = 1 end else object o = sphere center 1, 0, 0 radius 1 $T end end
+        put sphere center x, 0, 0 radius 1 $T end
+        put o
+        put sphere center other, 0, 0 radius 1 $T end
+        proc p() let y = 0 if time > 5 then let y = 1 end put sphere center y, 0, 0 radius 1 $T end end
+        p()";
+    let (i, result, _) = run_at(text, 1.0, Limits::default());
+    result.unwrap();
+    assert_eq!((i.scene().primitives.len(), i.scene().timed_primitives.len()), (1, 3));
+    assert_eq!(sphere_centers(&i.scene().primitives), [DVec3::ZERO]);
+}
+
+#[test]
 fn time_flows_through_procedure_arguments_and_recursion() {
     let text = "
         proc f(t) if 0 < t then put sphere center t, 0, 0 radius 1 $T end f(t - 1) end end
@@ -944,4 +964,29 @@ fn the_cap_counts_what_a_session_already_holds() {
     let d = run_session_input(&mut i, &mut sources, &put5).unwrap_err();
     assert!(d.message.contains("more than 10 primitives"));
     assert_eq!(i.scene().primitives.len(), 10);
+}
+
+/// The peak resident memory of this process in KiB (`VmHWM`, Linux only).
+fn peak_memory_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.trim_start_matches("VmHWM:").trim().trim_end_matches("kB").trim().parse().ok()
+}
+
+#[test]
+#[ignore = "a performance check: run alone, in release (`cargo test --release --test eval -- --ignored menger`)"]
+fn menger_depth_5_is_fast_and_lean() {
+    let text = include_str!("../examples/menger.ray");
+    let mut sources = SourceMap::new();
+    let id = sources.add("menger.ray", text, 0);
+    let program = parse_file(id, text).unwrap();
+    let start = std::time::Instant::now();
+    let mut i = Interpreter::new(0.0, Limits::default());
+    i.run(&program).unwrap();
+    let elapsed = start.elapsed().as_secs_f64();
+    let peak = peak_memory_kib();
+    println!("menger depth 5: {elapsed:.3} s, peak resident memory {peak:?} KiB");
+    assert_eq!(i.scene().counts().boxes, 3_200_000);
+    assert!(elapsed < 2.0, "{elapsed} s");
+    assert!(peak.is_none_or(|kib| kib < 1_500_000), "{peak:?} KiB");
 }

@@ -117,6 +117,19 @@ impl Env {
         }
     }
 
+    /// Marks the variable `name` of the current scope (the call's locals, or
+    /// the globals at top level) as depending on `time`, if it exists.
+    pub fn taint(&mut self, name: &str) {
+        let slot = if self.in_call {
+            self.locals[self.base..self.top].iter_mut().find(|(n, _)| same_name(n, name)).map(|(_, v)| v)
+        } else {
+            self.globals.get_mut(name)
+        };
+        if let Some(value) = slot {
+            value.tainted = true;
+        }
+    }
+
     /// Starts preparing a call: returns the caller's frame, to give back to
     /// [`Env::leave`]. Arguments are then added with [`Env::push_argument`].
     pub fn prepare_call(&self) -> Frame {

@@ -33,6 +33,9 @@ impl Interpreter {
             InstrKind::Put(obj) => self.exec_put(obj),
             InstrKind::If(cond, then, otherwise) => grow(|| {
                 let (holds, tainted) = self.eval_cond(cond)?;
+                if tainted {
+                    self.taint_bindings_in(then, otherwise.as_deref());
+                }
                 let branch = if holds { Some(then) } else { otherwise.as_ref() };
                 match branch {
                     Some(body) => self.exec_in_context(tainted, body),
@@ -50,6 +53,29 @@ impl Interpreter {
         let result = self.exec_block(body);
         self.context_tainted = outer;
         result
+    }
+
+    /// Marks as depending on `time` every existing variable that either branch
+    /// of an `if` with a tainted condition may bind: after `let x = 0  if time
+    /// < 5 then let x = 1 end`, `x` depends on `time` even in the frames where
+    /// the branch is not taken. Nested `if`s are searched too (with a stack
+    /// of their own, however deep they nest); calls are not, since a
+    /// procedure cannot bind its caller's variables.
+    fn taint_bindings_in(&mut self, then: &[Instr], otherwise: Option<&[Instr]>) {
+        let mut blocks: Vec<&[Instr]> = vec![then];
+        blocks.extend(otherwise);
+        while let Some(block) = blocks.pop() {
+            for instr in block {
+                match &instr.kind {
+                    InstrKind::Let(name, _) | InstrKind::Object(name, _) => self.env.taint(&name.name),
+                    InstrKind::If(_, then, otherwise) => {
+                        blocks.push(then);
+                        blocks.extend(otherwise.as_deref());
+                    }
+                    InstrKind::Call(..) | InstrKind::Put(_) => {}
+                }
+            }
+        }
     }
 
     /// `object name = obj`.
