@@ -99,8 +99,12 @@ pub struct Interpreter {
     /// Whether the instructions running now depend on `time` (inside an `if`
     /// whose condition does).
     context_tainted: bool,
-    /// Active calls, outermost first: procedure name and call site.
-    calls: Vec<(Rc<str>, Span)>,
+    /// How many procedure calls are active.
+    depth: usize,
+    /// The procedure the last call found, to skip the hash lookup when the
+    /// same procedure is called again (as recursion does). Cleared whenever
+    /// the procedures change.
+    last_proc: Option<Rc<ProcDef>>,
     /// A reusable buffer for building `object` values.
     scratch: Vec<Primitive>,
 }
@@ -147,7 +151,8 @@ impl Interpreter {
             skip_static: false,
             created: 0,
             context_tainted: false,
-            calls: Vec::new(),
+            depth: 0,
+            last_proc: None,
             scratch: Vec::new(),
         }
     }
@@ -249,13 +254,15 @@ impl Interpreter {
         self.created = self.live_primitives();
         let result = program.items.iter().try_for_each(|item| self.run_item(item));
         self.env.reset_locals();
-        self.calls.clear();
+        self.depth = 0;
         self.context_tainted = false;
         result.map_err(|error| {
             self.restore(snapshot);
             let mut diagnostic = error.diagnostic;
             if !error.chain.is_empty() {
-                diagnostic = diagnostic.with_note(format!("call chain: {}", summarise_chain(&error.chain, sources)));
+                // Collected while unwinding, innermost first.
+                let chain: Vec<_> = error.chain.into_iter().rev().collect();
+                diagnostic = diagnostic.with_note(format!("call chain: {}", summarise_chain(&chain, sources)));
             }
             diagnostic
         })
@@ -286,6 +293,7 @@ impl Interpreter {
             }
             Item::Proc(def) => {
                 self.procs.insert(def.name.name.clone(), def.clone());
+                self.last_proc = None;
             }
             Item::Instr(instr) => self.exec(instr)?,
         }
@@ -334,6 +342,7 @@ impl Interpreter {
     fn restore(&mut self, snapshot: Snapshot) {
         self.env.globals = snapshot.globals;
         self.procs = snapshot.procs;
+        self.last_proc = None;
         self.scene.camera = snapshot.camera;
         self.scene.ambient = snapshot.ambient;
         self.has_camera = snapshot.has_camera;

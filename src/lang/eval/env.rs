@@ -85,7 +85,7 @@ pub(crate) struct Env {
 /// inline rather than by a call to `memcmp`; names from the same source text
 /// are often the same allocation, which a pointer comparison settles at once.
 #[inline]
-fn same_name(a: &str, b: &str) -> bool {
+pub(crate) fn same_name(a: &str, b: &str) -> bool {
     let (a, b) = (a.as_bytes(), b.as_bytes());
     a.len() == b.len() && (std::ptr::eq(a, b) || a.iter().zip(b).all(|(x, y)| x == y))
 }

@@ -114,17 +114,23 @@ impl Interpreter {
 }
 
 /// `a op b`, or an error at `span` if the result is not a finite number.
+#[inline]
 fn binary(op: BinOp, a: f64, b: f64, span: Span) -> EvalResult<f64> {
     let value = match op {
         BinOp::Add => a + b,
         BinOp::Sub => a - b,
         BinOp::Mul => a * b,
-        BinOp::Div if b == 0.0 => {
-            return fail(Diagnostic::error(span, "division by zero").with_label("the divisor is 0"));
-        }
+        BinOp::Div if b == 0.0 => return division_by_zero(span),
         BinOp::Div => a / b,
     };
     finite(value, span)
+}
+
+/// The division-by-zero error (out of line: the hot path only tests for it).
+#[cold]
+#[inline(never)]
+fn division_by_zero<T>(span: Span) -> EvalResult<T> {
+    fail(Diagnostic::error(span, "division by zero").with_label("the divisor is 0"))
 }
 
 /// `sin`, `cos` or `sqrt` of `x`.
@@ -141,15 +147,19 @@ fn function(func: Func, x: f64, span: Span) -> EvalResult<f64> {
 }
 
 /// `value` if finite, else an overflow error at `span`.
+#[inline]
 fn finite(value: f64, span: Span) -> EvalResult<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        fail(
-            Diagnostic::error(span, "this operation overflows: its result is too large to be a number")
-                .with_label("not a finite number"),
-        )
-    }
+    if value.is_finite() { Ok(value) } else { overflow(span) }
+}
+
+/// The overflow error (out of line).
+#[cold]
+#[inline(never)]
+fn overflow<T>(span: Span) -> EvalResult<T> {
+    fail(
+        Diagnostic::error(span, "this operation overflows: its result is too large to be a number")
+            .with_label("not a finite number"),
+    )
 }
 
 /// `a op b` for a comparison; `=` is exact float equality (SPEC 3).

@@ -3,10 +3,11 @@
 use std::mem;
 use std::rc::Rc;
 
+use super::env::same_name;
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
 use super::value::Value;
 use super::{Interpreter, grow};
-use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj};
+use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ProcDef};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::source::Span;
 
@@ -115,9 +116,7 @@ impl Interpreter {
 
     /// A procedure call: checks, binds the arguments, runs the body.
     fn exec_call(&mut self, name: &Ident, args: &[Expr], span: Span) -> EvalResult<()> {
-        let Some(proc) = self.procs.get(&name.name).cloned() else {
-            return fail(self.unknown_procedure(name));
-        };
+        let proc = self.find_proc(name)?;
         if args.len() != proc.params.len() {
             let params: Vec<&str> = proc.params.iter().map(|p| &*p.name).collect();
             return fail(
@@ -125,7 +124,7 @@ impl Interpreter {
                     .with_related(proc.name.span, format!("`{}` is defined here", proc.name.name)),
             );
         }
-        if self.calls.len() >= self.limits.max_call_depth {
+        if self.depth >= self.limits.max_call_depth {
             return Err(self.too_deep(name, span));
         }
         let caller = self.env.prepare_call();
@@ -134,11 +133,27 @@ impl Interpreter {
             self.env.push_argument(&param.name, Value::number(n.value, n.tainted));
         }
         self.env.enter(caller);
-        self.calls.push((name.name.clone(), span));
+        self.depth += 1;
         let result = grow(|| self.exec_block(&proc.body));
-        self.calls.pop();
+        self.depth -= 1;
         self.env.leave(caller);
         result.map_err(|error| in_call(error, &name.name, span))
+    }
+
+    /// The procedure a call names, looked up at the time of the call.
+    fn find_proc(&mut self, name: &Ident) -> EvalResult<Rc<ProcDef>> {
+        if let Some(last) = &self.last_proc
+            && same_name(&last.name.name, &name.name)
+        {
+            return Ok(last.clone());
+        }
+        match self.procs.get(&*name.name) {
+            Some(proc) => {
+                self.last_proc = Some(proc.clone());
+                Ok(proc.clone())
+            }
+            None => fail(self.unknown_procedure(name)),
+        }
     }
 
     /// "unknown procedure `orbt`", with a suggestion among the defined ones.
@@ -161,15 +176,18 @@ impl Interpreter {
                 "check that the recursion stops (an `if` whose condition becomes false), \
                  or raise the limit (`--max-calls`)",
             );
-        let mut chain = self.calls.clone();
-        chain.push((name.name.clone(), span));
-        Box::new(EvalError { diagnostic, chain })
+        // The callers add themselves as the error unwinds (see `in_call`).
+        Box::new(EvalError { diagnostic, chain: vec![(name.name.clone(), span)] })
     }
 }
 
 /// Marks an error raised inside a call with the place of the call (the
-/// innermost few only: a deep recursion would otherwise list them all).
-fn in_call(mut error: Box<EvalError>, name: &str, span: Span) -> Box<EvalError> {
+/// innermost few only: a deep recursion would otherwise list them all), and
+/// adds the call to a recursion error's chain.
+fn in_call(mut error: Box<EvalError>, name: &Rc<str>, span: Span) -> Box<EvalError> {
+    if !error.chain.is_empty() {
+        error.chain.push((name.clone(), span));
+    }
     if error.diagnostic.related.len() < CALLS_SHOWN {
         error.diagnostic.related.push((span, format!("in this call of `{name}`")));
     }

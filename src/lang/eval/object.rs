@@ -186,15 +186,18 @@ impl Interpreter {
 }
 
 /// An error unless `value > 0`: radii, box lengths and Phong exponents.
+#[inline]
 fn positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
-    if value > 0.0 {
-        Ok(())
-    } else {
-        fail(
-            Diagnostic::error(span, format!("{what} must be positive, but it is {value}"))
-                .with_label("not greater than 0"),
-        )
-    }
+    if value > 0.0 { Ok(()) } else { not_positive(value, span, what) }
+}
+
+/// The error for a size or exponent that is not positive (out of line).
+#[cold]
+#[inline(never)]
+fn not_positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
+    fail(
+        Diagnostic::error(span, format!("{what} must be positive, but it is {value}")).with_label("not greater than 0"),
+    )
 }
 
 /// Applies `f` to every primitive, then checks that none left the range of
