@@ -379,7 +379,7 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
         take(&mut left, &EXPRESSION_STARTS, "an expression (a number, a name, `(`...)");
     }
     if left.contains(&"sphere") {
-        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, `translate`, `rotate`, `scale`, `group` or a name)");
+        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, a name...)");
     }
     if left.contains(&"let") {
         take(&mut left, &INSTRUCTION_STARTS, "an instruction (`let`, `object`, `put`, `if` or a procedure call)");
