@@ -182,14 +182,17 @@ impl Interpreter {
 }
 
 /// Marks an error raised inside a call with the place of the call (the
-/// innermost few only: a deep recursion would otherwise list them all), and
+/// innermost few distinct places only: a deep recursion would otherwise list
+/// them all), and
 /// adds the call to a recursion error's chain.
 fn in_call(mut error: Box<EvalError>, name: &Rc<str>, span: Span) -> Box<EvalError> {
     if !error.chain.is_empty() {
         error.chain.push((name.clone(), span));
     }
-    if error.diagnostic.related.len() < CALLS_SHOWN {
-        error.diagnostic.related.push((span, format!("in this call of `{name}`")));
+    let diagnostic = &mut error.diagnostic;
+    let shown = span == diagnostic.span || diagnostic.related.iter().any(|(s, _)| *s == span);
+    if !shown && diagnostic.related.len() < CALLS_SHOWN {
+        diagnostic.related.push((span, format!("in this call of `{name}`")));
     }
     error
 }
