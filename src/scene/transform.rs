@@ -301,4 +301,84 @@ mod tests {
         let r = rotation_matrix(2.0 * PI, 2.0 * PI, 2.0 * PI);
         assert!(close_mat(&r, &DMat3::IDENTITY, 1e-12));
     }
+
+    /// One step of a random similarity.
+    #[derive(Debug, Clone, Copy)]
+    enum Step {
+        Translate(DVec3),
+        Rotate(DVec3),
+        Scale(f64),
+    }
+
+    fn vector(range: f64) -> impl proptest::strategy::Strategy<Value = DVec3> {
+        use proptest::prelude::*;
+        (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    fn step() -> impl proptest::strategy::Strategy<Value = Step> {
+        use proptest::prelude::*;
+        prop_oneof![
+            vector(5.0).prop_map(Step::Translate),
+            vector(7.0).prop_map(Step::Rotate),
+            prop_oneof![0.2..3.0, -3.0..-0.2].prop_map(Step::Scale),
+        ]
+    }
+
+    /// A signed measure of where `p` lies relative to the shape, that a
+    /// similarity of ratio k multiplies by |k|: distance to a sphere's surface,
+    /// signed distance to a plane, and the box's local coordinates (in
+    /// absolute value, since a box is symmetric about its centre).
+    fn measure(shape: &Shape, p: DVec3) -> DVec3 {
+        match *shape {
+            Shape::Sphere { center, radius } => DVec3::splat((p - center).length() - radius),
+            Shape::Plane { normal, shift } => DVec3::splat(normal.dot(p) - shift),
+            Shape::Box { center, half, axes } => (axes.transpose() * (p - center)).abs() - half,
+        }
+    }
+
+    proptest::proptest! {
+        /// Every point keeps its place relative to every shape (inside stays
+        /// inside, by the same distance times the ratio) under any sequence
+        /// of translations, rotations and scalings, negative ones included.
+        #[test]
+        fn similarities_preserve_where_points_lie(
+            steps in proptest::collection::vec(step(), 1..8),
+            points in proptest::collection::vec(vector(4.0), 1..6),
+        ) {
+            let shapes = [
+                Shape::Sphere { center: DVec3::new(0.5, -1.0, 2.0), radius: 1.5 },
+                Shape::Plane { normal: DVec3::new(0.0, 0.6, 0.8), shift: -0.7 },
+                unit_box(),
+            ];
+            for shape in shapes {
+                let mut moved = shape;
+                let mut ratio = 1.0;
+                let mut images = points.clone();
+                for step in &steps {
+                    match *step {
+                        Step::Translate(v) => {
+                            moved = moved.translated(v);
+                            images.iter_mut().for_each(|p| *p += v);
+                        }
+                        Step::Rotate(a) => {
+                            let r = rotation_matrix(a.x, a.y, a.z);
+                            moved = moved.rotated(&r);
+                            images.iter_mut().for_each(|p| *p = r * *p);
+                        }
+                        Step::Scale(k) => {
+                            moved = moved.scaled(k);
+                            ratio *= k.abs();
+                            images.iter_mut().for_each(|p| *p *= k);
+                        }
+                    }
+                }
+                for (p, image) in points.iter().zip(&images) {
+                    let expected = measure(&shape, *p) * ratio;
+                    let got = measure(&moved, *image);
+                    let tolerance = 1e-9 * (1.0 + ratio) * (1.0 + image.length());
+                    proptest::prop_assert!((expected - got).abs().max_element() < tolerance, "{shape:?} {p} {expected} {got}");
+                }
+            }
+        }
+    }
 }
