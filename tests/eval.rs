@@ -990,3 +990,75 @@ fn menger_depth_5_is_fast_and_lean() {
     assert!(elapsed < 2.0, "{elapsed} s");
     assert!(peak.is_none_or(|kib| kib < 1_500_000), "{peak:?} KiB");
 }
+
+mod random_programs {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Random numeric expressions over `x`, `a` and `time`, with every operator
+    /// and function, and values that provoke divisions by zero, negative
+    /// roots, overflows and out-of-range textures.
+    fn expr() -> impl Strategy<Value = String> {
+        let leaf = prop_oneof![
+            Just("0".to_string()),
+            Just("1".to_string()),
+            Just("2.5".to_string()),
+            Just("300".to_string()),
+            Just("1000000000000000000000000000000000000000000000000000000000000000000000000000000000000".to_string()),
+            Just("time".to_string()),
+            Just("a".to_string()),
+            Just("x".to_string()),
+            Just("pi".to_string()),
+        ];
+        leaf.prop_recursive(4, 24, 2, |inner| {
+            prop_oneof![
+                (inner.clone(), prop_oneof![Just("+"), Just("-"), Just("*"), Just("/")], inner.clone())
+                    .prop_map(|(a, op, b)| format!("({a} {op} {b})")),
+                inner.clone().prop_map(|a| format!("-{a}")),
+                (prop_oneof![Just("sin"), Just("cos"), Just("sqrt")], inner).prop_map(|(f, a)| format!("{f}({a})")),
+            ]
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+        /// Whatever the numbers, evaluation returns a scene or an error, and a
+        /// scene only holds finite, in-range primitives.
+        #[test]
+        fn evaluation_never_panics_and_scenes_are_sane(e in proptest::collection::vec(expr(), 10)) {
+            let text = format!(
+                "let a = 1
+                 let x = {}
+                 proc p(a, n)
+                   if n > 0 & {} < {} then
+                     put sphere center {}, a, 0 radius {} kd {} ks 0.5 phong {} color {}, 0, 0 end
+                     p(a + 1, n - 1)
+                   end
+                 end
+                 p({}, 3)
+                 put scale translate box center 0, 0, 0 length {}, 1, 1 {TEX} end by {}, 0, 0 end by {} end",
+                e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9], e[0], e[1]
+            );
+            let mut sources = SourceMap::new();
+            let id = sources.add("random.ray", text.clone(), 0);
+            let program = parse_items(id, &text).unwrap();
+            let mut i = Interpreter::new(2.0, Limits::default());
+            if i.run(&program).is_ok() {
+                for p in i.scene().all_primitives() {
+                    prop_assert!(p.shape.is_finite(), "{text}");
+                    let m = p.material;
+                    prop_assert!((0.0..=1.0).contains(&m.kd) && (0.0..=1.0).contains(&m.ks) && m.phong > 0.0);
+                    prop_assert!(m.color.min_element() >= 0.0 && m.color.max_element() <= 1.0);
+                    match p.shape {
+                        Shape::Sphere { radius, .. } => prop_assert!(radius > 0.0),
+                        Shape::Box { half, .. } => prop_assert!(half.min_element() > 0.0),
+                        Shape::Plane { .. } => {}
+                    }
+                }
+            } else {
+                prop_assert_eq!(i.scene().all_primitives().count(), 0, "a failed run leaves nothing");
+            }
+        }
+    }
+}
