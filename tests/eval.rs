@@ -651,6 +651,38 @@ fn variables_a_time_condition_may_rebind_are_timed_even_when_it_does_not() {
 }
 
 #[test]
+fn parameters_of_calls_under_a_time_condition_are_timed() {
+    // `p` is untainted as a value, but the call happens only when time < 5,
+    // and inside, `n` may be rebound under another time condition.
+    let text = "
+        proc g(n) if time > 5 then let n = 1 end put sphere center n, 0, 0 radius 1 $T end end
+        if time < 5 then g(0) end";
+    let (i, result, _) = run_at(text, 1.0, Limits::default());
+    result.unwrap();
+    assert_eq!((i.scene().primitives.len(), i.scene().timed_primitives.len()), (0, 1));
+}
+
+#[test]
+fn nested_time_conditions_stay_linear() {
+    with_big_stack(|| {
+        let depth = 20_000;
+        let text = format!(
+            "let x = 0 {} let x = 1 {} put sphere center x, 0, 0 radius 1 {TEX} end",
+            "if time < 5 then ".repeat(depth),
+            "end ".repeat(depth)
+        );
+        let mut sources = SourceMap::new();
+        let id = sources.add("nested.ray", text.clone(), 0);
+        let program = parse_items(id, &text).unwrap();
+        let start = std::time::Instant::now();
+        let mut i = Interpreter::new(1.0, Limits::default());
+        i.run(&program).unwrap();
+        assert_eq!(i.scene().timed_primitives.len(), 1);
+        assert!(start.elapsed().as_secs_f64() < 5.0, "quadratic?");
+    });
+}
+
+#[test]
 fn time_flows_through_procedure_arguments_and_recursion() {
     let text = "
         proc f(t) if 0 < t then put sphere center t, 0, 0 radius 1 $T end f(t - 1) end end

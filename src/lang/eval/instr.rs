@@ -34,7 +34,10 @@ impl Interpreter {
             InstrKind::Put(obj) => self.exec_put(obj),
             InstrKind::If(cond, then, otherwise) => grow(|| {
                 let (holds, tainted) = self.eval_cond(cond)?;
-                if tainted {
+                // Under a tainted context every variable of this scope is
+                // already tainted (bound in that context, or tainted by the
+                // walk of the enclosing `if`), so the walk is needed once only.
+                if tainted && !self.context_tainted {
                     self.taint_bindings_in(then, otherwise.as_deref());
                 }
                 let branch = if holds { Some(then) } else { otherwise.as_ref() };
@@ -130,7 +133,7 @@ impl Interpreter {
         let caller = self.env.prepare_call();
         for (param, arg) in proc.params.iter().zip(args) {
             let n = self.eval_expr(arg)?;
-            self.env.push_argument(&param.name, Value::number(n.value, n.tainted));
+            self.env.push_argument(&param.name, Value::number(n.value, n.tainted | self.context_tainted));
         }
         self.env.enter(caller);
         self.depth += 1;
