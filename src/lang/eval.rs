@@ -128,7 +128,10 @@ struct Snapshot {
 
 impl Interpreter {
     /// A fresh interpreter evaluating with `time` bound to the given value.
+    /// Every number a program sees is finite, so a non-finite `time` is taken
+    /// as 0 (the command line should refuse one).
     pub fn new(time: f64, limits: Limits) -> Interpreter {
+        let time = if time.is_finite() { time } else { 0.0 };
         let mut env = Env::default();
         env.globals.insert("time".into(), Value::number(time, true));
         Interpreter {
