@@ -9,3 +9,5 @@ pub mod lang;
 pub mod output;
 pub mod render;
 pub mod scene;
+pub mod batch;
+pub mod cli;
