@@ -51,8 +51,8 @@ pub struct Skips {
     /// terms are exactly 0).
     pub zero_ks: bool,
     /// No reflection ray once the product of `ks` along the path is below
-    /// half an 8-bit level; pixels where that could change the byte are
-    /// traced again in full (see [`shade`] for the proof).
+    /// half an 8-bit level; paths of pixels whose byte that could change are
+    /// resumed (see [`shade`] for the proof).
     pub negligible_reflection: bool,
 }
 
@@ -135,9 +135,9 @@ impl std::error::Error for Cancelled {}
 pub struct RenderStats {
     /// Rays traced, by kind.
     pub rays: RayCounts,
-    /// Pixels traced a second time without the reflection-weight cutoff,
-    /// because the cutoff could have changed their byte.
-    pub exact_retraces: u64,
+    /// Paths paused by the reflection-weight cutoff and then followed to
+    /// their end because the cutoff could have changed their pixel's byte.
+    pub resumed_paths: u64,
     /// Wall-clock time of the render.
     pub elapsed: Duration,
 }
@@ -153,7 +153,7 @@ impl RenderStats {
 #[derive(Debug, Clone, Copy, Default)]
 struct BandStats {
     rays: RayCounts,
-    exact_retraces: u64,
+    resumed_paths: u64,
 }
 
 /// Renders `scene` (whose geometry is `prepared`) into an image of
@@ -196,7 +196,7 @@ pub fn render(
     let mut stats = RenderStats::default();
     for band in bands {
         stats.rays += band.rays;
-        stats.exact_retraces += band.exact_retraces;
+        stats.resumed_paths += band.resumed_paths;
     }
     let image = RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
     stats.elapsed = start.elapsed();
@@ -218,8 +218,7 @@ impl Job<'_> {
     /// bytes), tile by tile.
     fn band(&self, top: u32, pixels: &mut [u8]) -> Result<BandStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
-        let mut tracer = Tracer::new(self.prepared, self.lighting);
-        let mut exact_retraces = 0;
+        let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
         let mut left = 0;
         while left < self.width {
             if self.control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -229,9 +228,8 @@ impl Job<'_> {
             for row in 0..rows {
                 for i in left..right {
                     let at = (row as usize * self.width as usize + i as usize) * 3;
-                    let (rgb, retraced) = self.pixel(&mut tracer, i, top + row);
+                    let rgb = self.pixel(&mut tracer, i, top + row);
                     pixels[at..at + 3].copy_from_slice(&rgb);
-                    exact_retraces += u64::from(retraced);
                 }
             }
             if let Some(progress) = self.control.progress {
@@ -239,38 +237,36 @@ impl Job<'_> {
             }
             left = right;
         }
-        Ok(BandStats { rays: tracer.counts, exact_retraces })
+        Ok(BandStats { rays: tracer.counts, resumed_paths: tracer.resumed })
     }
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
-    /// samples (SPEC 6), and whether it had to be traced a second time
-    /// without the reflection-weight cutoff.
+    /// samples (SPEC 6). When the reflection-weight cutoff leaves the byte
+    /// undecided, the paused paths are resumed (see [`shade`]).
     #[inline]
-    fn pixel(&self, tracer: &mut Tracer, i: u32, j: u32) -> ([u8; 3], bool) {
-        let (lo, hi) = self.average(tracer, i, j, true);
-        let bytes = to_bytes(lo);
-        if bytes == to_bytes(hi) {
-            return (bytes, false);
-        }
-        let (exact, _) = self.average(tracer, i, j, false);
-        (to_bytes(exact), true)
-    }
-
-    /// The average colour of the samples of pixel `(i, j)`, as bounds.
-    #[inline]
-    fn average(&self, tracer: &mut Tracer, i: u32, j: u32, cutoff: bool) -> (DVec3, DVec3) {
-        if let [only] = self.offsets[..] {
-            let b = tracer.trace(&self.rays.ray(i, j, only), cutoff);
-            return (b.lo, b.hi);
-        }
-        let (mut lo, mut hi) = (DVec3::ZERO, DVec3::ZERO);
-        for &offset in &self.offsets {
-            let b = tracer.trace(&self.rays.ray(i, j, offset), cutoff);
+    fn pixel(&self, tracer: &mut Tracer, i: u32, j: u32) -> [u8; 3] {
+        let mut lo = DVec3::ZERO;
+        let mut hi = DVec3::ZERO;
+        let mut open = false;
+        for (slot, &offset) in self.offsets.iter().enumerate() {
+            let b = tracer.trace(slot, &self.rays.ray(i, j, offset));
             lo += b.lo;
             hi += b.hi;
+            open |= b.lo != b.hi;
         }
-        let n = self.offsets.len() as f64;
-        (lo / n, hi / n)
+        let bytes = to_bytes(self.average(lo));
+        if !open || bytes == to_bytes(self.average(hi)) {
+            return bytes;
+        }
+        // The same sum in the same order as without the cutoff.
+        let exact = (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
+        to_bytes(self.average(exact))
+    }
+
+    /// The average of a sum of sample colours.
+    #[inline]
+    fn average(&self, sum: DVec3) -> DVec3 {
+        if self.offsets.len() == 1 { sum } else { sum / self.offsets.len() as f64 }
     }
 }
 

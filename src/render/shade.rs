@@ -14,19 +14,20 @@
 //! # The reflection-weight cutoff, and why it is exact
 //!
 //! A path whose accumulated weight `w = Π ks` (the factor by which a deeper
-//! colour reaches the pixel) falls below half an 8-bit level stops early when
-//! [`Skips::negligible_reflection`] is on. The dropped colour `x` lies in
-//! `[0, 1]`, and every step of the fold (`local + ks * x`, then clamp) is
-//! monotone in `x`, in floating point too (correctly rounded `+` and `*` by a
-//! non-negative number are monotone, and so is clamping). So the exact pixel
-//! value lies between the fold with `x = 0` (`lo`) and with `x = 1` (`hi`),
-//! and `round(255 * c)` is monotone as well. The cutoff alone (`hi - lo <=
-//! w < 0.5/255`) does not settle the byte: a value just below a `.5` boundary
-//! still rounds differently once the missing `< 0.5/255` is added. Hence
-//! the tracer returns the pair `(lo, hi)`; when both round to the same byte
-//! the exact byte is that one, and otherwise the caller traces the pixel
-//! again without the cutoff. The image is then byte-identical to the one
-//! without the skip, by construction.
+//! colour reaches the pixel) falls below half an 8-bit level pauses when
+//! [`Skips::negligible_reflection`] is on. The colour `x` it did not compute
+//! lies in `[0, 1]`, and every step of the fold (`local + ks * x`, then clamp)
+//! is monotone in `x`, in floating point too (correctly rounded `+`, and `*`
+//! by a non-negative number, are monotone, and so is clamping). So the exact
+//! value lies between the fold with `x = 0` (`lo`) and with `x = 1` (`hi`);
+//! averaging samples and `round(255 * c)` are monotone as well. The cutoff
+//! alone (`hi - lo <= w < 0.5/255`) does not settle the byte: a value just
+//! below a `.5` boundary still rounds up once the missing `< 0.5/255` is
+//! added. Hence the tracer returns the pair `(lo, hi)`; when both give the
+//! same byte that byte is the exact one, and otherwise the caller resumes the
+//! paused paths ([`Tracer::resume`]) where they stopped. Nothing is traced
+//! twice, and the image is byte-identical to the one without the skip, by
+//! construction.
 
 use glam::DVec3;
 
@@ -75,6 +76,14 @@ struct Level {
     ks: f64,
 }
 
+/// A path of reflections from one primary ray: its levels so far and, if
+/// the cutoff paused it, where it would go on.
+#[derive(Debug, Clone, Default)]
+struct Path {
+    levels: Vec<Level>,
+    paused: Option<Ray>,
+}
+
 /// What lies past the last level of a path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Tail {
@@ -97,52 +106,80 @@ pub struct Lighting<'a> {
     pub skips: Skips,
 }
 
-/// Traces paths; holds a reusable buffer and the ray counts of one tile.
+/// Traces paths; holds the ray counts of one tile and reusable buffers.
 pub struct Tracer<'a> {
     geometry: &'a Prepared,
     lighting: Lighting<'a>,
     /// Rays traced so far.
     pub counts: RayCounts,
-    levels: Vec<Level>,
+    /// Paused paths resumed so far.
+    pub resumed: u64,
+    /// One path per sample slot (kept to resume it).
+    paths: Vec<Path>,
 }
 
 impl<'a> Tracer<'a> {
-    /// A tracer over `geometry` with the image constants `lighting`.
-    pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>) -> Tracer<'a> {
-        Tracer { geometry, lighting, counts: RayCounts::default(), levels: Vec::with_capacity(8) }
+    /// A tracer over `geometry` with the image constants `lighting`, for
+    /// `slots` samples per pixel.
+    pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a> {
+        let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
+        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths }
     }
 
     /// The colour seen along a primary ray, each component in [0, 1]
-    /// (SPEC 6), as a bracket. With `cutoff` false the reflection-weight
-    /// cutoff is not applied and the bracket is exact (`lo == hi`).
-    pub fn trace(&mut self, primary: &Ray, cutoff: bool) -> Bracket {
+    /// (SPEC 6), as a bracket. The path is kept in `slot` so that
+    /// [`Tracer::resume`] can finish it if the cutoff paused it.
+    pub fn trace(&mut self, slot: usize, primary: &Ray) -> Bracket {
         self.counts.primary += 1;
-        let cutoff = cutoff && self.lighting.skips.negligible_reflection;
-        self.levels.clear();
-        let mut ray = *primary;
-        let mut weight = 1.0;
-        let mut level = 0u32;
-        let tail = loop {
-            let Some(hit) = self.geometry.closest_hit(&ray) else { break Tail::Black };
+        let mut levels = std::mem::take(&mut self.paths[slot].levels);
+        levels.clear();
+        let (tail, paused) = self.follow(&mut levels, *primary, self.lighting.skips.negligible_reflection);
+        let bracket = fold(&levels, tail);
+        self.paths[slot] = Path { levels, paused };
+        bracket
+    }
+
+    /// The exact colour of the path in `slot`: a paused path is followed to
+    /// its end without the cutoff; any other is folded again as it is.
+    pub fn resume(&mut self, slot: usize) -> DVec3 {
+        let mut levels = std::mem::take(&mut self.paths[slot].levels);
+        let tail = match self.paths[slot].paused.take() {
+            Some(ray) => {
+                self.resumed += 1;
+                self.counts.reflection += 1;
+                self.follow(&mut levels, ray, false).0
+            }
+            None => Tail::Black,
+        };
+        let colour = fold(&levels, tail).lo;
+        self.paths[slot].levels = levels;
+        colour
+    }
+
+    /// Follows the path from `ray` (at level `levels.len()`), appending a
+    /// level per hit. Returns what lies past the last level and, when the
+    /// cutoff stopped it, the reflected ray not traced.
+    fn follow(&mut self, levels: &mut Vec<Level>, mut ray: Ray, cutoff: bool) -> (Tail, Option<Ray>) {
+        let mut weight: f64 = levels.iter().map(|l| l.ks).product();
+        loop {
+            let Some(hit) = self.geometry.closest_hit(&ray) else { return (Tail::Black, None) };
             let local = self.local_colour(&ray, &hit);
             let ks = hit.material.ks;
-            let follow = level < self.lighting.depth && !(ks == 0.0 && self.lighting.skips.zero_ks);
-            if !follow {
+            let level = levels.len() as u32;
+            if level >= self.lighting.depth || (ks == 0.0 && self.lighting.skips.zero_ks) {
                 // SPEC 6: at level `depth` the reflection term is dropped; with
-                // ks = 0 it is `0 * colour = 0` and adding it changes nothing.
-                self.levels.push(Level { local, ks: 0.0 });
-                break Tail::Black;
+                // ks = 0 it is `0 * colour = +0` and adding it changes nothing.
+                levels.push(Level { local, ks: 0.0 });
+                return (Tail::Black, None);
             }
-            self.levels.push(Level { local, ks });
+            levels.push(Level { local, ks });
             weight *= ks;
-            if cutoff && weight < NEGLIGIBLE_WEIGHT {
-                break Tail::Unknown;
-            }
             ray = reflected(&ray, &hit);
+            if cutoff && weight < NEGLIGIBLE_WEIGHT {
+                return (Tail::Unknown, Some(ray));
+            }
             self.counts.reflection += 1;
-            level += 1;
-        };
-        fold(&self.levels, tail)
+        }
     }
 
     /// Everything in SPEC 6's formula but the reflection term: the ambient
