@@ -7,6 +7,7 @@
 
 pub mod lang;
 pub mod output;
+pub mod progress;
 pub mod render;
 pub mod scene;
 pub mod batch;
