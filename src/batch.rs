@@ -155,6 +155,9 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
         let formats = if cli.anim.is_some() { ".png, .ppm or .gif" } else { ".png or .ppm" };
         return Err(format!("rayrepl: cannot tell the image format of `{}`: use {formats}", path.display()));
     }
+    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
+        return Err(format!("rayrepl: cannot write `{}`: the folder `{}` does not exist", path.display(), folder.display()));
+    }
     if is_gif(&path) && cli.frames.is_some() {
         return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
     }
