@@ -7,5 +7,8 @@
 
 pub mod lang;
 pub mod output;
+pub mod progress;
 pub mod render;
 pub mod scene;
+pub mod batch;
+pub mod cli;

@@ -1,0 +1,323 @@
+//! Batch work from the command line: checking, rendering still images and
+//! animations of a scene file.
+
+use std::io::{IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Instant;
+
+use image::RgbImage;
+
+use crate::cli::{Cli, ScreenArg};
+use crate::lang::ast::Program;
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_file};
+use crate::output::{self, ImageFormat};
+use crate::progress::Progress;
+use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats, Screen};
+use crate::scene::Scene;
+
+/// How long each frame of an animated GIF is shown (25 frames per second).
+const GIF_FRAME_MS: u32 = 40;
+
+/// Runs what the command line asks for and returns the process's exit code.
+pub fn run(cli: Cli) -> ExitCode {
+    let Some(path) = cli.scene.clone() else {
+        eprintln!("rayrepl: the interactive session is not built yet; give a scene file");
+        return ExitCode::FAILURE;
+    };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(cli.threads.unwrap_or(0) as usize).build();
+    let result = match pool {
+        Ok(pool) => pool.install(|| run_file(&cli, &path)),
+        Err(e) => Err(format!("rayrepl: cannot start worker threads: {e}")),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("{}", message.trim_end());
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Checks or renders one scene file.
+fn run_file(cli: &Cli, path: &Path) -> Result<(), String> {
+    let mut sources = SourceMap::new();
+    let id = load(&mut sources, path)?;
+    let frontend = Frontend::parse(sources, id, cli)?;
+    if cli.check {
+        let scene = frontend.evaluate(cli.time, false)?;
+        println!("{}: {}", frontend.sources.get(id).name, summary(&scene));
+        return Ok(());
+    }
+    let output = output_path(cli, path)?;
+    match cli.anim {
+        Some(count) => animate(cli, &frontend, count, &output),
+        None => still(cli, &frontend, &output),
+    }
+}
+
+/// A parsed scene file, ready to be evaluated at any `time`.
+struct Frontend {
+    sources: SourceMap,
+    program: Program,
+    limits: Limits,
+}
+
+impl Frontend {
+    /// Parses the file `id` of `sources`.
+    fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<Frontend, String> {
+        let program = parse_file(id, &sources.get(id).text).map_err(|d| show(&sources, &d))?;
+        let limits = Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives };
+        Ok(Frontend { sources, program, limits })
+    }
+
+    /// Evaluates the program at `time`, printing warnings on stderr. With
+    /// `skip_static`, primitives that do not depend on `time` are not kept
+    /// (an animation's later frames reuse the first frame's).
+    fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, String> {
+        Ok(self.evaluate_interpreter(time, skip_static)?.into_scene())
+    }
+
+    /// Like [`Frontend::evaluate`], keeping the interpreter (to ask what it read).
+    fn evaluate_interpreter(&self, time: f64, skip_static: bool) -> Result<Interpreter, String> {
+        let mut interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
+        let result = interpreter.run_with_sources(&self.program, &self.sources);
+        for warning in interpreter.take_warnings() {
+            eprint!("{}", show(&self.sources, &warning));
+        }
+        result.map_err(|d| show(&self.sources, &d))?;
+        Ok(interpreter)
+    }
+}
+
+/// A diagnostic rendered for stderr (coloured on a terminal).
+fn show(sources: &SourceMap, diagnostic: &Diagnostic) -> String {
+    diagnostic.render(sources, std::io::stderr().is_terminal())
+}
+
+/// Reads a scene file (or standard input for `-`) into `sources`.
+pub fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
+    if path == Path::new("-") {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| format!("rayrepl: cannot read the scene from standard input: {}", io_reason(&e)))?;
+        return Ok(sources.add("<stdin>", text, 0));
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("rayrepl: cannot read `{}`: {}", path.display(), io_reason(&e)))?;
+    Ok(sources.add(path.display().to_string(), text, 0))
+}
+
+/// An I/O error in plain words, without Rust's `(os error 2)` suffix.
+pub fn io_reason(error: &std::io::Error) -> String {
+    match error.kind() {
+        std::io::ErrorKind::NotFound => "no such file".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        std::io::ErrorKind::IsADirectory => "it is a directory".into(),
+        std::io::ErrorKind::InvalidData => "it is not UTF-8 text".into(),
+        _ => error.to_string(),
+    }
+}
+
+/// "3 spheres, 1 plane, 0 boxes, 2 lights".
+fn summary(scene: &Scene) -> String {
+    let counts = scene.counts();
+    let plural = |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    format!(
+        "{}, {}, {}, {}",
+        plural(counts.spheres, "sphere", "spheres"),
+        plural(counts.planes, "plane", "planes"),
+        plural(counts.boxes, "box", "boxes"),
+        plural(counts.lights, "light", "lights"),
+    )
+}
+
+/// The output file: `-o`, or the scene's name with `.png` (`.gif` for an
+/// animation) in the current directory. Checks the format before any work.
+fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
+    let path = match &cli.output {
+        Some(path) => path.clone(),
+        None => {
+            let stem = scene.file_stem().filter(|_| scene != Path::new("-")).unwrap_or("out".as_ref());
+            PathBuf::from(stem).with_extension(if cli.anim.is_some() { "gif" } else { "png" })
+        }
+    };
+    if path == Path::new("-") {
+        if cli.anim.is_some() {
+            return Err("rayrepl: `-o -` writes a single image; give a file name for an animation".into());
+        }
+        return Ok(path);
+    }
+    let known = ImageFormat::from_path(&path).is_some() || (cli.anim.is_some() && is_gif(&path));
+    if !known {
+        let formats = if cli.anim.is_some() { ".png, .ppm or .gif" } else { ".png or .ppm" };
+        return Err(format!("rayrepl: cannot tell the image format of `{}`: use {formats}", path.display()));
+    }
+    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
+        return Err(format!("rayrepl: cannot write `{}`: the folder `{}` does not exist", path.display(), folder.display()));
+    }
+    if is_gif(&path) && cli.frames.is_some() {
+        return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
+    }
+    Ok(path)
+}
+
+/// Whether `path` names an animated GIF.
+fn is_gif(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gif"))
+}
+
+/// The renderer's settings from the command line.
+fn render_options(cli: &Cli) -> RenderOptions {
+    RenderOptions {
+        width: cli.width,
+        height: cli.height,
+        depth: cli.depth,
+        samples: cli.samples,
+        screen: match cli.screen {
+            ScreenArg::Centered => Screen::Centered,
+            ScreenArg::Bottom => Screen::Bottom,
+        },
+        ..RenderOptions::default()
+    }
+}
+
+/// Renders one image at `--time`.
+fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
+    let start = Instant::now();
+    let scene = frontend.evaluate(cli.time, false)?;
+    let evaluated = start.elapsed();
+    let prepared = Prepared::new(&scene);
+    let built = start.elapsed() - evaluated;
+    let options = render_options(cli);
+    let progress = Progress::new(u64::from(options.width) * u64::from(options.height), "rendering");
+    let (image, stats) = render_frame(&scene, &prepared, &options, &progress);
+    progress.finish();
+    if cli.stats {
+        eprintln!("evaluate {:.3} s, build {:.3} s", evaluated.as_secs_f64(), built.as_secs_f64());
+        print_stats(&stats, 1);
+    }
+    if output == Path::new("-") {
+        let mut stdout = std::io::stdout().lock();
+        output::write_ppm(&mut stdout, &image)
+            .and_then(|()| stdout.flush())
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", io_reason(&e)))
+    } else {
+        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))
+    }
+}
+
+/// Renders one frame with the progress bar attached.
+fn render_frame(scene: &Scene, prepared: &Prepared, options: &RenderOptions, progress: &Progress) -> (RgbImage, RenderStats) {
+    let tick = |pixels: u64| progress.advance(pixels);
+    let control = RenderControl { progress: Some(&tick), cancel: None };
+    render::render(scene, prepared, options, &control).expect("a batch render is never cancelled")
+}
+
+/// Renders frames `--frames` (default all) of an animation of `count`
+/// frames, frame k with `time = k`, to numbered images or one GIF.
+///
+/// The first frame is evaluated in full. When nothing in the scene depends
+/// on `time`, that one image serves for every frame; otherwise later frames
+/// re-run the program keeping only what depends on `time`, and reuse the
+/// first frame's geometry (and its BVH) for the rest.
+fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<(), String> {
+    let frames = cli.frames.clone().unwrap_or(1..=count);
+    if *frames.end() > count {
+        return Err(format!("rayrepl: --frames {}..{} goes past the last frame, {count}", frames.start(), frames.end()));
+    }
+    let options = render_options(cli);
+    let per_frame = u64::from(options.width) * u64::from(options.height);
+    let progress = Progress::new(per_frame * u64::from(frames.end() - frames.start() + 1), "animating");
+    let first = frontend.evaluate(f64::from(*frames.start()), false)?;
+    let first_prepared = Prepared::new(&first);
+    let static_part = Arc::clone(&first_prepared.static_part);
+    let mut frame_writer = FrameWriter::new(output, count as usize);
+    let mut total = RenderStats::default();
+    let mut still_image: Option<RgbImage> = None;
+    for k in frames.clone() {
+        let image = if let Some(image) = &still_image {
+            progress.advance(per_frame);
+            image.clone()
+        } else if k == *frames.start() {
+            let (image, stats) = render_frame(&first, &first_prepared, &options, &progress);
+            add_stats(&mut total, &stats);
+            if !first.depends_on_time() {
+                still_image = Some(image.clone());
+            }
+            image
+        } else {
+            let scene = frontend.evaluate(f64::from(k), true)?;
+            let prepared = Prepared::with_static(Arc::clone(&static_part), &scene.timed_primitives);
+            let (image, stats) = render_frame(&scene, &prepared, &options, &progress);
+            add_stats(&mut total, &stats);
+            image
+        };
+        frame_writer.push(k as usize, image)?;
+    }
+    progress.finish();
+    if cli.stats {
+        print_stats(&total, frames.count());
+    }
+    frame_writer.finish()
+}
+
+/// Adds one frame's statistics to a running total.
+fn add_stats(total: &mut RenderStats, frame: &RenderStats) {
+    total.rays += frame.rays;
+    total.resumed_paths += frame.resumed_paths;
+    total.elapsed += frame.elapsed;
+}
+
+/// Writes frames as they come: numbered images at once, or a GIF at the end.
+struct FrameWriter<'a> {
+    output: &'a Path,
+    count: usize,
+    gif_frames: Option<Vec<RgbImage>>,
+}
+
+impl<'a> FrameWriter<'a> {
+    /// A writer for an animation of `count` frames named after `output`.
+    fn new(output: &'a Path, count: usize) -> FrameWriter<'a> {
+        FrameWriter { output, count, gif_frames: is_gif(output).then(Vec::new) }
+    }
+
+    /// Writes (or keeps, for a GIF) frame `k`.
+    fn push(&mut self, k: usize, image: RgbImage) -> Result<(), String> {
+        match &mut self.gif_frames {
+            Some(frames) => {
+                frames.push(image);
+                Ok(())
+            }
+            None => {
+                let path = output::frame_path(self.output, k, self.count);
+                output::write_image(&path, &image).map_err(|e| format!("rayrepl: {e}"))
+            }
+        }
+    }
+
+    /// Writes the GIF, if that is what was asked for.
+    fn finish(self) -> Result<(), String> {
+        match self.gif_frames {
+            Some(frames) => output::write_gif(self.output, &frames, GIF_FRAME_MS).map_err(|e| format!("rayrepl: {e}")),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Prints `--stats`: rays of each kind, render time and throughput.
+fn print_stats(stats: &RenderStats, frames: usize) {
+    let seconds = stats.elapsed.as_secs_f64();
+    let threads = rayon::current_num_threads();
+    let total = stats.total_rays();
+    let mrays = total as f64 / seconds.max(1e-9) / 1e6;
+    eprintln!(
+        "frames {frames}: {} primary, {} shadow, {} reflection rays in {seconds:.3} s: {mrays:.1} Mrays/s ({:.1} per thread, {threads} threads)",
+        stats.rays.primary,
+        stats.rays.shadow,
+        stats.rays.reflection,
+        mrays / threads as f64,
+    );
+}

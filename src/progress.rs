@@ -1,0 +1,46 @@
+//! A progress bar with ETA on stderr, shown only when stderr is a terminal
+//! and only once the work has taken more than half a second.
+
+use std::io::IsTerminal;
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// How long work runs silently before a bar appears.
+const SHOW_AFTER: Duration = Duration::from_millis(500);
+
+/// Progress of one piece of work measured in units (pixels), safe to advance
+/// from worker threads.
+#[derive(Debug)]
+pub struct Progress {
+    bar: ProgressBar,
+    start: Instant,
+    shown: OnceLock<()>,
+    enabled: bool,
+}
+
+impl Progress {
+    /// Progress over `total` units, labelled `what` ("rendering").
+    pub fn new(total: u64, what: &str) -> Progress {
+        let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
+        let template = format!("{what} [{{bar:40}}] {{percent:>3}}% eta {{eta}}");
+        if let Ok(style) = ProgressStyle::with_template(&template) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        Progress { bar, start: Instant::now(), shown: OnceLock::new(), enabled: std::io::stderr().is_terminal() }
+    }
+
+    /// Records `units` more done; shows the bar once the work is slow enough to need it.
+    pub fn advance(&self, units: u64) {
+        self.bar.inc(units);
+        if self.enabled && self.start.elapsed() > SHOW_AFTER {
+            self.shown.get_or_init(|| self.bar.set_draw_target(ProgressDrawTarget::stderr()));
+        }
+    }
+
+    /// Removes the bar from the screen.
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}

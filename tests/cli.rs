@@ -1,0 +1,272 @@
+//! The command line, as a user runs it: every flag and every error.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use predicates::str::contains;
+
+/// A scene with one lit red sphere in the middle of the picture.
+const SPHERE: &str = "camera distance 10 angle 1 end
+ambient 0.2
+light vector 0.5, 0, 0 intensity 0.8 end
+put sphere center 0, 0, 0 radius 2 kd 0.8 ks 0 phong 10 color 255, 0, 0 end
+";
+
+/// The same sphere moving right with `time`.
+const MOVING: &str = "camera distance 10 angle 1 end
+ambient 0.2
+light vector 0.5, 0, 0 intensity 0.8 end
+put sphere center time - 2, 0, 0 radius 1 kd 0.8 ks 0 phong 10 color 255, 0, 0 end
+put plane rotation 0, 0, 0 shift -1 kd 0.8 ks 0 phong 10 color 0, 0, 255 end
+";
+
+fn rayrepl() -> Command {
+    Command::cargo_bin("rayrepl").expect("the binary is built")
+}
+
+/// A fresh temporary folder holding `scene.ray` with `text`.
+fn scene(text: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let path = dir.path().join("scene.ray");
+    std::fs::write(&path, text).expect("scene written");
+    (dir, path)
+}
+
+fn read_image(path: &Path) -> image::RgbImage {
+    image::open(path).expect("a readable image").to_rgb8()
+}
+
+#[test]
+fn renders_a_png_of_the_requested_size() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.png");
+    rayrepl().arg(&path).args(["--width", "40", "--height", "30", "-o"]).arg(&out).assert().success();
+    let image = read_image(&out);
+    assert_eq!(image.dimensions(), (40, 30));
+    assert!(image.get_pixel(20, 15)[0] > 0, "the centre shows the red sphere");
+}
+
+#[test]
+fn the_default_size_is_800_by_600() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.png");
+    rayrepl().arg(&path).arg("-o").arg(&out).assert().success();
+    assert_eq!(read_image(&out).dimensions(), (800, 600));
+}
+
+#[test]
+fn legacy_course_flags_are_accepted() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.ppm");
+    rayrepl().arg(&path).args(["-hsize", "16", "-vsize", "8", "-depth", "2", "-o"]).arg(&out).assert().success();
+    let bytes = std::fs::read(&out).expect("ppm written");
+    assert!(bytes.starts_with(b"P6\n16 8\n255\n"));
+    assert_eq!(bytes.len(), "P6\n16 8\n255\n".len() + 16 * 8 * 3);
+}
+
+#[test]
+fn dash_o_dash_writes_ppm_to_stdout() {
+    let (_dir, path) = scene(SPHERE);
+    let output = rayrepl().arg(&path).args(["--width", "4", "--height", "2", "-o", "-"]).output().expect("runs");
+    assert!(output.status.success());
+    assert!(output.stdout.starts_with(b"P6\n4 2\n255\n"));
+}
+
+#[test]
+fn a_scene_can_come_from_stdin() {
+    rayrepl().args(["--check", "-"]).write_stdin(SPHERE).assert().success().stdout(contains("1 sphere, 0 planes, 0 boxes, 1 light"));
+}
+
+#[test]
+fn check_prints_a_summary_and_writes_nothing() {
+    let (dir, path) = scene(SPHERE);
+    rayrepl().current_dir(dir.path()).arg("--check").arg(&path).assert().success().stdout(contains("1 sphere"));
+    assert!(!dir.path().join("scene.png").exists());
+}
+
+#[test]
+fn without_dash_o_the_image_is_named_after_the_scene() {
+    let (dir, path) = scene(SPHERE);
+    rayrepl().current_dir(dir.path()).arg(&path).args(["--width", "8", "--height", "8"]).assert().success();
+    assert!(dir.path().join("scene.png").exists());
+}
+
+#[test]
+fn time_moves_the_scene() {
+    let (dir, path) = scene(MOVING);
+    let at = |time: &str| {
+        let out = dir.path().join(format!("t{time}.png"));
+        rayrepl().arg(&path).args(["--width", "32", "--height", "16", "--time", time, "-o"]).arg(&out).assert().success();
+        read_image(&out)
+    };
+    assert_ne!(at("0"), at("3"));
+}
+
+#[test]
+fn samples_threads_screen_and_stats_are_accepted() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.png");
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "16", "--height", "12", "--samples", "4", "--threads", "1", "--screen", "bottom", "--stats", "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(contains("primary").and(contains("Mrays/s")));
+}
+
+#[test]
+fn the_image_does_not_depend_on_the_thread_count() {
+    let (dir, path) = scene(MOVING);
+    let render = |threads: &str| {
+        let out = dir.path().join(format!("threads{threads}.png"));
+        rayrepl().arg(&path).args(["--width", "37", "--height", "23", "--threads", threads, "-o"]).arg(&out).assert().success();
+        std::fs::read(out).expect("written")
+    };
+    assert_eq!(render("1"), render("2"));
+}
+
+#[test]
+fn an_animation_writes_numbered_frames_that_change() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("frame.png");
+    rayrepl().arg(&path).args(["--width", "24", "--height", "12", "--anim", "3", "-o"]).arg(&out).assert().success();
+    let frames: Vec<_> = (1..=3).map(|k| read_image(&dir.path().join(format!("frame000{k}.png")))).collect();
+    assert_ne!(frames[0], frames[1]);
+    assert_ne!(frames[1], frames[2]);
+}
+
+#[test]
+fn animation_frames_match_still_renders_at_the_same_time() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("frame.png");
+    rayrepl().arg(&path).args(["--width", "24", "--height", "12", "--anim", "2", "-o"]).arg(&out).assert().success();
+    let still = dir.path().join("still.png");
+    rayrepl().arg(&path).args(["--width", "24", "--height", "12", "--time", "2", "-o"]).arg(&still).assert().success();
+    assert_eq!(read_image(&dir.path().join("frame0002.png")), read_image(&still));
+}
+
+#[test]
+fn frames_renders_only_the_asked_subset() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("f.png");
+    rayrepl().arg(&path).args(["--width", "8", "--height", "8", "--anim", "10", "--frames", "3..4", "-o"]).arg(&out).assert().success();
+    let mut names: Vec<String> =
+        std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["f0003.png", "f0004.png", "scene.ray"]);
+}
+
+#[test]
+fn frames_past_the_end_are_refused() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("f.png");
+    rayrepl().arg(&path).args(["--anim", "3", "--frames", "2..5", "-o"]).arg(&out).assert().failure().stderr(contains("past the last frame"));
+}
+
+#[test]
+fn a_gif_animation_has_every_frame() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("anim.gif");
+    rayrepl().arg(&path).args(["--width", "16", "--height", "8", "--anim", "4", "-o"]).arg(&out).assert().success();
+    let file = std::io::BufReader::new(std::fs::File::open(&out).expect("gif written"));
+    let decoder = image::codecs::gif::GifDecoder::new(file).expect("a gif");
+    let frames = image::AnimationDecoder::into_frames(decoder).collect_frames().expect("frames decode");
+    assert_eq!(frames.len(), 4);
+}
+
+#[test]
+fn a_static_animation_repeats_one_image() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("s.png");
+    rayrepl().arg(&path).args(["--width", "8", "--height", "8", "--anim", "3", "--stats", "-o"]).arg(&out).assert().success();
+    assert_eq!(read_image(&dir.path().join("s0001.png")), read_image(&dir.path().join("s0003.png")));
+}
+
+#[test]
+fn a_missing_scene_is_a_clear_error() {
+    rayrepl().arg("no/such/scene.ray").assert().code(1).stderr(contains("cannot read `no/such/scene.ray`: no such file"));
+}
+
+#[test]
+fn an_unknown_output_format_is_refused_before_rendering() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.jpeg");
+    rayrepl().arg(&path).arg("-o").arg(&out).assert().code(1).stderr(contains("image format"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_missing_output_folder_is_refused_before_rendering() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("nowhere/out.png");
+    rayrepl().arg(&path).arg("-o").arg(&out).assert().code(1).stderr(contains("does not exist"));
+}
+
+#[test]
+fn an_unwritable_output_leaves_no_file_behind() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("taken");
+    std::fs::create_dir(out.join("")).expect("folder made");
+    let out = out.join("x.png");
+    std::fs::create_dir(&out).expect("a folder where the image should go");
+    rayrepl().arg(&path).args(["--width", "4", "--height", "4", "-o"]).arg(&out).assert().code(1);
+    let leftovers = std::fs::read_dir(dir.path().join("taken")).unwrap().count();
+    assert_eq!(leftovers, 1, "only the blocking folder remains");
+}
+
+#[test]
+fn zero_width_is_refused() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl().arg(&path).args(["--width", "0"]).assert().code(2).stderr(contains("width"));
+}
+
+#[test]
+fn a_bad_frame_range_is_refused() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl().arg(&path).args(["--anim", "3", "--frames", "x"]).assert().code(2).stderr(contains("frame range"));
+}
+
+#[test]
+fn dash_o_dash_is_refused_for_animations() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl().arg(&path).args(["--anim", "3", "-o", "-"]).assert().code(1).stderr(contains("single image"));
+}
+
+#[test]
+fn a_syntax_error_shows_file_line_column_and_caret() {
+    let (_dir, path) = scene("camera distance 10 angle 1 end\nambient 0.2\nput sphere center 0, 0 radius 1 kd 1 ks 0 phong 1 color 1, 1, 1 end\n");
+    let assert = rayrepl().arg(&path).assert().code(1);
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert!(stderr.contains("scene.ray:3:"), "{stderr}");
+    assert!(stderr.contains('^'), "{stderr}");
+}
+
+#[test]
+fn an_evaluation_error_writes_no_image() {
+    let (dir, path) = scene("camera distance 10 angle 1 end\nambient 0.2\nlet a = 1 / 0\n");
+    let out = dir.path().join("out.png");
+    rayrepl().arg(&path).arg("-o").arg(&out).assert().code(1).stderr(contains("scene.ray:3:"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn the_recursion_limit_is_configurable() {
+    let text = "camera distance 10 angle 1 end\nambient 0.2\nproc f(n)\n  if 0 < n then f(n - 1) end\nend\nf(50)\n";
+    let (_dir, path) = scene(text);
+    rayrepl().arg("--check").arg(&path).assert().success();
+    rayrepl().arg("--check").arg(&path).args(["--max-calls", "10"]).assert().code(1).stderr(contains("recursion"));
+}
+
+#[test]
+fn the_primitive_cap_is_configurable() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl().arg("--check").arg(&path).args(["--max-primitives", "0"]).assert().code(1);
+}
+
+#[test]
+fn help_lists_the_examples() {
+    rayrepl().arg("--help").assert().success().stdout(contains("--anim").and(contains("-hsize")));
+}
