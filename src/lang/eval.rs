@@ -27,6 +27,8 @@ mod value;
 use std::collections::HashSet;
 use std::rc::Rc;
 
+use glam::{DMat3, DVec3};
+
 use env::{Env, NameMap};
 use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
@@ -34,7 +36,7 @@ use value::{Kind, Value};
 use super::ast::{Item, ProcDef, Program};
 use super::diagnostic::Diagnostic;
 use super::source::{SourceMap, Span};
-use crate::scene::transform::{rotated_up, rotation_matrix};
+use crate::scene::transform::rotated_up;
 use crate::scene::{Camera, Light, Primitive, Scene, TimeUse};
 
 /// The camera used before a program defines one.
@@ -105,6 +107,8 @@ pub struct Interpreter {
     /// same procedure is called again (as recursion does). Cleared whenever
     /// the procedures change.
     last_proc: Option<Rc<ProcDef>>,
+    /// The last rotation computed, with its angles (see `rotation`).
+    last_rotation: (DVec3, DMat3),
     /// A reusable buffer for building `object` values.
     scratch: Vec<Primitive>,
 }
@@ -156,6 +160,7 @@ impl Interpreter {
             context_tainted: false,
             depth: 0,
             last_proc: None,
+            last_rotation: (DVec3::ZERO, DMat3::IDENTITY),
             scratch: Vec::new(),
         }
     }
@@ -290,7 +295,7 @@ impl Interpreter {
             Item::Light(def) => {
                 let (angles, rotation_tainted) = self.eval_triple(&def.rotation)?;
                 let intensity = self.eval_expr(&def.intensity)?;
-                let direction = rotated_up(&rotation_matrix(angles.x, angles.y, angles.z));
+                let direction = rotated_up(&self.rotation(angles));
                 self.scene.lights.push(Light { direction, intensity: intensity.value });
                 self.scene.time_use.lights |= rotation_tainted | intensity.tainted | self.context_tainted;
             }

@@ -35,7 +35,7 @@ impl Interpreter {
                 let d = self.eval_expr(shift)?;
                 let (material, m) = self.eval_texture(texture)?;
                 self.count_primitives(1, obj.span)?;
-                let normal = rotated_up(&rotation_matrix(angles.x, angles.y, angles.z));
+                let normal = rotated_up(&self.rotation(angles));
                 out.push(Primitive { shape: Shape::Plane { normal, shift: d.value }, material });
                 Ok(a | d.tainted | m)
             }
@@ -68,7 +68,7 @@ impl Interpreter {
             ObjKind::Rotate(inner, by) => {
                 let inner_tainted = self.emit_obj(inner, out)?;
                 let (angles, t) = self.eval_triple(by)?;
-                let r = rotation_matrix(angles.x, angles.y, angles.z);
+                let r = self.rotation(angles);
                 transform(&mut out[start..], obj.span, |p| p.rotate(&r))?;
                 Ok(inner_tainted | t)
             }
@@ -131,6 +131,16 @@ impl Interpreter {
         }
         self.created = total;
         Ok(())
+    }
+
+    /// The rotation matrix of SPEC 4 for these angles. The last one is kept:
+    /// a procedure that puts many objects usually turns them all alike, and
+    /// six sines and cosines per object would cost more than the rest of it.
+    pub(crate) fn rotation(&mut self, angles: DVec3) -> DMat3 {
+        if self.last_rotation.0 != angles {
+            self.last_rotation = (angles, rotation_matrix(angles.x, angles.y, angles.z));
+        }
+        self.last_rotation.1
     }
 
     /// Evaluates three expressions into a vector.
