@@ -156,7 +156,11 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
         return Err(format!("rayrepl: cannot tell the image format of `{}`: use {formats}", path.display()));
     }
     if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
-        return Err(format!("rayrepl: cannot write `{}`: the folder `{}` does not exist", path.display(), folder.display()));
+        return Err(format!(
+            "rayrepl: cannot write `{}`: the folder `{}` does not exist",
+            path.display(),
+            folder.display()
+        ));
     }
     if is_gif(&path) && cli.frames.is_some() {
         return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
@@ -210,7 +214,12 @@ fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
 }
 
 /// Renders one frame with the progress bar attached.
-fn render_frame(scene: &Scene, prepared: &Prepared, options: &RenderOptions, progress: &Progress) -> (RgbImage, RenderStats) {
+fn render_frame(
+    scene: &Scene,
+    prepared: &Prepared,
+    options: &RenderOptions,
+    progress: &Progress,
+) -> (RgbImage, RenderStats) {
     let tick = |pixels: u64| progress.advance(pixels);
     let control = RenderControl { progress: Some(&tick), cancel: None };
     render::render(scene, prepared, options, &control).expect("a batch render is never cancelled")
@@ -226,7 +235,11 @@ fn render_frame(scene: &Scene, prepared: &Prepared, options: &RenderOptions, pro
 fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<(), String> {
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
-        return Err(format!("rayrepl: --frames {}..{} goes past the last frame, {count}", frames.start(), frames.end()));
+        return Err(format!(
+            "rayrepl: --frames {}..{} goes past the last frame, {count}",
+            frames.start(),
+            frames.end()
+        ));
     }
     let options = render_options(cli);
     let per_frame = u64::from(options.width) * u64::from(options.height);

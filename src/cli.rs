@@ -113,9 +113,7 @@ fn parse_frames(text: &str) -> Result<RangeInclusive<u32>, String> {
         Some((a, b)) => (a, b),
         None => (text, text),
     };
-    let number = |s: &str| {
-        s.trim().parse::<u32>().map_err(|_| format!("`{text}` is not a frame range like 1..50"))
-    };
+    let number = |s: &str| s.trim().parse::<u32>().map_err(|_| format!("`{text}` is not a frame range like 1..50"));
     let (first, last) = (number(first)?, number(last)?);
     if first == 0 || first > last {
         return Err(format!("`{text}`: frames are numbered from 1 and the range must not be empty"));

@@ -30,7 +30,11 @@ fn expectation(path: &Path, prefix: &str) -> String {
 /// Runs `rayrepl --check` on `path`: exit code, stdout, stderr.
 fn check(path: &Path) -> (Option<i32>, String, String) {
     let output = Command::new(env!("CARGO_BIN_EXE_rayrepl")).arg("--check").arg(path).output().expect("binary runs");
-    (output.status.code(), String::from_utf8_lossy(&output.stdout).into(), String::from_utf8_lossy(&output.stderr).into())
+    (
+        output.status.code(),
+        String::from_utf8_lossy(&output.stdout).into(),
+        String::from_utf8_lossy(&output.stderr).into(),
+    )
 }
 
 /// "3 spheres, 1 plane, 0 boxes, 2 lights" as "spheres=3 planes=1 boxes=0 lights=2".

@@ -75,7 +75,12 @@ fn dash_o_dash_writes_ppm_to_stdout() {
 
 #[test]
 fn a_scene_can_come_from_stdin() {
-    rayrepl().args(["--check", "-"]).write_stdin(SPHERE).assert().success().stdout(contains("1 sphere, 0 planes, 0 boxes, 1 light"));
+    rayrepl()
+        .args(["--check", "-"])
+        .write_stdin(SPHERE)
+        .assert()
+        .success()
+        .stdout(contains("1 sphere, 0 planes, 0 boxes, 1 light"));
 }
 
 #[test]
@@ -97,7 +102,12 @@ fn time_moves_the_scene() {
     let (dir, path) = scene(MOVING);
     let at = |time: &str| {
         let out = dir.path().join(format!("t{time}.png"));
-        rayrepl().arg(&path).args(["--width", "32", "--height", "16", "--time", time, "-o"]).arg(&out).assert().success();
+        rayrepl()
+            .arg(&path)
+            .args(["--width", "32", "--height", "16", "--time", time, "-o"])
+            .arg(&out)
+            .assert()
+            .success();
         read_image(&out)
     };
     assert_ne!(at("0"), at("3"));
@@ -109,7 +119,20 @@ fn samples_threads_screen_and_stats_are_accepted() {
     let out = dir.path().join("out.png");
     rayrepl()
         .arg(&path)
-        .args(["--width", "16", "--height", "12", "--samples", "4", "--threads", "1", "--screen", "bottom", "--stats", "-o"])
+        .args([
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "--samples",
+            "4",
+            "--threads",
+            "1",
+            "--screen",
+            "bottom",
+            "--stats",
+            "-o",
+        ])
         .arg(&out)
         .assert()
         .success()
@@ -121,7 +144,12 @@ fn the_image_does_not_depend_on_the_thread_count() {
     let (dir, path) = scene(MOVING);
     let render = |threads: &str| {
         let out = dir.path().join(format!("threads{threads}.png"));
-        rayrepl().arg(&path).args(["--width", "37", "--height", "23", "--threads", threads, "-o"]).arg(&out).assert().success();
+        rayrepl()
+            .arg(&path)
+            .args(["--width", "37", "--height", "23", "--threads", threads, "-o"])
+            .arg(&out)
+            .assert()
+            .success();
         std::fs::read(out).expect("written")
     };
     assert_eq!(render("1"), render("2"));
@@ -151,7 +179,12 @@ fn animation_frames_match_still_renders_at_the_same_time() {
 fn frames_renders_only_the_asked_subset() {
     let (dir, path) = scene(MOVING);
     let out = dir.path().join("f.png");
-    rayrepl().arg(&path).args(["--width", "8", "--height", "8", "--anim", "10", "--frames", "3..4", "-o"]).arg(&out).assert().success();
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "8", "--height", "8", "--anim", "10", "--frames", "3..4", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
     let mut names: Vec<String> =
         std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     names.sort();
@@ -162,7 +195,13 @@ fn frames_renders_only_the_asked_subset() {
 fn frames_past_the_end_are_refused() {
     let (dir, path) = scene(MOVING);
     let out = dir.path().join("f.png");
-    rayrepl().arg(&path).args(["--anim", "3", "--frames", "2..5", "-o"]).arg(&out).assert().failure().stderr(contains("past the last frame"));
+    rayrepl()
+        .arg(&path)
+        .args(["--anim", "3", "--frames", "2..5", "-o"])
+        .arg(&out)
+        .assert()
+        .failure()
+        .stderr(contains("past the last frame"));
 }
 
 #[test]
@@ -180,13 +219,22 @@ fn a_gif_animation_has_every_frame() {
 fn a_static_animation_repeats_one_image() {
     let (dir, path) = scene(SPHERE);
     let out = dir.path().join("s.png");
-    rayrepl().arg(&path).args(["--width", "8", "--height", "8", "--anim", "3", "--stats", "-o"]).arg(&out).assert().success();
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "8", "--height", "8", "--anim", "3", "--stats", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
     assert_eq!(read_image(&dir.path().join("s0001.png")), read_image(&dir.path().join("s0003.png")));
 }
 
 #[test]
 fn a_missing_scene_is_a_clear_error() {
-    rayrepl().arg("no/such/scene.ray").assert().code(1).stderr(contains("cannot read `no/such/scene.ray`: no such file"));
+    rayrepl()
+        .arg("no/such/scene.ray")
+        .assert()
+        .code(1)
+        .stderr(contains("cannot read `no/such/scene.ray`: no such file"));
 }
 
 #[test]
@@ -236,7 +284,9 @@ fn dash_o_dash_is_refused_for_animations() {
 
 #[test]
 fn a_syntax_error_shows_file_line_column_and_caret() {
-    let (_dir, path) = scene("camera distance 10 angle 1 end\nambient 0.2\nput sphere center 0, 0 radius 1 kd 1 ks 0 phong 1 color 1, 1, 1 end\n");
+    let (_dir, path) = scene(
+        "camera distance 10 angle 1 end\nambient 0.2\nput sphere center 0, 0 radius 1 kd 1 ks 0 phong 1 color 1, 1, 1 end\n",
+    );
     let assert = rayrepl().arg(&path).assert().code(1);
     let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(stderr.starts_with("error: "), "{stderr}");
