@@ -42,7 +42,7 @@ pub struct Cli {
     pub depth: u32,
 
     /// The value of `time` for a single image.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_finite)]
     pub time: f64,
 
     /// Samples per pixel (deterministic stratified anti-aliasing; 1 = pixel centres).
@@ -106,6 +106,11 @@ Examples:
   cat script.ray | rayrepl                             run a script
 
 The original course's spellings -hsize, -vsize, -depth and -anim are accepted.";
+
+/// Parses a finite number (`time` may not be NaN or infinite).
+fn parse_finite(text: &str) -> Result<f64, String> {
+    text.parse::<f64>().ok().filter(|t| t.is_finite()).ok_or_else(|| format!("`{text}` is not a finite number"))
+}
 
 /// Parses `A..B` (or `A-B`, or a single `A`) into a frame range.
 fn parse_frames(text: &str) -> Result<RangeInclusive<u32>, String> {

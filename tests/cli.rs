@@ -320,3 +320,9 @@ fn the_primitive_cap_is_configurable() {
 fn help_lists_the_examples() {
     rayrepl().arg("--help").assert().success().stdout(contains("--anim").and(contains("-hsize")));
 }
+
+#[test]
+fn a_non_finite_time_is_refused() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl().arg(&path).args(["--time", "nan"]).assert().code(2).stderr(contains("finite"));
+}
