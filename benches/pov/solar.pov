@@ -1,4 +1,5 @@
-// solar.pov: POV-Ray 3.7 version of benches/scenes/solar.ray at time = 0,
+// solar.pov: POV-Ray 3.7 version of benches/scenes/solar.ray at time = 0
+// (a sun, an earth and its moon, a mirror floor, two mirror walls, two lights),
 // for comparing rayrepl's picture and speed with POV-Ray's.
 //
 // Render (800 x 600, no antialiasing, linear output like rayrepl's):
@@ -37,7 +38,7 @@ camera {
   perspective
   location <0, 0, -24>
   look_at <0, 0, 0>
-  right x * 4 / 3
+  right x * image_width / image_height
   up y
   angle degrees(1.0)
 }
@@ -84,21 +85,6 @@ sphere { <0, 0, 0>, 2 Tex(0.9, 0.2, 20, 255, 190, 40) }
 #declare EZ = -6 * sin(EarthA);
 sphere { Tilt(EX, 0, EZ), 0.7 Tex(0.8, 0.4, 60, 40, 110, 255) }
 sphere { Tilt(EX + 1.3 * cos(MoonB), 0.3 * sin(MoonB), EZ - 1.3 * sin(MoonB)), 0.3 Tex(0.8, 0.1, 10, 200, 200, 210) }
-
-// ---- the red planet: planet(9, 2.2 + time * pi / 100, 0.55, 220, 70, 40)
-#declare PA = 2.2 + Time * pi / 100;
-sphere { Tilt(9 * cos(PA), 0, -9 * sin(PA)), 0.55 Tex(0.8, 0.3, 40, 220, 70, 40) }
-
-// ---- the asteroid belt: belt(0, 36, 8)
-#declare Count = 36;
-#declare BeltR = 8;
-#declare Rock = 0;
-#while (Rock < Count)
-  #declare BA = 2 * pi * Rock / Count + Time * pi / 200;
-  #declare Wobble = 0.2 * sin(7 * BA);
-  sphere { Tilt(BeltR * cos(BA), Wobble, -BeltR * sin(BA)), 0.12 Tex(0.8, 0.1, 10, 170, 160, 150) }
-  #declare Rock = Rock + 1;
-#end
 
 // ---- the mirrors
 // floor: normal (0, 1, 0), shift -4.5
