@@ -52,7 +52,10 @@ impl Diagnostic {
 
     /// A warning at `span`.
     pub fn warning(span: Span, message: impl Into<String>) -> Diagnostic {
-        Diagnostic { severity: Severity::Warning, ..Diagnostic::error(span, message) }
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(span, message)
+        }
     }
 
     /// Adds the text shown next to the caret.
@@ -90,11 +93,12 @@ impl Diagnostic {
     pub fn render(&self, sources: &SourceMap, color: bool) -> String {
         let mut out = self.header(color);
         out.push_str(&render::snippet(self, sources, color));
-        for note in &self.notes {
-            out.push_str(&format!("{}: {note}\n", paint("note", Color::Cyan, color)));
-        }
-        if let Some(help) = &self.help {
-            out.push_str(&format!("{}: {help}\n", paint("help", Color::Cyan, color)));
+        let notes = self.notes.iter().map(|note| ("note", note));
+        for (kind, text) in notes.chain(self.help.iter().map(|help| ("help", help))) {
+            out.push_str(&paint(kind, Color::Cyan, color));
+            out.push_str(": ");
+            out.push_str(text);
+            out.push('\n');
         }
         out
     }
@@ -111,7 +115,11 @@ impl Diagnostic {
 
 /// `text` in `color` when colours are on, as is otherwise.
 fn paint(text: &str, color: Color, enabled: bool) -> String {
-    if enabled { text.fg(color).to_string() } else { text.to_string() }
+    if enabled {
+        text.fg(color).to_string()
+    } else {
+        text.to_string()
+    }
 }
 
 /// The source snippet drawn by ariadne, with the location line in rustc's style.
@@ -139,7 +147,8 @@ mod render {
         /// The texts of every source that `diagnostic` points into.
         fn of(diagnostic: &Diagnostic, sources: &SourceMap) -> Texts {
             let mut files = HashMap::new();
-            let spans = std::iter::once(diagnostic.span).chain(diagnostic.related.iter().map(|(s, _)| *s));
+            let spans =
+                std::iter::once(diagnostic.span).chain(diagnostic.related.iter().map(|(s, _)| *s));
             for span in spans {
                 files.entry(span.source).or_insert_with(|| {
                     let file = sources.get(span.source);
@@ -157,7 +166,11 @@ mod render {
     fn printable(text: &str) -> String {
         text.chars()
             .flat_map(|c| {
-                let shown = if c.is_control() && !matches!(c, '\n' | '\t' | '\r') { None } else { Some(c) };
+                let shown = if c.is_control() && !matches!(c, '\n' | '\t' | '\r') {
+                    None
+                } else {
+                    Some(c)
+                };
                 let count = if shown.is_some() { 1 } else { c.len_utf8() };
                 std::iter::repeat_n(shown.unwrap_or('?'), count)
             })
@@ -168,7 +181,10 @@ mod render {
         type Storage = String;
 
         fn fetch(&mut self, id: &SourceId) -> Result<&Source<String>, impl fmt::Debug> {
-            self.files.get(id).map(|(_, source)| source).ok_or("unknown source")
+            self.files
+                .get(id)
+                .map(|(_, source)| source)
+                .ok_or("unknown source")
         }
 
         fn display<'a>(&self, id: &'a SourceId) -> Option<impl fmt::Display + 'a> {
@@ -200,21 +216,32 @@ mod render {
     }
 
     /// Runs ariadne over the diagnostic's labels.
-    fn draw(diagnostic: &Diagnostic, sources: &SourceMap, color: bool, primary: Range<usize>) -> String {
+    fn draw(
+        diagnostic: &Diagnostic,
+        sources: &SourceMap,
+        color: bool,
+        primary: Range<usize>,
+    ) -> String {
         let (primary_color, secondary_color) = match diagnostic.severity {
             Severity::Error => (Color::Red, Color::Blue),
             Severity::Warning => (Color::Yellow, Color::Blue),
         };
         let config = Config::new()
             .with_color(color)
-            .with_char_set(if color { CharSet::Unicode } else { CharSet::Ascii })
+            .with_char_set(if color {
+                CharSet::Unicode
+            } else {
+                CharSet::Ascii
+            })
             .with_index_type(IndexType::Byte);
         let source = diagnostic.span.source;
         let mut primary_label = Label::new((source, primary.clone())).with_color(primary_color);
         primary_label = primary_label.with_order(label_order(sources, diagnostic.span, source));
         // ariadne draws no underline for a label without a message.
         primary_label = primary_label.with_message(diagnostic.label.as_deref().unwrap_or("here"));
-        let mut report = Report::build(ReportKind::Error, (source, primary)).with_config(config).with_label(primary_label);
+        let mut report = Report::build(ReportKind::Error, (source, primary))
+            .with_config(config)
+            .with_label(primary_label);
         for (span, text) in &diagnostic.related {
             if let Some(range) = label_range(sources, *span) {
                 let label = Label::new((span.source, range))
@@ -225,7 +252,9 @@ mod render {
             }
         }
         let mut bytes = Vec::new();
-        let written = report.finish().write(Texts::of(diagnostic, sources), &mut bytes);
+        let written = report
+            .finish()
+            .write(Texts::of(diagnostic, sources), &mut bytes);
         match written {
             Ok(()) => String::from_utf8_lossy(&bytes).into_owned(),
             Err(_) => String::new(),
@@ -236,8 +265,14 @@ mod render {
     /// keeps them in one box, then the other sources.
     fn label_order(sources: &SourceMap, span: Span, primary_source: SourceId) -> i32 {
         let (line, _) = sources.get(span.source).line_col(span.start as usize);
-        let line = i32::try_from(line).unwrap_or(i32::MAX / 4).min(i32::MAX / 4);
-        if span.source == primary_source { line } else { i32::MAX / 2 + line / 2 }
+        let line = i32::try_from(line)
+            .unwrap_or(i32::MAX / 4)
+            .min(i32::MAX / 4);
+        if span.source == primary_source {
+            line
+        } else {
+            i32::MAX / 2 + line / 2
+        }
     }
 
     /// The byte range of `span` in the padded text: clamped to the text, on

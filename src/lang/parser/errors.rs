@@ -9,8 +9,8 @@
 
 use lalrpop_util::ParseError;
 
-use super::order::{ItemOrder, Phase};
 use super::opens_construct;
+use super::order::{ItemOrder, Phase};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::lexer::{self, Lexer, Token};
 use crate::lang::source::{SourceId, Span};
@@ -22,7 +22,16 @@ pub(super) type GrammarError = ParseError<usize, Token, Box<Diagnostic>>;
 /// The terminals that can start an expression.
 const EXPRESSION_STARTS: [&str; 8] = ["NUMBER", "NAME", "(", "-", "pi", "sin", "cos", "sqrt"];
 /// The terminals that can start an object expression.
-const OBJECT_STARTS: [&str; 8] = ["sphere", "plane", "box", "translate", "rotate", "scale", "group", "NAME"];
+const OBJECT_STARTS: [&str; 8] = [
+    "sphere",
+    "plane",
+    "box",
+    "translate",
+    "rotate",
+    "scale",
+    "group",
+    "NAME",
+];
 /// The terminals that can start an instruction.
 const INSTRUCTION_STARTS: [&str; 5] = ["let", "object", "put", "if", "NAME"];
 /// The keywords that start the items other than instructions.
@@ -45,19 +54,31 @@ pub(super) fn syntax_error(
     order: &ItemOrder<'_>,
     error: GrammarError,
 ) -> Diagnostic {
-    let place = Place { source, text, line_offset };
+    let place = Place {
+        source,
+        text,
+        line_offset,
+    };
     match error {
         ParseError::User { error } => *error,
         ParseError::UnrecognizedEof { location, expected } => {
             let context = Context::scan(place, usize::MAX);
             end_of_file_error(place, &context, &Expected::new(expected), location)
         }
-        ParseError::UnrecognizedToken { token: (start, token, end), expected } => {
+        ParseError::UnrecognizedToken {
+            token: (start, token, end),
+            expected,
+        } => {
             let context = Context::scan(place, start);
-            let found = Found { token, span: Span::new(source, start, end) };
+            let found = Found {
+                token,
+                span: Span::new(source, start, end),
+            };
             token_error(place, &context, &Expected::new(expected), order, &found)
         }
-        ParseError::ExtraToken { token: (start, _, end) } => {
+        ParseError::ExtraToken {
+            token: (start, _, end),
+        } => {
             let span = Span::new(source, start, end);
             Diagnostic::error(span, format!("unexpected `{}`", place.slice(span)))
         }
@@ -86,7 +107,9 @@ struct Place<'t> {
 impl Place<'_> {
     /// The source text of `span`.
     fn slice(&self, span: Span) -> &str {
-        self.text.get(span.start as usize..span.end as usize).unwrap_or("")
+        self.text
+            .get(span.start as usize..span.end as usize)
+            .unwrap_or("")
     }
 
     /// The line, as the user sees it, where `span` starts.
@@ -120,7 +143,9 @@ impl Context {
     fn scan(place: Place<'_>, limit: usize) -> Context {
         let mut context = Context::default();
         for token in Lexer::new(place.source, place.text) {
-            let Ok((start, token, end)) = token else { break };
+            let Ok((start, token, end)) = token else {
+                break;
+            };
             if start >= limit {
                 break;
             }
@@ -144,7 +169,8 @@ impl Context {
             }
             _ => {}
         }
-        if token.is_keyword() && !matches!(token, Token::Pi | Token::Sin | Token::Cos | Token::Sqrt) {
+        if token.is_keyword() && !matches!(token, Token::Pi | Token::Sin | Token::Cos | Token::Sqrt)
+        {
             self.triple = self.triple_after(&token);
         }
         self.before_previous = self.previous.take();
@@ -183,10 +209,12 @@ impl Expected {
     fn new(raw: Vec<String>) -> Expected {
         let names = raw
             .into_iter()
-            .map(|name| match name.strip_prefix('"').and_then(|n| n.strip_suffix('"')) {
-                Some(inner) => inner.to_string(),
-                None => name,
-            })
+            .map(
+                |name| match name.strip_prefix('"').and_then(|n| n.strip_suffix('"')) {
+                    Some(inner) => inner.to_string(),
+                    None => name,
+                },
+            )
             .collect();
         Expected { names }
     }
@@ -211,17 +239,29 @@ impl Expected {
             .map(String::as_str)
             .filter(|name| !CONTINUATIONS.contains(name) || (starts_expression && *name == "-"))
             .collect();
-        if essential.is_empty() { self.names.iter().map(String::as_str).collect() } else { essential }
+        if essential.is_empty() {
+            self.names.iter().map(String::as_str).collect()
+        } else {
+            essential
+        }
     }
 
     /// The expected keywords, for "did you mean ...?".
     fn keywords(&self) -> impl Iterator<Item = &str> {
-        self.names.iter().map(String::as_str).filter(|name| lexer::keyword(name).is_some())
+        self.names
+            .iter()
+            .map(String::as_str)
+            .filter(|name| lexer::keyword(name).is_some())
     }
 }
 
 /// The error when the text ends too early.
-fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, location: usize) -> Diagnostic {
+fn end_of_file_error(
+    place: Place<'_>,
+    context: &Context,
+    expected: &Expected,
+    location: usize,
+) -> Diagnostic {
     let span = last_character(place, location);
     if let Some((opener, opened)) = context.innermost().filter(|_| expected.has("end")) {
         let name = opener.to_string();
@@ -236,7 +276,10 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
     let what = describe(place, context, &expected.essential());
     let message = match &context.previous {
         Some((_, previous)) => {
-            format!("unexpected end of file: expected {what} after `{}`", place.slice(*previous))
+            format!(
+                "unexpected end of file: expected {what} after `{}`",
+                place.slice(*previous)
+            )
         }
         None => format!("unexpected end of file: expected {what}"),
     };
@@ -279,11 +322,15 @@ fn token_message(
     let unexpected = format!("unexpected `{found_text}`");
     let innermost = context.innermost();
     if found.token == Token::End && innermost.is_none() {
-        return Diagnostic::error(span, "unexpected `end`: nothing is open here").with_label("this `end` closes nothing");
+        return Diagnostic::error(span, "unexpected `end`: nothing is open here")
+            .with_label("this `end` closes nothing");
     }
     if found.token == Token::Else && !matches!(innermost, Some((Token::If, _))) {
-        return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`")
-            .with_label("this `else` has no `if`");
+        return Diagnostic::error(
+            span,
+            "unexpected `else`: it belongs between `if ... then` and `end`",
+        )
+        .with_label("this `else` has no `if`");
     }
     if order.is_file() && order.phase() == Phase::Start && context.previous.is_none() {
         return Diagnostic::error(span, "a scenario file must start with `camera ... end`")
@@ -291,13 +338,21 @@ fn token_message(
             .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`");
     }
     if TEXTURE.contains(&found_text) && expected.has_any(&TEXTURE) {
-        return Diagnostic::error(span, format!("the texture must be {TEXTURE_SHAPE} in this order"))
-            .with_label("out of order");
+        return Diagnostic::error(
+            span,
+            format!("the texture must be {TEXTURE_SHAPE} in this order"),
+        )
+        .with_label("out of order");
     }
     if expected.has("let") && OBJECT_STARTS[..7].contains(&found_text) {
-        return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))
-            .with_label("an object is not an instruction")
-            .with_help("write `put` before it to add it to the scene, or `object name =` to give it a name");
+        return Diagnostic::error(
+            span,
+            format!("expected an instruction, found the object `{found_text}`"),
+        )
+        .with_label("an object is not an instruction")
+        .with_help(
+            "write `put` before it to add it to the scene, or `object name =` to give it a name",
+        );
     }
     let essential = expected.essential();
     match essential.as_slice() {
@@ -322,12 +377,16 @@ fn token_message(
     let what = describe(place, context, &essential);
     let closes = essential.contains(&"end") && innermost.is_some();
     let message = match &context.previous {
-        Some((_, previous)) if !closes => format!("expected {what} after `{}`", place.slice(*previous)),
+        Some((_, previous)) if !closes => {
+            format!("expected {what} after `{}`", place.slice(*previous))
+        }
         _ => format!("expected {what}"),
     };
     let diagnostic = Diagnostic::error(span, message).with_label(unexpected);
     match innermost {
-        Some((opener, opened)) if closes => diagnostic.with_related(*opened, format!("the `{opener}` opened here")),
+        Some((opener, opened)) if closes => {
+            diagnostic.with_related(*opened, format!("the `{opener}` opened here"))
+        }
         _ => diagnostic,
     }
 }
@@ -356,7 +415,13 @@ fn add_spelling_help(
         }
         if let Some(keyword) = suggest::closest(name, lexer::keyword_names()) {
             return diagnostic
-                .with_related(*span, format!("`{}` is not a keyword, so it is read as a name", place.slice(*span)))
+                .with_related(
+                    *span,
+                    format!(
+                        "`{}` is not a keyword, so it is read as a name",
+                        place.slice(*span)
+                    ),
+                )
                 .with_help(format!("did you mean `{keyword}`?"));
         }
     }
@@ -376,17 +441,33 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
         take(&mut left, &EXPRESSION_STARTS, "a condition (like `x < 1`)");
         left.retain(|name| *name != "!");
     } else if left.contains(&"NUMBER") {
-        take(&mut left, &EXPRESSION_STARTS, "an expression (a number, a name, `(`...)");
+        take(
+            &mut left,
+            &EXPRESSION_STARTS,
+            "an expression (a number, a name, `(`...)",
+        );
     }
     if left.contains(&"sphere") {
-        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, a name...)");
+        take(
+            &mut left,
+            &OBJECT_STARTS,
+            "an object (`sphere`, `plane`, `box`, a name...)",
+        );
     }
     if left.contains(&"let") {
-        take(&mut left, &INSTRUCTION_STARTS, "an instruction (`let`, `object`, `put`, `if` or a procedure call)");
+        take(
+            &mut left,
+            &INSTRUCTION_STARTS,
+            "an instruction (`let`, `object`, `put`, `if` or a procedure call)",
+        );
         left.retain(|name| !DEFINITION_STARTS.contains(name));
     }
     if left.contains(&"<") {
-        take(&mut left, &COMPARISONS, "a comparison (`=`, `<`, `>`, `<=`, `>=` or `!=`)");
+        take(
+            &mut left,
+            &COMPARISONS,
+            "a comparison (`=`, `<`, `>`, `<=`, `>=` or `!=`)",
+        );
     }
     if left.contains(&"kd") {
         take(&mut left, &["kd"], &format!("the texture {TEXTURE_SHAPE}"));
@@ -407,7 +488,10 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
 /// "`end`", and what it would close if something is open.
 fn end_phrase(place: Place<'_>, context: &Context) -> String {
     match context.innermost() {
-        Some((opener, opened)) => format!("`end` to close the `{opener}` opened at line {}", place.line(*opened)),
+        Some((opener, opened)) => format!(
+            "`end` to close the `{opener}` opened at line {}",
+            place.line(*opened)
+        ),
         None => "`end`".to_string(),
     }
 }
