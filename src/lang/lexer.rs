@@ -284,7 +284,7 @@ pub struct Lexer<'a> {
 /// FNV-1a: names are short and come from the program itself, so a simple
 /// fast hash beats the default DoS-resistant one here.
 #[derive(Debug)]
-pub struct NameHasher(u64);
+struct NameHasher(u64);
 
 impl Default for NameHasher {
     fn default() -> NameHasher {
@@ -469,6 +469,9 @@ fn character_help(character: char) -> Option<&'static str> {
         '.' => Some("write decimals with digits on both sides of the point, like `0.5`"),
         '^' => Some("there is no power operator: multiply, like `x * x`"),
         '[' | ']' => Some("use `(` and `)` for grouping"),
+        c if c.is_alphabetic() => {
+            Some("names use only the letters a to z without accents, digits and `_`")
+        }
         _ => None,
     }
 }
