@@ -949,3 +949,36 @@ fn messages_count_lines_from_the_line_offset() {
         "expected `end` to close the `sphere` opened at line 17"
     );
 }
+
+#[test]
+fn hints_for_common_mistakes() {
+    let help = |text: &str| session_error(text).diagnostic.help.unwrap_or_default();
+    assert_eq!(
+        help("if x == 1 then end"),
+        "a comparison is written with a single `=`"
+    );
+    assert_eq!(
+        help("let x = 2(3)"),
+        "to multiply, write `*`, like `2 * (x + 1)`"
+    );
+    assert_eq!(
+        help("ambient = 0.5"),
+        "write the value right after `ambient`, without `=`"
+    );
+    assert_eq!(help("let x = sqrt(2, 3)"), "`sqrt` takes a single number");
+    assert_eq!(
+        help("light vector (0, 0, 1) intensity 1 end"),
+        "write the three parts without parentheses, like `0, 0, 1`"
+    );
+    assert_eq!(
+        help("let pi = 3"),
+        "`pi` is a reserved word of the language; choose another name"
+    );
+    assert_eq!(
+        help("proc p(a, end) end"),
+        "`end` is a reserved word of the language; choose another name"
+    );
+    assert_eq!(help("end"), "", "no hint where none applies");
+    assert!(help("let x = 1;").contains("`;`"));
+    assert!(help("let café = 1").contains("without accents"));
+}

@@ -129,8 +129,9 @@ struct Found {
 struct Context {
     /// Constructs opened and not yet closed by `end`, innermost last.
     openers: Vec<(Token, Span)>,
-    /// Parentheses opened and not yet closed, innermost last.
-    parens: Vec<Span>,
+    /// Parentheses opened and not yet closed, innermost last, each with the
+    /// token before it (`sqrt` in `sqrt(`).
+    parens: Vec<(Span, Option<Token>)>,
     /// The last token before the error, and the one before it.
     previous: Option<(Token, Span)>,
     before_previous: Option<(Token, Span)>,
@@ -163,7 +164,10 @@ impl Context {
             Token::End => {
                 self.openers.pop();
             }
-            Token::LParen => self.parens.push(span),
+            Token::LParen => {
+                let before = self.previous.as_ref().map(|(token, _)| token.clone());
+                self.parens.push((span, before));
+            }
             Token::RParen => {
                 self.parens.pop();
             }
@@ -305,7 +309,50 @@ fn token_error(
     found: &Found,
 ) -> Diagnostic {
     let diagnostic = token_message(place, context, expected, order, found);
-    add_spelling_help(diagnostic, place, context, expected, found)
+    let diagnostic = add_spelling_help(diagnostic, place, context, expected, found);
+    if diagnostic.help.is_some() {
+        return diagnostic;
+    }
+    match common_mistake(place, context, expected, found) {
+        Some(help) => diagnostic.with_help(help),
+        None => diagnostic,
+    }
+}
+
+/// A hint for mistakes learners often make, recognised from the unexpected
+/// token and what comes before it.
+fn common_mistake(
+    place: Place<'_>,
+    context: &Context,
+    expected: &Expected,
+    found: &Found,
+) -> Option<String> {
+    let previous = context.previous.as_ref().map(|(token, _)| token);
+    match (&found.token, previous) {
+        (Token::Eq, Some(Token::Eq)) => {
+            Some("a comparison is written with a single `=`".to_string())
+        }
+        (Token::LParen, Some(Token::Number(_) | Token::RParen)) if expected.has("*") => {
+            Some("to multiply, write `*`, like `2 * (x + 1)`".to_string())
+        }
+        (Token::Eq, Some(keyword)) if keyword.is_keyword() && expected.has("NUMBER") => Some(
+            format!("write the value right after `{keyword}`, without `=`"),
+        ),
+        (Token::Comma, _) => match context.parens.last() {
+            Some((_, Some(function @ (Token::Sin | Token::Cos | Token::Sqrt)))) => {
+                Some(format!("`{function}` takes a single number"))
+            }
+            Some(_) if context.triple.is_some() => {
+                Some("write the three parts without parentheses, like `0, 0, 1`".to_string())
+            }
+            _ => None,
+        },
+        (token, _) if token.is_keyword() && expects_only_a_name(expected) => Some(format!(
+            "`{}` is a reserved word of the language; choose another name",
+            place.slice(found.span)
+        )),
+        _ => None,
+    }
 }
 
 /// The message (and label and related spans) for an unexpected token,
@@ -366,7 +413,7 @@ fn token_message(
                 .with_label("expected `then` before this");
         }
         [")"] => {
-            if let Some(paren) = context.parens.last() {
+            if let Some((paren, _)) = context.parens.last() {
                 return Diagnostic::error(span, "expected `)` to close the parenthesis")
                     .with_label("expected `)` before this")
                     .with_related(*paren, "the parenthesis opened here");
@@ -426,6 +473,15 @@ fn add_spelling_help(
         }
     }
     diagnostic
+}
+
+/// Whether the parser wanted a new name there (after `let`, `object`,
+/// `proc`, or in a parameter list).
+fn expects_only_a_name(expected: &Expected) -> bool {
+    matches!(
+        expected.essential().as_slice(),
+        ["NAME"] | ["NAME", ")"] | [")", "NAME"]
+    )
 }
 
 /// Describes the expected terminals in words: "an expression (...)",
