@@ -3,7 +3,7 @@
 //! The grammar lives in `grammar/scene.lalrpop`; lalrpop turns it into an
 //! LR(1) table parser, which runs in a loop over an explicit stack, so deeply
 //! nested input cannot overflow the call stack while parsing. lalrpop's
-//! errors name grammar terminals; [`errors`] turns them into sentences.
+//! errors name grammar terminals; the `errors` submodule turns them into sentences.
 
 // The public functions return the `Diagnostic` itself (the signatures are
 // shared with the rest of the crate); a syntax error happens once per parse,
