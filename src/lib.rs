@@ -8,4 +8,5 @@
 pub mod lang;
 pub mod output;
 pub mod render;
+pub mod repl;
 pub mod scene;
