@@ -1,1 +1,568 @@
-//! Turning source text into tokens with spans.
+//! Turning source text into tokens with spans (SPEC section 1).
+//!
+//! The [`Lexer`] is an iterator of `(start, Token, end)` triples, the shape
+//! lalrpop's external-lexer interface expects; `start` and `end` are byte
+//! offsets into the text. It allocates nothing per token except the first
+//! time a name is seen: names are interned as [`Rc<str>`] because they go
+//! into the AST.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::rc::Rc;
+
+use super::diagnostic::Diagnostic;
+use super::source::{SourceId, Span};
+
+/// One token of the `.ray` language.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Token {
+    /// A number literal: `3`, `0.75`, `.5`, `1e3`.
+    Number(f64),
+    /// A name that is not a keyword.
+    Ident(Rc<str>),
+    /// `ambient`
+    Ambient,
+    /// `angle`
+    Angle,
+    /// `box`
+    Box,
+    /// `by`
+    By,
+    /// `camera`
+    Camera,
+    /// `center`
+    Center,
+    /// `color`
+    Color,
+    /// `cos`
+    Cos,
+    /// `distance`
+    Distance,
+    /// `else`
+    Else,
+    /// `end`
+    End,
+    /// `group`
+    Group,
+    /// `if`
+    If,
+    /// `intensity`
+    Intensity,
+    /// `kd`
+    Kd,
+    /// `ks`
+    Ks,
+    /// `length`
+    Length,
+    /// `let`
+    Let,
+    /// `light`
+    Light,
+    /// `object`
+    Object,
+    /// `phong`
+    Phong,
+    /// `pi`
+    Pi,
+    /// `plane`
+    Plane,
+    /// `proc`
+    Proc,
+    /// `put`
+    Put,
+    /// `radius`
+    Radius,
+    /// `rotate`
+    Rotate,
+    /// `rotation`
+    Rotation,
+    /// `scale`
+    Scale,
+    /// `shift`
+    Shift,
+    /// `sin`
+    Sin,
+    /// `sphere`
+    Sphere,
+    /// `sqrt`
+    Sqrt,
+    /// `then`
+    Then,
+    /// `translate`
+    Translate,
+    /// `vector`
+    Vector,
+    /// `+`
+    Plus,
+    /// `-`
+    Minus,
+    /// `*`
+    Star,
+    /// `/`
+    Slash,
+    /// `(`
+    LParen,
+    /// `)`
+    RParen,
+    /// `,`
+    Comma,
+    /// `=`
+    Eq,
+    /// `!=`
+    Ne,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `&`
+    And,
+    /// `|`
+    Or,
+    /// `!`
+    Bang,
+}
+
+/// Every keyword of SPEC 1, in alphabetical order, with its token.
+pub const KEYWORDS: [(&str, Token); 36] = [
+    ("ambient", Token::Ambient),
+    ("angle", Token::Angle),
+    ("box", Token::Box),
+    ("by", Token::By),
+    ("camera", Token::Camera),
+    ("center", Token::Center),
+    ("color", Token::Color),
+    ("cos", Token::Cos),
+    ("distance", Token::Distance),
+    ("else", Token::Else),
+    ("end", Token::End),
+    ("group", Token::Group),
+    ("if", Token::If),
+    ("intensity", Token::Intensity),
+    ("kd", Token::Kd),
+    ("ks", Token::Ks),
+    ("length", Token::Length),
+    ("let", Token::Let),
+    ("light", Token::Light),
+    ("object", Token::Object),
+    ("phong", Token::Phong),
+    ("pi", Token::Pi),
+    ("plane", Token::Plane),
+    ("proc", Token::Proc),
+    ("put", Token::Put),
+    ("radius", Token::Radius),
+    ("rotate", Token::Rotate),
+    ("rotation", Token::Rotation),
+    ("scale", Token::Scale),
+    ("shift", Token::Shift),
+    ("sin", Token::Sin),
+    ("sphere", Token::Sphere),
+    ("sqrt", Token::Sqrt),
+    ("then", Token::Then),
+    ("translate", Token::Translate),
+    ("vector", Token::Vector),
+];
+
+/// The names of all keywords, for "did you mean ...?" suggestions.
+pub fn keyword_names() -> impl Iterator<Item = &'static str> {
+    KEYWORDS.iter().map(|(name, _)| *name)
+}
+
+/// The keyword token spelt `word`, if `word` is a keyword.
+pub fn keyword(word: &str) -> Option<Token> {
+    // A match on the string compiles to length-and-bytes comparisons: no allocation.
+    let token = match word {
+        "ambient" => Token::Ambient,
+        "angle" => Token::Angle,
+        "box" => Token::Box,
+        "by" => Token::By,
+        "camera" => Token::Camera,
+        "center" => Token::Center,
+        "color" => Token::Color,
+        "cos" => Token::Cos,
+        "distance" => Token::Distance,
+        "else" => Token::Else,
+        "end" => Token::End,
+        "group" => Token::Group,
+        "if" => Token::If,
+        "intensity" => Token::Intensity,
+        "kd" => Token::Kd,
+        "ks" => Token::Ks,
+        "length" => Token::Length,
+        "let" => Token::Let,
+        "light" => Token::Light,
+        "object" => Token::Object,
+        "phong" => Token::Phong,
+        "pi" => Token::Pi,
+        "plane" => Token::Plane,
+        "proc" => Token::Proc,
+        "put" => Token::Put,
+        "radius" => Token::Radius,
+        "rotate" => Token::Rotate,
+        "rotation" => Token::Rotation,
+        "scale" => Token::Scale,
+        "shift" => Token::Shift,
+        "sin" => Token::Sin,
+        "sphere" => Token::Sphere,
+        "sqrt" => Token::Sqrt,
+        "then" => Token::Then,
+        "translate" => Token::Translate,
+        "vector" => Token::Vector,
+        _ => return None,
+    };
+    Some(token)
+}
+
+impl Token {
+    /// How the token is written, for keywords and symbols; `None` for
+    /// numbers and names, whose text depends on the source.
+    pub fn spelling(&self) -> Option<&'static str> {
+        let symbol = match self {
+            Token::Number(_) | Token::Ident(_) => return None,
+            Token::Plus => "+",
+            Token::Minus => "-",
+            Token::Star => "*",
+            Token::Slash => "/",
+            Token::LParen => "(",
+            Token::RParen => ")",
+            Token::Comma => ",",
+            Token::Eq => "=",
+            Token::Ne => "!=",
+            Token::Lt => "<",
+            Token::Le => "<=",
+            Token::Gt => ">",
+            Token::Ge => ">=",
+            Token::And => "&",
+            Token::Or => "|",
+            Token::Bang => "!",
+            keyword => {
+                return KEYWORDS.iter().find(|(_, token)| token == keyword).map(|(name, _)| *name);
+            }
+        };
+        Some(symbol)
+    }
+
+    /// Whether the token is a keyword of SPEC 1.
+    pub fn is_keyword(&self) -> bool {
+        KEYWORDS.iter().any(|(_, token)| token == self)
+    }
+}
+
+impl fmt::Display for Token {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Token::Number(value) => write!(f, "{value}"),
+            Token::Ident(name) => f.write_str(name),
+            other => f.write_str(other.spelling().unwrap_or("?")),
+        }
+    }
+}
+
+/// A token with its byte range: the triple lalrpop consumes.
+pub type Spanned = (usize, Token, usize);
+
+/// Splits a text into tokens, skipping blanks and `#` comments.
+///
+/// Yields `Err` once, at the first character that cannot start a token, and
+/// then stops.
+#[derive(Debug)]
+pub struct Lexer<'a> {
+    text: &'a str,
+    pos: usize,
+    source: SourceId,
+    names: HashMap<&'a str, Rc<str>>,
+    failed: bool,
+}
+
+impl<'a> Lexer<'a> {
+    /// A lexer over `text`, whose spans in diagnostics name `source`.
+    pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
+        Lexer { text, pos: 0, source, names: HashMap::new(), failed: false }
+    }
+
+    /// Moves past blanks and comments.
+    fn skip_trivia(&mut self) {
+        let bytes = self.text.as_bytes();
+        while let Some(&byte) = bytes.get(self.pos) {
+            match byte {
+                b' ' | b'\t' | b'\n' | b'\r' | b'\x0b' | b'\x0c' => self.pos += 1,
+                b'#' => {
+                    self.pos = match bytes[self.pos..].iter().position(|&b| b == b'\n') {
+                        Some(newline) => self.pos + newline + 1,
+                        None => bytes.len(),
+                    };
+                }
+                _ => break,
+            }
+        }
+    }
+
+    /// Reads the token starting at the current position, which is not blank.
+    fn token(&mut self) -> Result<Spanned, Box<Diagnostic>> {
+        let bytes = self.text.as_bytes();
+        let start = self.pos;
+        let first = bytes[start];
+        let next = bytes.get(start + 1).copied();
+        let (token, len) = match first {
+            b'0'..=b'9' => return self.number(),
+            b'.' if next.is_some_and(|b| b.is_ascii_digit()) => return self.number(),
+            b'A'..=b'Z' | b'a'..=b'z' | b'_' => return Ok(self.word()),
+            b'+' => (Token::Plus, 1),
+            b'-' => (Token::Minus, 1),
+            b'*' => (Token::Star, 1),
+            b'/' => (Token::Slash, 1),
+            b'(' => (Token::LParen, 1),
+            b')' => (Token::RParen, 1),
+            b',' => (Token::Comma, 1),
+            b'=' => (Token::Eq, 1),
+            b'&' => (Token::And, 1),
+            b'|' => (Token::Or, 1),
+            b'<' if next == Some(b'=') => (Token::Le, 2),
+            b'<' => (Token::Lt, 1),
+            b'>' if next == Some(b'=') => (Token::Ge, 2),
+            b'>' => (Token::Gt, 1),
+            b'!' if next == Some(b'=') => (Token::Ne, 2),
+            b'!' => (Token::Bang, 1),
+            _ => return Err(self.unexpected_character()),
+        };
+        self.pos += len;
+        Ok((start, token, self.pos))
+    }
+
+    /// Reads a name or a keyword.
+    fn word(&mut self) -> Spanned {
+        let start = self.pos;
+        let len = self.text.as_bytes()[start..]
+            .iter()
+            .position(|b| !(b.is_ascii_alphanumeric() || *b == b'_'))
+            .unwrap_or(self.text.len() - start);
+        self.pos += len;
+        let word = &self.text[start..self.pos];
+        let token = keyword(word).unwrap_or_else(|| Token::Ident(self.intern(word)));
+        (start, token, self.pos)
+    }
+
+    /// The shared copy of `name`, made the first time it is seen.
+    fn intern(&mut self, name: &'a str) -> Rc<str> {
+        self.names.entry(name).or_insert_with(|| Rc::from(name)).clone()
+    }
+
+    /// Reads `[0-9]*(\.[0-9]+)?([eE][+-]?[0-9]+)?` (at least one digit).
+    fn number(&mut self) -> Result<Spanned, Box<Diagnostic>> {
+        let bytes = self.text.as_bytes();
+        let start = self.pos;
+        let digits = |from: usize| bytes[from..].iter().take_while(|b| b.is_ascii_digit()).count();
+        let mut end = start + digits(start);
+        if bytes.get(end) == Some(&b'.') && bytes.get(end + 1).is_some_and(u8::is_ascii_digit) {
+            end += 1 + digits(end + 1);
+        }
+        if matches!(bytes.get(end), Some(b'e' | b'E')) {
+            let sign = usize::from(matches!(bytes.get(end + 1), Some(b'+' | b'-')));
+            let exponent = digits(end + 1 + sign);
+            if exponent > 0 {
+                end += 1 + sign + exponent;
+            }
+        }
+        self.pos = end;
+        let literal = &self.text[start..end];
+        match literal.parse::<f64>() {
+            Ok(value) if value.is_finite() => Ok((start, Token::Number(value), end)),
+            _ => Err(Box::new(Diagnostic::error(
+                Span::new(self.source, start, end),
+                format!("the number `{literal}` is too large"),
+            ))),
+        }
+    }
+
+    /// The diagnostic for a character that cannot start a token.
+    fn unexpected_character(&mut self) -> Box<Diagnostic> {
+        let start = self.pos;
+        let character = self.text[start..].chars().next().unwrap_or('\u{fffd}');
+        let end = start + character.len_utf8();
+        self.pos = end;
+        let shown: String = if character.is_control() || character.is_whitespace() {
+            character.escape_default().collect()
+        } else {
+            character.to_string()
+        };
+        let span = Span::new(self.source, start, end);
+        let diagnostic = Diagnostic::error(span, format!("unexpected character `{shown}`"));
+        Box::new(match character_help(character) {
+            Some(help) => diagnostic.with_help(help),
+            None => diagnostic,
+        })
+    }
+}
+
+/// A hint for characters learners often type by habit from other languages.
+fn character_help(character: char) -> Option<&'static str> {
+    match character {
+        ';' => Some("instructions need no separator: remove the `;`"),
+        '{' | '}' => Some("blocks are closed with `end`, not with braces"),
+        '"' | '\'' => Some("the language has no strings: names are written without quotes"),
+        '.' => Some("write decimals with digits on both sides of the point, like `0.5`"),
+        '^' => Some("there is no power operator: multiply, like `x * x`"),
+        '[' | ']' => Some("use `(` and `)` for grouping"),
+        _ => None,
+    }
+}
+
+impl Iterator for Lexer<'_> {
+    type Item = Result<Spanned, Box<Diagnostic>>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        self.skip_trivia();
+        if self.pos >= self.text.len() {
+            return None;
+        }
+        let result = self.token();
+        self.failed = result.is_err();
+        Some(result)
+    }
+}
+
+/// All tokens of `text`, or the first lexing error.
+pub fn tokenize(source: SourceId, text: &str) -> Result<Vec<Spanned>, Box<Diagnostic>> {
+    Lexer::new(source, text).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tokens(text: &str) -> Vec<Token> {
+        tokenize(SourceId(0), text).expect("valid tokens").into_iter().map(|(_, t, _)| t).collect()
+    }
+
+    fn error(text: &str) -> Diagnostic {
+        *tokenize(SourceId(0), text).expect_err("a lexing error")
+    }
+
+    #[test]
+    fn numbers_in_every_accepted_form() {
+        assert_eq!(
+            tokens("3 0.75 .5 1e3 2.5E-2 7e+1"),
+            vec![
+                Token::Number(3.0),
+                Token::Number(0.75),
+                Token::Number(0.5),
+                Token::Number(1000.0),
+                Token::Number(0.025),
+                Token::Number(70.0),
+            ]
+        );
+    }
+
+    #[test]
+    fn an_exponent_needs_digits() {
+        let expected = vec![Token::Number(2.0), Token::Ident("e".into())];
+        assert_eq!(tokens("2e"), expected);
+        assert_eq!(tokens("2end"), vec![Token::Number(2.0), Token::End]);
+    }
+
+    #[test]
+    fn every_keyword_is_its_own_token() {
+        for (name, token) in KEYWORDS {
+            assert_eq!(tokens(name), vec![token.clone()], "{name}");
+            assert_eq!(token.spelling(), Some(name));
+            assert!(token.is_keyword());
+        }
+    }
+
+    #[test]
+    fn time_and_near_keywords_are_names() {
+        assert_eq!(
+            tokens("time spheres Sphere _x1"),
+            vec![
+                Token::Ident("time".into()),
+                Token::Ident("spheres".into()),
+                Token::Ident("Sphere".into()),
+                Token::Ident("_x1".into()),
+            ]
+        );
+    }
+
+    #[test]
+    fn symbols_and_two_character_comparisons() {
+        assert_eq!(
+            tokens("+-*/(),=<&|! > <= >= !="),
+            vec![
+                Token::Plus,
+                Token::Minus,
+                Token::Star,
+                Token::Slash,
+                Token::LParen,
+                Token::RParen,
+                Token::Comma,
+                Token::Eq,
+                Token::Lt,
+                Token::And,
+                Token::Or,
+                Token::Bang,
+                Token::Gt,
+                Token::Le,
+                Token::Ge,
+                Token::Ne,
+            ]
+        );
+    }
+
+    #[test]
+    fn comments_run_to_the_end_of_the_line() {
+        assert_eq!(tokens("a # b ( $\nc # d"), vec![Token::Ident("a".into()), Token::Ident("c".into())]);
+    }
+
+    #[test]
+    fn spans_are_byte_offsets() {
+        let spanned = tokenize(SourceId(0), "let xy = 12.5").expect("valid");
+        let ranges: Vec<(usize, usize)> = spanned.iter().map(|(s, _, e)| (*s, *e)).collect();
+        assert_eq!(ranges, vec![(0, 3), (4, 6), (7, 8), (9, 13)]);
+    }
+
+    #[test]
+    fn names_are_interned() {
+        let spanned = tokenize(SourceId(0), "abc abc").expect("valid");
+        match (&spanned[0].1, &spanned[1].1) {
+            (Token::Ident(a), Token::Ident(b)) => assert!(Rc::ptr_eq(a, b)),
+            other => panic!("expected two names, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn an_unexpected_character_is_reported_at_its_exact_span() {
+        let diagnostic = error("let x = 3 $ 4");
+        assert_eq!(diagnostic.message, "unexpected character `$`");
+        assert_eq!((diagnostic.span.start, diagnostic.span.end), (10, 11));
+    }
+
+    #[test]
+    fn a_non_ascii_character_is_spanned_whole() {
+        let diagnostic = error("é");
+        assert_eq!(diagnostic.message, "unexpected character `é`");
+        assert_eq!((diagnostic.span.start, diagnostic.span.end), (0, 2));
+    }
+
+    #[test]
+    fn a_semicolon_gets_a_hint() {
+        let diagnostic = error("let x = 1;");
+        assert!(diagnostic.help.is_some_and(|h| h.contains("`;`")));
+    }
+
+    #[test]
+    fn a_huge_number_is_an_error_not_infinity() {
+        assert_eq!(error("1e999").message, "the number `1e999` is too large");
+    }
+
+    #[test]
+    fn the_lexer_stops_after_an_error() {
+        let mut lexer = Lexer::new(SourceId(0), "$ a");
+        assert!(matches!(lexer.next(), Some(Err(_))));
+        assert!(lexer.next().is_none());
+    }
+}

@@ -88,6 +88,19 @@ pub struct TimeUse {
     pub lights: bool,
 }
 
+/// How many objects of each kind a scene holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Counts {
+    /// Spheres.
+    pub spheres: usize,
+    /// Planes.
+    pub planes: usize,
+    /// Boxes.
+    pub boxes: usize,
+    /// Directional lights.
+    pub lights: usize,
+}
+
 /// A scene ready to render.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -111,6 +124,20 @@ impl Scene {
     /// All primitives, static ones first.
     pub fn all_primitives(&self) -> impl Iterator<Item = &Primitive> {
         self.primitives.iter().chain(&self.timed_primitives)
+    }
+
+    /// How many primitives of each kind, and lights, the scene holds (static
+    /// and timed primitives together): the `--check` summary.
+    pub fn counts(&self) -> Counts {
+        let mut counts = Counts { lights: self.lights.len(), ..Counts::default() };
+        for primitive in self.all_primitives() {
+            match primitive.shape {
+                Shape::Sphere { .. } => counts.spheres += 1,
+                Shape::Plane { .. } => counts.planes += 1,
+                Shape::Box { .. } => counts.boxes += 1,
+            }
+        }
+        counts
     }
 
     /// Whether anything in the scene depends on `time`.

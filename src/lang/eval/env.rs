@@ -1,0 +1,205 @@
+//! Environments (SPEC 3): the globals, and one frame of locals per active
+//! procedure call.
+//!
+//! Locals of all active calls live in one stack; a call's frame is a slice of
+//! it. Lookups search only the current frame (a procedure never sees its
+//! caller's locals), then the globals. Frames are short, so a linear search
+//! beats hashing, and nothing is allocated per call beyond the stack's growth.
+
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+use std::rc::Rc;
+
+use super::value::Value;
+
+/// A fast, non-cryptographic hasher for short names (the `FxHash` of rustc):
+/// the maps it serves hold names chosen by the program's author, so there is
+/// no adversary to defend against.
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct NameHasher {
+    hash: u64,
+}
+
+/// rustc's Fx multiplier.
+const SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
+
+impl NameHasher {
+    fn add(&mut self, word: u64) {
+        self.hash = (self.hash.rotate_left(5) ^ word).wrapping_mul(SEED);
+    }
+}
+
+impl Hasher for NameHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(8);
+        for chunk in &mut chunks {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(chunk);
+            self.add(u64::from_le_bytes(word));
+        }
+        for &byte in chunks.remainder() {
+            self.add(u64::from(byte));
+        }
+    }
+
+    fn write_u8(&mut self, byte: u8) {
+        self.add(u64::from(byte));
+    }
+
+    fn write_usize(&mut self, value: usize) {
+        self.add(value as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.hash
+    }
+}
+
+/// A map keyed by names, with the fast hasher.
+pub(crate) type NameMap<V> = HashMap<Rc<str>, V, BuildHasherDefault<NameHasher>>;
+
+/// Where the current frame lies in the locals stack, saved across a call.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Frame {
+    base: usize,
+    top: usize,
+    in_call: bool,
+}
+
+/// The globals and the stack of locals.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Env {
+    /// Top-level `let`s and `object`s, and `time`.
+    pub globals: NameMap<Value>,
+    /// Parameters and locals of every active call, innermost last.
+    locals: Vec<(Rc<str>, Value)>,
+    /// The current frame is `locals[base..top]`. Arguments of a call being
+    /// prepared sit above `top`, invisible until the call starts.
+    base: usize,
+    top: usize,
+    /// Whether a procedure is running (so `let` binds a local).
+    in_call: bool,
+}
+
+/// Whether two names are equal; names from the same source text are often the
+/// same allocation, which makes the common case one pointer comparison.
+fn same_name(a: &Rc<str>, b: &str) -> bool {
+    (std::ptr::eq(a.as_ptr(), b.as_ptr()) && a.len() == b.len()) || **a == *b
+}
+
+impl Env {
+    /// The value `name` holds here: a local of the current call, else a global.
+    pub fn lookup(&self, name: &str) -> Option<&Value> {
+        self.frame_locals()
+            .iter()
+            .rev()
+            .find(|(n, _)| same_name(n, name))
+            .map(|(_, v)| v)
+            .or_else(|| self.globals.get(name))
+    }
+
+    /// Binds `name`: a local inside a procedure call, a global at top level.
+    pub fn bind(&mut self, name: &Rc<str>, value: Value) {
+        if !self.in_call {
+            self.globals.insert(name.clone(), value);
+            return;
+        }
+        let (base, top) = (self.base, self.top);
+        match self.locals[base..top].iter_mut().find(|(n, _)| same_name(n, name)) {
+            Some(slot) => slot.1 = value,
+            None => {
+                self.locals.push((name.clone(), value));
+                self.top += 1;
+            }
+        }
+    }
+
+    /// Starts preparing a call: returns the caller's frame, to give back to
+    /// [`Env::leave`]. Arguments are then added with [`Env::push_argument`].
+    pub fn prepare_call(&self) -> Frame {
+        Frame { base: self.base, top: self.top, in_call: self.in_call }
+    }
+
+    /// Adds one argument of the call being prepared, bound to its parameter.
+    /// It stays invisible until [`Env::enter`], so the other arguments are
+    /// still evaluated in the caller's frame.
+    pub fn push_argument(&mut self, param: &Rc<str>, value: Value) {
+        self.locals.push((param.clone(), value));
+    }
+
+    /// Makes the pushed arguments the current frame.
+    pub fn enter(&mut self, caller: Frame) {
+        self.base = caller.top;
+        self.top = self.locals.len();
+        self.in_call = true;
+    }
+
+    /// Ends a call: drops its locals and returns to the caller's frame.
+    pub fn leave(&mut self, caller: Frame) {
+        self.locals.truncate(caller.top);
+        self.base = caller.base;
+        self.top = caller.top;
+        self.in_call = caller.in_call;
+    }
+
+    /// Back to top level with no locals (after an error, whatever the depth).
+    pub fn reset_locals(&mut self) {
+        self.locals.clear();
+        self.base = 0;
+        self.top = 0;
+        self.in_call = false;
+    }
+
+    /// Every name visible here, for "did you mean" suggestions.
+    pub fn visible_names(&self) -> impl Iterator<Item = &str> {
+        self.frame_locals().iter().map(|(n, _)| &**n).chain(self.globals.keys().map(|n| &**n))
+    }
+
+    fn frame_locals(&self) -> &[(Rc<str>, Value)] {
+        &self.locals[self.base..self.top]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn number(env: &Env, name: &str) -> Option<f64> {
+        match env.lookup(name)?.kind {
+            super::super::value::Kind::Number(v) => Some(v),
+            super::super::value::Kind::Object(_) => None,
+        }
+    }
+
+    #[test]
+    fn frames_hide_caller_locals_but_show_globals() {
+        let mut env = Env::default();
+        let x: Rc<str> = "x".into();
+        let y: Rc<str> = "y".into();
+        env.bind(&x, Value::number(1.0, false));
+        let top = env.prepare_call();
+        env.push_argument(&y, Value::number(2.0, false));
+        env.enter(top);
+        env.bind(&x, Value::number(3.0, false));
+        assert_eq!(number(&env, "x"), Some(3.0));
+        let inner = env.prepare_call();
+        env.enter(inner);
+        assert_eq!(number(&env, "x"), Some(1.0), "the callee sees the global, not its caller's local");
+        assert_eq!(number(&env, "y"), None);
+        env.leave(inner);
+        assert_eq!(number(&env, "y"), Some(2.0));
+        env.leave(top);
+        assert_eq!(number(&env, "x"), Some(1.0));
+        assert_eq!(number(&env, "y"), None);
+    }
+
+    #[test]
+    fn the_hasher_tells_names_apart() {
+        let mut map: NameMap<u32> = NameMap::default();
+        for (i, name) in ["a", "b", "ab", "ba", "abcdefgh", "abcdefghi"].iter().enumerate() {
+            map.insert((*name).into(), i as u32);
+        }
+        assert_eq!(map.len(), 6);
+        assert_eq!(map.get("abcdefghi"), Some(&5));
+    }
+}

@@ -1,0 +1,161 @@
+//! Evaluation errors: the internal error type and the messages of SPEC 3.
+
+use std::rc::Rc;
+
+use crate::lang::diagnostic::Diagnostic;
+use crate::lang::source::{SourceMap, Span};
+use crate::lang::suggest;
+
+/// An evaluation error on its way up to [`super::Interpreter::run`].
+#[derive(Debug)]
+pub(crate) struct EvalError {
+    /// What is reported.
+    pub diagnostic: Diagnostic,
+    /// For a too deep recursion: every active call (procedure, call site),
+    /// outermost first, summarised into a note once the sources are known.
+    pub chain: Vec<(Rc<str>, Span)>,
+}
+
+/// Boxed, so that results on the hot path stay two words wide.
+pub(crate) type EvalResult<T> = Result<T, Box<EvalError>>;
+
+impl From<Diagnostic> for Box<EvalError> {
+    fn from(diagnostic: Diagnostic) -> Box<EvalError> {
+        Box::new(EvalError { diagnostic, chain: Vec::new() })
+    }
+}
+
+/// Fails with `diagnostic`.
+pub(crate) fn fail<T>(diagnostic: Diagnostic) -> EvalResult<T> {
+    Err(diagnostic.into())
+}
+
+/// Adds "did you mean `x`?" when a candidate is close to `name`.
+pub(crate) fn with_suggestion<'a>(
+    diagnostic: Diagnostic,
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Diagnostic {
+    match suggest::closest(name, candidates) {
+        Some(close) => diagnostic.with_help(format!("did you mean `{close}`?")),
+        None => diagnostic,
+    }
+}
+
+/// "`x` is a number, but an object is needed here".
+pub(crate) fn wrong_kind(span: Span, name: &str, found: &str, needed: &str) -> Diagnostic {
+    Diagnostic::error(span, format!("`{name}` is {found}, but {needed} is needed here"))
+        .with_label(format!("this is {found}"))
+}
+
+/// "`orbit` takes 3 arguments (x, y, r) but was given 2".
+pub(crate) fn wrong_arity(span: Span, name: &str, params: &[&str], given: usize) -> Diagnostic {
+    let takes = match params.len() {
+        0 => "no arguments".to_string(),
+        1 => format!("1 argument ({})", params[0]),
+        n => format!("{n} arguments ({})", params.join(", ")),
+    };
+    Diagnostic::error(span, format!("`{name}` takes {takes} but was given {given}"))
+}
+
+/// The summary of a call chain: `f (line 9) -> f (line 3) -> ... `f (line 3)`
+/// repeated 99998 more times`. Runs of a repeated call, or of a repeated
+/// cycle of up to four calls (mutual recursion), are folded.
+pub(crate) fn summarise_chain(chain: &[(Rc<str>, Span)], sources: Option<&SourceMap>) -> String {
+    let describe = |(name, span): &(Rc<str>, Span)| match sources {
+        Some(map) => {
+            let (line, _) = map.get(span.source).line_col(span.start as usize);
+            format!("{name} (line {line})")
+        }
+        None => name.to_string(),
+    };
+    let same = |a: &(Rc<str>, Span), b: &(Rc<str>, Span)| a.1 == b.1 && a.0 == b.0;
+    let mut parts = Vec::new();
+    let mut i = 0;
+    while i < chain.len() {
+        match longest_cycle(chain, i, same) {
+            Some((period, repeats)) => {
+                let cycle: Vec<String> = chain[i..i + period].iter().map(describe).collect();
+                let cycle = cycle.join(" -> ");
+                parts.push(cycle.clone());
+                let what = if period == 1 { format!("`{cycle}`") } else { format!("the cycle `{cycle}`") };
+                parts.push(format!("... {what} repeated {} more times", repeats - 1));
+                i += period * repeats;
+            }
+            None => {
+                parts.push(describe(&chain[i]));
+                i += 1;
+            }
+        }
+    }
+    parts.join(" -> ")
+}
+
+/// The period (1..=4) and repeat count of the longest run of a repeated cycle
+/// starting at `start`, if it repeats at least three times.
+fn longest_cycle<T>(chain: &[T], start: usize, same: impl Fn(&T, &T) -> bool) -> Option<(usize, usize)> {
+    let mut best: Option<(usize, usize)> = None;
+    for period in 1..=4 {
+        let mut repeats = 1;
+        while start + (repeats + 1) * period <= chain.len()
+            && (0..period).all(|k| same(&chain[start + k], &chain[start + repeats * period + k]))
+        {
+            repeats += 1;
+        }
+        let covers = |(p, r): (usize, usize)| p * r;
+        if repeats >= 3 && best.is_none_or(|b| covers((period, repeats)) > covers(b)) {
+            best = Some((period, repeats));
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::source::SourceId;
+
+    fn call(name: &str, line: u32) -> (Rc<str>, Span) {
+        (name.into(), Span { source: SourceId(0), start: line, end: line + 1 })
+    }
+
+    #[test]
+    fn repeated_calls_are_folded() {
+        let mut chain = vec![call("f", 0)];
+        chain.extend(std::iter::repeat_n(call("f", 5), 10));
+        assert_eq!(summarise_chain(&chain, None), "f -> f -> ... `f` repeated 9 more times");
+    }
+
+    #[test]
+    fn mutual_recursion_folds_the_cycle() {
+        let mut chain = vec![call("main", 0)];
+        for _ in 0..5 {
+            chain.push(call("even", 1));
+            chain.push(call("odd", 2));
+        }
+        chain.push(call("even", 1));
+        assert_eq!(
+            summarise_chain(&chain, None),
+            "main -> even -> odd -> ... the cycle `even -> odd` repeated 4 more times -> even"
+        );
+    }
+
+    #[test]
+    fn lines_come_from_the_sources() {
+        let mut map = SourceMap::new();
+        let id = map.add("a.ray", "a\nb\nc\n", 0);
+        let chain = vec![(Rc::from("f"), Span::new(id, 2, 3)), (Rc::from("g"), Span::new(id, 4, 5))];
+        assert_eq!(summarise_chain(&chain, Some(&map)), "f (line 2) -> g (line 3)");
+    }
+
+    #[test]
+    fn arity_messages_read_well() {
+        let span = Span::default();
+        assert_eq!(
+            wrong_arity(span, "orbit", &["x", "y", "r"], 2).message,
+            "`orbit` takes 3 arguments (x, y, r) but was given 2"
+        );
+        assert_eq!(wrong_arity(span, "f", &["x"], 0).message, "`f` takes 1 argument (x) but was given 0");
+        assert_eq!(wrong_arity(span, "f", &[], 1).message, "`f` takes no arguments but was given 1");
+    }
+}

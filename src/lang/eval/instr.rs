@@ -1,0 +1,151 @@
+//! Instructions (SPEC 3): `let`, `object`, procedure calls, `put` and `if`.
+
+use std::mem;
+use std::rc::Rc;
+
+use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
+use super::value::Value;
+use super::{Interpreter, grow};
+use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj};
+use crate::lang::diagnostic::Diagnostic;
+use crate::lang::source::Span;
+
+/// How many calls of a failing call chain are shown as "in this call" places.
+const CALLS_SHOWN: usize = 3;
+
+impl Interpreter {
+    /// Runs instructions in order.
+    pub(crate) fn exec_block(&mut self, body: &[Instr]) -> EvalResult<()> {
+        body.iter().try_for_each(|instr| self.exec(instr))
+    }
+
+    /// Runs one instruction.
+    pub(crate) fn exec(&mut self, instr: &Instr) -> EvalResult<()> {
+        match &instr.kind {
+            InstrKind::Let(name, expr) => {
+                let n = self.eval_expr(expr)?;
+                let tainted = n.tainted | self.context_tainted;
+                self.env.bind(&name.name, Value::number(n.value, tainted));
+                Ok(())
+            }
+            InstrKind::Object(name, obj) => self.exec_object(name, obj),
+            InstrKind::Call(name, args) => self.exec_call(name, args, instr.span),
+            InstrKind::Put(obj) => self.exec_put(obj),
+            InstrKind::If(cond, then, otherwise) => grow(|| {
+                let (holds, tainted) = self.eval_cond(cond)?;
+                let branch = if holds { Some(then) } else { otherwise.as_ref() };
+                match branch {
+                    Some(body) => self.exec_in_context(tainted, body),
+                    None => Ok(()),
+                }
+            }),
+        }
+    }
+
+    /// Runs a branch of an `if`; a condition that depends on `time` makes
+    /// everything the branch produces depend on it too.
+    fn exec_in_context(&mut self, tainted: bool, body: &[Instr]) -> EvalResult<()> {
+        let outer = self.context_tainted;
+        self.context_tainted |= tainted;
+        let result = self.exec_block(body);
+        self.context_tainted = outer;
+        result
+    }
+
+    /// `object name = obj`.
+    fn exec_object(&mut self, name: &Ident, obj: &Obj) -> EvalResult<()> {
+        let mut buffer = mem::take(&mut self.scratch);
+        buffer.clear();
+        let result = self.emit_obj(obj, &mut buffer);
+        let primitives: Rc<[_]> = Rc::from(&buffer[..]);
+        buffer.clear();
+        self.scratch = buffer;
+        let tainted = result? | self.context_tainted;
+        self.env.bind(&name.name, Value::object(primitives, tainted));
+        Ok(())
+    }
+
+    /// `put obj`: static primitives go to `scene.primitives` (or nowhere, when
+    /// static primitives are skipped), those that depend on `time` to
+    /// `scene.timed_primitives`.
+    fn exec_put(&mut self, obj: &Obj) -> EvalResult<()> {
+        if self.context_tainted {
+            let mut timed = mem::take(&mut self.scene.timed_primitives);
+            let result = self.emit_obj(obj, &mut timed);
+            self.scene.timed_primitives = timed;
+            return result.map(|_| ());
+        }
+        let mut primitives = mem::take(&mut self.scene.primitives);
+        let start = primitives.len();
+        let result = self.emit_obj(obj, &mut primitives);
+        match result {
+            Ok(true) => self.scene.timed_primitives.extend(primitives.drain(start..)),
+            Ok(false) if self.skip_static => primitives.truncate(start),
+            Ok(false) | Err(_) => {}
+        }
+        self.scene.primitives = primitives;
+        result.map(|_| ())
+    }
+
+    /// A procedure call: checks, binds the arguments, runs the body.
+    fn exec_call(&mut self, name: &Ident, args: &[Expr], span: Span) -> EvalResult<()> {
+        let Some(proc) = self.procs.get(&name.name).cloned() else {
+            return fail(self.unknown_procedure(name));
+        };
+        if args.len() != proc.params.len() {
+            let params: Vec<&str> = proc.params.iter().map(|p| &*p.name).collect();
+            return fail(
+                wrong_arity(span, &name.name, &params, args.len())
+                    .with_related(proc.name.span, format!("`{}` is defined here", proc.name.name)),
+            );
+        }
+        if self.calls.len() >= self.limits.max_call_depth {
+            return Err(self.too_deep(name, span));
+        }
+        let caller = self.env.prepare_call();
+        for (param, arg) in proc.params.iter().zip(args) {
+            let n = self.eval_expr(arg)?;
+            self.env.push_argument(&param.name, Value::number(n.value, n.tainted));
+        }
+        self.env.enter(caller);
+        self.calls.push((name.name.clone(), span));
+        let result = grow(|| self.exec_block(&proc.body));
+        self.calls.pop();
+        self.env.leave(caller);
+        result.map_err(|error| in_call(error, &name.name, span))
+    }
+
+    /// "unknown procedure `orbt`", with a suggestion among the defined ones.
+    fn unknown_procedure(&self, name: &Ident) -> Diagnostic {
+        let diagnostic =
+            Diagnostic::error(name.span, format!("unknown procedure `{}`", name.name)).with_label("no such procedure");
+        if let Some(value) = self.env.lookup(&name.name) {
+            let kind = value.kind_name();
+            return diagnostic.with_note(format!("`{}` is {kind}, not a procedure", name.name));
+        }
+        with_suggestion(diagnostic, &name.name, self.procs.keys().map(|k| &**k))
+    }
+
+    /// The recursion-limit error, with the chain of active calls.
+    fn too_deep(&self, name: &Ident, span: Span) -> Box<EvalError> {
+        let limit = self.limits.max_call_depth;
+        let diagnostic = Diagnostic::error(span, format!("recursion deeper than {limit} calls"))
+            .with_label("this call goes too deep")
+            .with_help(
+                "check that the recursion stops (an `if` whose condition becomes false), \
+                 or raise the limit (`--max-calls`)",
+            );
+        let mut chain = self.calls.clone();
+        chain.push((name.name.clone(), span));
+        Box::new(EvalError { diagnostic, chain })
+    }
+}
+
+/// Marks an error raised inside a call with the place of the call (the
+/// innermost few only: a deep recursion would otherwise list them all).
+fn in_call(mut error: Box<EvalError>, name: &str, span: Span) -> Box<EvalError> {
+    if error.diagnostic.related.len() < CALLS_SHOWN {
+        error.diagnostic.related.push((span, format!("in this call of `{name}`")));
+    }
+    error
+}

@@ -1,0 +1,214 @@
+//! Object expressions (SPEC 3 and 4): building primitives and baking the
+//! transformations into them.
+//!
+//! An object expression is evaluated by appending its primitives to a buffer
+//! (the scene itself for a `put`), then transforming that tail of the buffer
+//! in place: no intermediate object is allocated.
+
+use glam::{DMat3, DVec3};
+
+use super::errors::{EvalResult, fail, wrong_kind};
+use super::value::{Kind, Num};
+use super::{Interpreter, grow};
+use crate::lang::ast::{Expr, Obj, ObjKind, Texture, Triple};
+use crate::lang::diagnostic::Diagnostic;
+use crate::lang::source::Span;
+use crate::scene::transform::{rotated_up, rotation_matrix};
+use crate::scene::{Material, Primitive, Shape};
+
+impl Interpreter {
+    /// Appends the primitives of `obj` to `out`; returns whether they depend on `time`.
+    pub(crate) fn emit_obj(&mut self, obj: &Obj, out: &mut Vec<Primitive>) -> EvalResult<bool> {
+        match &obj.kind {
+            ObjKind::Var(name) => self.emit_variable(name, obj.span, out),
+            ObjKind::Sphere { center, radius, texture } => {
+                let (center, c) = self.eval_triple(center)?;
+                let r = self.eval_expr(radius)?;
+                positive(r.value, radius.span, "a sphere's radius")?;
+                let (material, m) = self.eval_texture(texture)?;
+                self.count_primitives(1, obj.span)?;
+                out.push(Primitive { shape: Shape::Sphere { center, radius: r.value }, material });
+                Ok(c | r.tainted | m)
+            }
+            ObjKind::Plane { rotation, shift, texture } => {
+                let (angles, a) = self.eval_triple(rotation)?;
+                let d = self.eval_expr(shift)?;
+                let (material, m) = self.eval_texture(texture)?;
+                self.count_primitives(1, obj.span)?;
+                let normal = rotated_up(&rotation_matrix(angles.x, angles.y, angles.z));
+                out.push(Primitive { shape: Shape::Plane { normal, shift: d.value }, material });
+                Ok(a | d.tainted | m)
+            }
+            ObjKind::Box { center, length, texture } => {
+                let (center, c) = self.eval_triple(center)?;
+                let (size, s) = self.eval_triple(length)?;
+                for (value, part) in size.to_array().into_iter().zip(&length.parts) {
+                    positive(value, part.span, "a box's length")?;
+                }
+                let (material, m) = self.eval_texture(texture)?;
+                self.count_primitives(1, obj.span)?;
+                let shape = Shape::Box { center, half: size * 0.5, axes: DMat3::IDENTITY };
+                out.push(Primitive { shape, material });
+                Ok(c | s | m)
+            }
+            _ => grow(|| self.emit_compound(obj, out)),
+        }
+    }
+
+    /// Appends the primitives of a transformation or a group.
+    fn emit_compound(&mut self, obj: &Obj, out: &mut Vec<Primitive>) -> EvalResult<bool> {
+        let start = out.len();
+        match &obj.kind {
+            ObjKind::Translate(inner, by) => {
+                let inner_tainted = self.emit_obj(inner, out)?;
+                let (v, t) = self.eval_triple(by)?;
+                transform(&mut out[start..], obj.span, |p| p.translate(v))?;
+                Ok(inner_tainted | t)
+            }
+            ObjKind::Rotate(inner, by) => {
+                let inner_tainted = self.emit_obj(inner, out)?;
+                let (angles, t) = self.eval_triple(by)?;
+                let r = rotation_matrix(angles.x, angles.y, angles.z);
+                transform(&mut out[start..], obj.span, |p| p.rotate(&r))?;
+                Ok(inner_tainted | t)
+            }
+            ObjKind::Scale(inner, by) => {
+                let inner_tainted = self.emit_obj(inner, out)?;
+                let k = self.eval_expr(by)?;
+                if k.value == 0.0 {
+                    return fail(
+                        Diagnostic::error(by.span, "cannot scale by 0")
+                            .with_label("this is 0")
+                            .with_note("a scale of 0 would shrink the object to a single point"),
+                    );
+                }
+                transform(&mut out[start..], obj.span, |p| p.scale(k.value))?;
+                Ok(inner_tainted | k.tainted)
+            }
+            ObjKind::Group(members) => {
+                let mut tainted = false;
+                for member in members {
+                    tainted |= self.emit_obj(member, out)?;
+                }
+                Ok(tainted)
+            }
+            ObjKind::Var(_) | ObjKind::Sphere { .. } | ObjKind::Plane { .. } | ObjKind::Box { .. } => {
+                self.emit_obj(obj, out)
+            }
+        }
+    }
+
+    /// Appends a copy of the primitives an `object` variable holds.
+    fn emit_variable(&mut self, name: &str, span: Span, out: &mut Vec<Primitive>) -> EvalResult<bool> {
+        let (primitives, tainted) = match self.env.lookup(name) {
+            Some(value) => match &value.kind {
+                Kind::Object(primitives) => (primitives.clone(), value.tainted),
+                Kind::Number(_) => return fail(wrong_kind(span, name, "a number", "an object")),
+            },
+            None => return fail(self.unknown_variable(name, span)),
+        };
+        self.time_read |= tainted;
+        self.count_primitives(primitives.len(), span)?;
+        out.extend_from_slice(&primitives);
+        Ok(tainted)
+    }
+
+    /// Counts `n` new primitives against [`super::Limits::max_primitives`].
+    fn count_primitives(&mut self, n: usize, span: Span) -> EvalResult<()> {
+        let total = self.created.saturating_add(n);
+        if total > self.limits.max_primitives {
+            return fail(
+                Diagnostic::error(
+                    span,
+                    format!(
+                        "this makes more than {} primitives, the most a scene may have",
+                        self.limits.max_primitives
+                    ),
+                )
+                .with_label(format!("{n} more here"))
+                .with_help("make fewer objects, or raise the limit (`--max-primitives`)"),
+            );
+        }
+        self.created = total;
+        Ok(())
+    }
+
+    /// Evaluates three expressions into a vector.
+    pub(crate) fn eval_triple(&mut self, triple: &Triple) -> EvalResult<(DVec3, bool)> {
+        let [a, b, c] = &triple.parts;
+        let (x, y, z) = (self.eval_expr(a)?, self.eval_expr(b)?, self.eval_expr(c)?);
+        Ok((DVec3::new(x.value, y.value, z.value), x.tainted | y.tainted | z.tainted))
+    }
+
+    /// Evaluates a texture into a material: colour / 255, coefficients clamped
+    /// with a warning, the Phong exponent checked.
+    fn eval_texture(&mut self, texture: &Texture) -> EvalResult<(Material, bool)> {
+        let kd = self.eval_coefficient(&texture.kd, "kd")?;
+        let ks = self.eval_coefficient(&texture.ks, "ks")?;
+        let phong = self.eval_expr(&texture.phong)?;
+        positive(phong.value, texture.phong.span, "`phong`")?;
+        let mut color = [0.0; 3];
+        let mut tainted = kd.tainted | ks.tainted | phong.tainted;
+        for (slot, part) in color.iter_mut().zip(&texture.color.parts) {
+            let component = self.eval_color_component(part)?;
+            *slot = component.value / 255.0;
+            tainted |= component.tainted;
+        }
+        let material = Material { color: DVec3::from_array(color), kd: kd.value, ks: ks.value, phong: phong.value };
+        Ok((material, tainted))
+    }
+
+    /// A `kd` or `ks`, clamped to 0..1 with a warning.
+    fn eval_coefficient(&mut self, expr: &Expr, name: &str) -> EvalResult<Num> {
+        let n = self.eval_expr(expr)?;
+        let clamped = n.value.clamp(0.0, 1.0);
+        if clamped != n.value {
+            self.warn(
+                expr.span,
+                format!("`{name}` should be between 0 and 1, but it is {}; {clamped} is used", n.value),
+            );
+        }
+        Ok(Num { value: clamped, ..n })
+    }
+
+    /// A colour component, clamped to 0..255 with a warning.
+    fn eval_color_component(&mut self, expr: &Expr) -> EvalResult<Num> {
+        let n = self.eval_expr(expr)?;
+        let clamped = n.value.clamp(0.0, 255.0);
+        if clamped != n.value {
+            self.warn(
+                expr.span,
+                format!("a colour component should be between 0 and 255, but it is {}; {clamped} is used", n.value),
+            );
+        }
+        Ok(Num { value: clamped, ..n })
+    }
+}
+
+/// An error unless `value > 0`: radii, box lengths and Phong exponents.
+fn positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
+    if value > 0.0 {
+        Ok(())
+    } else {
+        fail(
+            Diagnostic::error(span, format!("{what} must be positive, but it is {value}"))
+                .with_label("not greater than 0"),
+        )
+    }
+}
+
+/// Applies `f` to every primitive, then checks that none left the range of
+/// finite numbers (a translation by 1e308, twice, would).
+fn transform(primitives: &mut [Primitive], span: Span, f: impl Fn(&mut Primitive)) -> EvalResult<()> {
+    for primitive in primitives.iter_mut() {
+        f(primitive);
+    }
+    if primitives.iter().all(|p| p.shape.is_finite()) {
+        Ok(())
+    } else {
+        fail(
+            Diagnostic::error(span, "this transformation moves the object out of range")
+                .with_label("coordinates are no longer finite numbers"),
+        )
+    }
+}
