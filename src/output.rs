@@ -1,1 +1,255 @@
-//! Writing images and animations: PNG, PPM, GIF, frame names.
+//! Writing images and animations: PNG, PPM, GIF, and the names of frames.
+//!
+//! Files are written atomically: into a temporary file in the target's
+//! directory, then renamed over the target, so a failed write never leaves a
+//! partial image behind.
+
+use std::fmt;
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use image::codecs::gif::{GifEncoder, Repeat};
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{Delay, Frame, ImageEncoder, RgbImage, RgbaImage};
+
+/// An image format that [`write_image`] can produce.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    /// PNG, 8 bits per channel.
+    Png,
+    /// Binary PPM (P6).
+    Ppm,
+}
+
+impl ImageFormat {
+    /// The format named by `path`'s extension (case-insensitive), if known.
+    pub fn from_path(path: &Path) -> Option<ImageFormat> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "png" => Some(ImageFormat::Png),
+            "ppm" => Some(ImageFormat::Ppm),
+            _ => None,
+        }
+    }
+}
+
+/// Why an image could not be written.
+#[derive(Debug)]
+pub enum OutputError {
+    /// The file name's extension names no supported format.
+    UnknownFormat {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// Reading or writing a file failed.
+    Io {
+        /// The file concerned.
+        path: PathBuf,
+        /// The underlying error.
+        source: io::Error,
+    },
+    /// The encoder failed.
+    Encode {
+        /// The file concerned.
+        path: PathBuf,
+        /// The underlying error.
+        source: image::ImageError,
+    },
+    /// An animation needs at least one frame.
+    NoFrames {
+        /// The file concerned.
+        path: PathBuf,
+    },
+}
+
+impl fmt::Display for OutputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            OutputError::UnknownFormat { path } => write!(
+                f,
+                "cannot write `{}`: unknown image format (use a file name ending in .png or .ppm)",
+                path.display()
+            ),
+            OutputError::Io { path, source } => write!(f, "cannot write `{}`: {source}", path.display()),
+            OutputError::Encode { path, source } => write!(f, "cannot encode `{}`: {source}", path.display()),
+            OutputError::NoFrames { path } => write!(f, "cannot write `{}`: the animation has no frame", path.display()),
+        }
+    }
+}
+
+impl std::error::Error for OutputError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            OutputError::Io { source, .. } => Some(source),
+            OutputError::Encode { source, .. } => Some(source),
+            OutputError::UnknownFormat { .. } | OutputError::NoFrames { .. } => None,
+        }
+    }
+}
+
+/// Writes `image` to `path` in the format named by its extension (`.png` or
+/// `.ppm`), atomically.
+pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
+    let format = ImageFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat { path: path.to_owned() })?;
+    write_atomically(path, |writer| match format {
+        ImageFormat::Png => write_png(writer, image).map_err(|e| encode_error(path, e)),
+        ImageFormat::Ppm => write_ppm(writer, image).map_err(|e| io_error(path, e)),
+    })
+}
+
+/// Writes `image` as binary PPM (P6) to `writer` (used for `-o -`).
+pub fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
+    write!(writer, "P6\n{} {}\n255\n", image.width(), image.height())?;
+    writer.write_all(image.as_raw())?;
+    writer.flush()
+}
+
+/// Writes `image` as PNG to `writer`.
+pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
+    // Fast compression: large renders and 100-frame animations would
+    // otherwise spend more time compressing than tracing.
+    let encoder = PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Adaptive);
+    encoder.write_image(image.as_raw(), image.width(), image.height(), image::ExtendedColorType::Rgb8)
+}
+
+/// Writes `frames` as an animated GIF looping forever, each frame shown for
+/// `delay_ms` milliseconds, atomically.
+pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), OutputError> {
+    if frames.is_empty() {
+        return Err(OutputError::NoFrames { path: path.to_owned() });
+    }
+    write_atomically(path, |writer| {
+        // Speed 10 of 1..=30: quantising each frame at the default speed 1
+        // takes seconds for a few hundred frames, for little visible gain.
+        let mut encoder = GifEncoder::new_with_speed(writer, 10);
+        encoder.set_repeat(Repeat::Infinite).map_err(|e| encode_error(path, e))?;
+        let delay = Delay::from_numer_denom_ms(delay_ms, 1);
+        for frame in frames {
+            let rgba: RgbaImage = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
+            encoder.encode_frame(Frame::from_parts(rgba, 0, 0, delay)).map_err(|e| encode_error(path, e))?;
+        }
+        Ok(())
+    })
+}
+
+/// The file name of frame `k` of `n`: the frame number, zero-padded to at
+/// least 4 digits (more if `n` needs them), inserted before the extension:
+/// `out.png` gives `out0001.png`.
+pub fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
+    let digits = n.to_string().len().max(4);
+    let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut name = format!("{stem}{k:0digits$}");
+    if let Some(ext) = base.extension() {
+        name.push('.');
+        name.push_str(&ext.to_string_lossy());
+    }
+    base.with_file_name(name)
+}
+
+/// Runs `write` on a temporary file next to `path`, then renames it to
+/// `path`. On any error the temporary file is removed and `path` untouched.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<&mut tempfile::NamedTempFile>) -> Result<(), OutputError>,
+) -> Result<(), OutputError> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut file = temp_file_in(dir).map_err(|e| io_error(path, e))?;
+    {
+        let mut writer = BufWriter::new(&mut file);
+        write(&mut writer)?;
+        writer.flush().map_err(|e| io_error(path, e))?;
+    }
+    file.as_file().sync_all().map_err(|e| io_error(path, e))?;
+    file.persist(path).map_err(|e| io_error(path, e.error))?;
+    Ok(())
+}
+
+/// A temporary file in `dir`, readable by others like an ordinary new file
+/// (tempfile's default is owner-only).
+fn temp_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".rayrepl-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    builder.tempfile_in(dir)
+}
+
+fn io_error(path: &Path, source: io::Error) -> OutputError {
+    OutputError::Io { path: path.to_owned(), source }
+}
+
+fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
+    match source {
+        image::ImageError::IoError(source) => io_error(path, source),
+        source => OutputError::Encode { path: path.to_owned(), source },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> RgbImage {
+        RgbImage::from_fn(3, 2, |x, y| image::Rgb([x as u8 * 80, y as u8 * 200, 7]))
+    }
+
+    #[test]
+    fn frame_names_pad_to_four_digits_or_more() {
+        assert_eq!(frame_path(Path::new("out.png"), 1, 100), PathBuf::from("out0001.png"));
+        assert_eq!(frame_path(Path::new("dir/a.ppm"), 42, 12345), PathBuf::from("dir/a00042.ppm"));
+        assert_eq!(frame_path(Path::new("noext"), 7, 9), PathBuf::from("noext0007"));
+    }
+
+    #[test]
+    fn ppm_has_header_and_raw_bytes() {
+        let mut out = Vec::new();
+        write_ppm(&mut out, &sample()).expect("writing to memory");
+        assert!(out.starts_with(b"P6\n3 2\n255\n"));
+        assert_eq!(&out[11..], sample().as_raw().as_slice());
+    }
+
+    #[test]
+    fn png_and_ppm_round_trip() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        for name in ["a.png", "b.PPM"] {
+            let path = dir.path().join(name);
+            write_image(&path, &sample()).expect("write");
+            let back = image::open(&path).expect("read back").into_rgb8();
+            assert_eq!(back, sample());
+        }
+        // Only the two images: no temporary file left behind.
+        assert_eq!(std::fs::read_dir(dir.path()).expect("list").count(), 2);
+    }
+
+    #[test]
+    fn unknown_extension_is_a_clear_error() {
+        let err = write_image(Path::new("x.jpg"), &sample()).expect_err("jpg unsupported");
+        assert!(err.to_string().contains("unknown image format"), "{err}");
+    }
+
+    #[test]
+    fn failed_write_names_the_path_and_leaves_nothing() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("missing-dir").join("a.png");
+        let err = write_image(&path, &sample()).expect_err("no such directory");
+        assert!(err.to_string().contains("missing-dir"), "{err}");
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn gif_round_trips_frame_count() {
+        use image::AnimationDecoder;
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("anim.gif");
+        write_gif(&path, &[sample(), sample(), sample()], 40).expect("write gif");
+        let file = std::io::BufReader::new(std::fs::File::open(&path).expect("open"));
+        let decoder = image::codecs::gif::GifDecoder::new(file).expect("decode");
+        assert_eq!(decoder.into_frames().count(), 3);
+    }
+}

@@ -1,1 +1,299 @@
-//! Rendering (SPEC 5 and 6): rays from the camera, intersections, shading.
+//! Rendering (SPEC 5 and 6): rays from the camera, intersections, shading,
+//! and the parallel loop over the image.
+//!
+//! ```no_run
+//! # use rayrepl::render::{render, Prepared, RenderControl, RenderOptions};
+//! # fn demo(scene: &rayrepl::scene::Scene) {
+//! let prepared = Prepared::new(scene);
+//! let options = RenderOptions { width: 800, height: 600, ..RenderOptions::default() };
+//! let (image, stats) = render(scene, &prepared, &options, &RenderControl::default()).expect("not cancelled");
+//! # }
+//! ```
+//!
+//! The image is cut into bands of [`TILE`] rows, each band into tiles of
+//! [`TILE`] x [`TILE`] pixels; rayon spreads the bands over its threads.
+//! Every pixel is computed on its own, so the bytes do not depend on the
+//! number of threads.
+
+pub mod bvh;
+pub mod camera;
+pub mod geometry;
+pub mod intersect;
+pub mod shade;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::{DVec2, DVec3};
+use image::RgbImage;
+use rayon::prelude::*;
+
+pub use camera::{PrimaryRays, Screen, sample_offsets};
+pub use geometry::{Geometry, Prepared, SurfaceHit};
+pub use intersect::Ray;
+pub use shade::RayCounts;
+use shade::{Lighting, Tracer};
+
+use crate::scene::Scene;
+
+/// Side of a square tile, in pixels; also the height of a band.
+pub const TILE: u32 = 16;
+
+/// Work-saving shortcuts, each leaving the image byte-identical (each has a
+/// test proving it). All are on by default; [`Skips::none`] turns them off
+/// for measurement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Skips {
+    /// No shadow ray towards a light with `N·L <= 0`: SPEC 6 sums only
+    /// lights with `N·L > 0`, so the answer would be unused.
+    pub back_facing_light: bool,
+    /// With `ks = 0`: no specular computation and no reflection ray (both
+    /// terms are exactly 0).
+    pub zero_ks: bool,
+    /// No reflection ray once the product of `ks` along the path is below
+    /// half an 8-bit level; paths of pixels whose byte that could change are
+    /// resumed (see [`shade`] for the proof).
+    pub negligible_reflection: bool,
+}
+
+impl Skips {
+    /// Every shortcut on (the default).
+    pub const fn all() -> Skips {
+        Skips { back_facing_light: true, zero_ks: true, negligible_reflection: true }
+    }
+
+    /// Every shortcut off: the formula of SPEC 6 followed literally.
+    pub const fn none() -> Skips {
+        Skips { back_facing_light: false, zero_ks: false, negligible_reflection: false }
+    }
+}
+
+impl Default for Skips {
+    fn default() -> Skips {
+        Skips::all()
+    }
+}
+
+/// How to render an image.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    /// Image width W in pixels.
+    pub width: u32,
+    /// Image height H in pixels.
+    pub height: u32,
+    /// Number of reflections followed (SPEC 6; default 5).
+    pub depth: u32,
+    /// Samples per pixel: 1 (default) is the pixel centre; more gives
+    /// deterministic stratified anti-aliasing (see [`sample_offsets`]): the
+    /// average of the clamped sample colours, then rounded.
+    pub samples: u32,
+    /// Where the z axis meets the screen (SPEC 5).
+    pub screen: Screen,
+    /// Work-saving shortcuts.
+    pub skips: Skips,
+}
+
+impl Default for RenderOptions {
+    fn default() -> RenderOptions {
+        RenderOptions { width: 800, height: 600, depth: 5, samples: 1, screen: Screen::Centered, skips: Skips::all() }
+    }
+}
+
+/// Progress reporting and cancellation for one render.
+#[derive(Clone, Copy, Default)]
+pub struct RenderControl<'a> {
+    /// Called from worker threads with the number of pixels just finished
+    /// (a delta, once per tile).
+    pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
+    /// When set, the render stops at the next tile and returns [`Cancelled`].
+    pub cancel: Option<&'a AtomicBool>,
+}
+
+impl std::fmt::Debug for RenderControl<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RenderControl")
+            .field("progress", &self.progress.is_some())
+            .field("cancel", &self.cancel)
+            .finish()
+    }
+}
+
+/// The render was stopped through [`RenderControl::cancel`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cancelled;
+
+impl std::fmt::Display for Cancelled {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("rendering cancelled")
+    }
+}
+
+impl std::error::Error for Cancelled {}
+
+/// What a render did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RenderStats {
+    /// Rays traced, by kind.
+    pub rays: RayCounts,
+    /// Paths paused by the reflection-weight cutoff and then followed to
+    /// their end because the cutoff could have changed their pixel's byte.
+    pub resumed_paths: u64,
+    /// Wall-clock time of the render.
+    pub elapsed: Duration,
+}
+
+impl RenderStats {
+    /// All rays traced.
+    pub fn total_rays(&self) -> u64 {
+        self.rays.primary + self.rays.shadow + self.rays.reflection
+    }
+}
+
+/// What one band of rows produced besides its pixels.
+#[derive(Debug, Clone, Copy, Default)]
+struct BandStats {
+    rays: RayCounts,
+    resumed_paths: u64,
+}
+
+/// Renders `scene` (whose geometry is `prepared`) into an image of
+/// `options.width` x `options.height` pixels (SPEC 5, 6).
+///
+/// Uses the current rayon thread pool. Returns [`Cancelled`] if
+/// `control.cancel` was set during the render.
+pub fn render(
+    scene: &Scene,
+    prepared: &Prepared,
+    options: &RenderOptions,
+    control: &RenderControl,
+) -> Result<(RgbImage, RenderStats), Cancelled> {
+    let start = Instant::now();
+    let (width, height) = (options.width, options.height);
+    let mut buffer = vec![0u8; width as usize * height as usize * 3];
+    let job = Job {
+        rays: PrimaryRays::new(&scene.camera, width, height, options.screen),
+        offsets: sample_offsets(options.samples),
+        lighting: Lighting {
+            ambient: scene.ambient,
+            lights: &scene.lights,
+            depth: options.depth,
+            skips: options.skips,
+        },
+        prepared,
+        width,
+        control,
+    };
+    let band_bytes = (TILE * width * 3) as usize;
+    let bands: Vec<BandStats> = if band_bytes == 0 {
+        Vec::new()
+    } else {
+        buffer
+            .par_chunks_mut(band_bytes)
+            .enumerate()
+            .map(|(band, pixels)| job.band(band as u32 * TILE, pixels))
+            .collect::<Result<_, Cancelled>>()?
+    };
+    let mut stats = RenderStats::default();
+    for band in bands {
+        stats.rays += band.rays;
+        stats.resumed_paths += band.resumed_paths;
+    }
+    let image = RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
+    stats.elapsed = start.elapsed();
+    Ok((image, stats))
+}
+
+/// Everything the pixel loop needs, shared by all threads.
+struct Job<'a> {
+    rays: PrimaryRays,
+    offsets: Vec<DVec2>,
+    lighting: Lighting<'a>,
+    prepared: &'a Prepared,
+    width: u32,
+    control: &'a RenderControl<'a>,
+}
+
+impl Job<'_> {
+    /// Renders the band of rows starting at `top` into `pixels` (its RGB
+    /// bytes), tile by tile.
+    fn band(&self, top: u32, pixels: &mut [u8]) -> Result<BandStats, Cancelled> {
+        let rows = (pixels.len() / (self.width as usize * 3)) as u32;
+        let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
+        let mut left = 0;
+        while left < self.width {
+            if self.control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return Err(Cancelled);
+            }
+            let right = (left + TILE).min(self.width);
+            for row in 0..rows {
+                for i in left..right {
+                    let at = (row as usize * self.width as usize + i as usize) * 3;
+                    let rgb = self.pixel(&mut tracer, i, top + row);
+                    pixels[at..at + 3].copy_from_slice(&rgb);
+                }
+            }
+            if let Some(progress) = self.control.progress {
+                progress(u64::from((right - left) * rows));
+            }
+            left = right;
+        }
+        Ok(BandStats { rays: tracer.counts, resumed_paths: tracer.resumed })
+    }
+
+    /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
+    /// samples (SPEC 6). When the reflection-weight cutoff leaves the byte
+    /// undecided, the paused paths are resumed (see [`shade`]).
+    #[inline]
+    fn pixel(&self, tracer: &mut Tracer, i: u32, j: u32) -> [u8; 3] {
+        let mut lo = DVec3::ZERO;
+        let mut hi = DVec3::ZERO;
+        let mut open = false;
+        for (slot, &offset) in self.offsets.iter().enumerate() {
+            let b = tracer.trace(slot, &self.rays.ray(i, j, offset));
+            lo += b.lo;
+            hi += b.hi;
+            open |= b.lo != b.hi;
+        }
+        let bytes = to_bytes(self.average(lo));
+        if !open || bytes == to_bytes(self.average(hi)) {
+            return bytes;
+        }
+        // The same sum in the same order as without the cutoff.
+        let exact = (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
+        to_bytes(self.average(exact))
+    }
+
+    /// The average of a sum of sample colours.
+    #[inline]
+    fn average(&self, sum: DVec3) -> DVec3 {
+        if self.offsets.len() == 1 { sum } else { sum / self.offsets.len() as f64 }
+    }
+}
+
+/// SPEC 6: the stored byte is `round(255 * c)`, no gamma. NaN gives 0.
+#[inline]
+fn to_bytes(c: DVec3) -> [u8; 3] {
+    [to_byte(c.x), to_byte(c.y), to_byte(c.z)]
+}
+
+/// `round(255 * c)` for one channel, saturating to 0..=255 (NaN gives 0).
+#[inline]
+fn to_byte(c: f64) -> u8 {
+    // `as u8` saturates and maps NaN to 0.
+    (255.0 * c).round() as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bytes_round_half_away_from_zero_and_saturate() {
+        assert_eq!(to_byte(0.0), 0);
+        assert_eq!(to_byte(1.0), 255);
+        assert_eq!(to_byte(0.5), 128); // 127.5 rounds up
+        assert_eq!(to_byte(f64::NAN), 0);
+        assert_eq!(to_byte(-3.0), 0);
+        assert_eq!(to_byte(7.0), 255);
+    }
+}

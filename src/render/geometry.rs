@@ -1,0 +1,171 @@
+//! The scene's geometry in the form rays are traced against: a BVH over the
+//! spheres and boxes, planes in a list of their own (unbounded, so tested
+//! directly), and the materials.
+//!
+//! An animation keeps the part that does not depend on `time` across frames
+//! ([`Prepared::with_static`]) and rebuilds only the rest.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::bvh::Bvh;
+use super::intersect::{Bounded, PlaneShape, Ray, ShapeClass};
+use crate::scene::{Material, Primitive, Scene};
+
+/// The primitives of one part of a scene, ready for ray queries.
+#[derive(Debug, Clone, Default)]
+pub struct Geometry {
+    bvh: Bvh,
+    /// Materials of the bounded objects, in tree order.
+    bounded_materials: Vec<Material>,
+    planes: Vec<PlaneShape>,
+    plane_materials: Vec<Material>,
+}
+
+/// Which object of a [`Geometry`] a ray hit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ObjectId {
+    Bounded(u32),
+    Plane(u32),
+}
+
+/// The nearest hit of a ray in a [`Geometry`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct GeometryHit {
+    t: f64,
+    object: ObjectId,
+}
+
+/// A surface point found by a ray: what shading needs (SPEC 6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceHit {
+    /// Distance along the ray.
+    pub t: f64,
+    /// The hit point P.
+    pub point: DVec3,
+    /// Unit normal N at P, facing the side the ray came from.
+    pub normal: DVec3,
+    /// The material of the object hit.
+    pub material: Material,
+}
+
+impl Geometry {
+    /// Prepares `primitives`: builds the BVH over spheres and boxes (in
+    /// parallel with rayon when there are many) and lists the planes.
+    pub fn build(primitives: &[Primitive]) -> Geometry {
+        let mut bounded = Vec::new();
+        let mut materials = Vec::new();
+        let mut planes = Vec::new();
+        let mut plane_materials = Vec::new();
+        for primitive in primitives {
+            match ShapeClass::from(&primitive.shape) {
+                ShapeClass::Bounded(b) => {
+                    bounded.push(b);
+                    materials.push(primitive.material);
+                }
+                ShapeClass::Plane(p) => {
+                    planes.push(p);
+                    plane_materials.push(primitive.material);
+                }
+            }
+        }
+        let (bvh, order) = Bvh::build(&bounded);
+        let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
+        Geometry { bvh, bounded_materials, planes, plane_materials }
+    }
+
+    /// Whether there is no primitive at all.
+    pub fn is_empty(&self) -> bool {
+        self.bvh.is_empty() && self.planes.is_empty()
+    }
+
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        self.bvh.objects().len() + self.planes.len()
+    }
+
+    /// The nearest hit with `0 < t < t_max`, if any.
+    #[inline]
+    fn closest_hit(&self, ray: &Ray, t_max: f64) -> Option<GeometryHit> {
+        let (mut t, index) = self.bvh.closest_hit(ray, t_max);
+        let mut object = (index != u32::MAX).then_some(ObjectId::Bounded(index));
+        for (k, plane) in self.planes.iter().enumerate() {
+            let tp = plane.hit(ray);
+            if tp < t {
+                t = tp;
+                object = Some(ObjectId::Plane(k as u32));
+            }
+        }
+        object.map(|object| GeometryHit { t, object })
+    }
+
+    /// Whether anything is hit at `0 < t` (planes first: they are cheap and
+    /// large).
+    #[inline]
+    fn any_hit(&self, ray: &Ray) -> bool {
+        self.planes.iter().any(|p| p.hit(ray) < f64::INFINITY) || self.bvh.any_hit(ray, f64::INFINITY)
+    }
+
+    /// The surface data of a hit found by [`Geometry::closest_hit`].
+    #[inline]
+    fn surface(&self, ray: &Ray, hit: GeometryHit) -> SurfaceHit {
+        let point = ray.at(hit.t);
+        let (normal, material) = match hit.object {
+            ObjectId::Bounded(k) => {
+                let object: &Bounded = &self.bvh.objects()[k as usize];
+                (object.normal(ray, hit.t), self.bounded_materials[k as usize])
+            }
+            ObjectId::Plane(k) => (self.planes[k as usize].normal(), self.plane_materials[k as usize]),
+        };
+        SurfaceHit { t: hit.t, point, normal, material }
+    }
+}
+
+/// A scene's geometry split for animations: the static part (built once,
+/// shared across frames) and the part that depends on `time`.
+#[derive(Debug, Clone, Default)]
+pub struct Prepared {
+    /// Geometry of [`Scene::primitives`], the same for every frame.
+    pub static_part: Arc<Geometry>,
+    /// Geometry of [`Scene::timed_primitives`], rebuilt per frame.
+    pub timed: Geometry,
+}
+
+impl Prepared {
+    /// Prepares both parts of `scene`.
+    pub fn new(scene: &Scene) -> Prepared {
+        let (static_part, timed) =
+            rayon::join(|| Geometry::build(&scene.primitives), || Geometry::build(&scene.timed_primitives));
+        Prepared { static_part: Arc::new(static_part), timed }
+    }
+
+    /// Reuses an already built static part and prepares only `timed`
+    /// (the next frame of an animation).
+    pub fn with_static(static_part: Arc<Geometry>, timed: &[Primitive]) -> Prepared {
+        Prepared { static_part, timed: Geometry::build(timed) }
+    }
+
+    /// The nearest hit with `t > 0` (SPEC 6), with its point, facing normal
+    /// and material. On equal distances the static part wins, so the answer
+    /// does not depend on traversal order between the parts.
+    #[inline]
+    pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
+        let static_hit = self.static_part.closest_hit(ray, f64::INFINITY);
+        if self.timed.is_empty() {
+            return static_hit.map(|h| self.static_part.surface(ray, h));
+        }
+        let t_max = static_hit.map_or(f64::INFINITY, |h| h.t);
+        match self.timed.closest_hit(ray, t_max) {
+            Some(h) => Some(self.timed.surface(ray, h)),
+            None => static_hit.map(|h| self.static_part.surface(ray, h)),
+        }
+    }
+
+    /// Whether the ray hits anything at any distance `t > 0` (shadow rays,
+    /// SPEC 6: "any object at any distance blocks it").
+    #[inline]
+    pub fn any_hit(&self, ray: &Ray) -> bool {
+        self.static_part.any_hit(ray) || self.timed.any_hit(ray)
+    }
+}

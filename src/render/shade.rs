@@ -1,0 +1,317 @@
+//! The shading formula of SPEC 6, and nothing else.
+//!
+//! ```text
+//! colour(V) = clamp( kd*Ia*C
+//!                  + Σ_j visible, N·Lj > 0 ( kd*(N·Lj)*Ij*C + ks*max(0, N·Hj)^n*Ij*C )
+//!                  + ks * colour(reflected ray) )        Hj = normalize(Lj - V)
+//! ```
+//!
+//! The recursion is followed iteratively: going down the path of mirror
+//! reflections, each level's local part (everything but the reflection term)
+//! and its `ks` are recorded; going back up, `c = clamp(local + ks * c_next)`
+//! folds them, clamping at every level as SPEC 6 requires.
+//!
+//! # The reflection-weight cutoff, and why it is exact
+//!
+//! A path whose accumulated weight `w = Π ks` (the factor by which a deeper
+//! colour reaches the pixel) falls below half an 8-bit level pauses when
+//! [`Skips::negligible_reflection`] is on. The colour `x` it did not compute
+//! lies in `[0, 1]`, and every step of the fold (`local + ks * x`, then clamp)
+//! is monotone in `x`, in floating point too (correctly rounded `+`, and `*`
+//! by a non-negative number, are monotone, and so is clamping). So the exact
+//! value lies between the fold with `x = 0` (`lo`) and with `x = 1` (`hi`);
+//! averaging samples and `round(255 * c)` are monotone as well. The cutoff
+//! alone (`hi - lo <= w < 0.5/255`) does not settle the byte: a value just
+//! below a `.5` boundary still rounds up once the missing `< 0.5/255` is
+//! added. Hence the tracer returns the pair `(lo, hi)`; when both give the
+//! same byte that byte is the exact one, and otherwise the caller resumes the
+//! paused paths ([`Tracer::resume`]) where they stopped. Nothing is traced
+//! twice, and the image is byte-identical to the one without the skip, by
+//! construction.
+
+use glam::DVec3;
+
+use super::Skips;
+use super::geometry::{Prepared, SurfaceHit};
+use super::intersect::Ray;
+use crate::scene::{Light, Material};
+
+/// Paths whose accumulated weight is below this stop (half an 8-bit level).
+pub const NEGLIGIBLE_WEIGHT: f64 = 0.5 / 255.0;
+
+/// Rays traced, counted per tile and summed (no atomics per ray).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RayCounts {
+    /// Camera rays.
+    pub primary: u64,
+    /// Rays towards lights.
+    pub shadow: u64,
+    /// Mirror rays.
+    pub reflection: u64,
+}
+
+impl std::ops::AddAssign for RayCounts {
+    fn add_assign(&mut self, other: RayCounts) {
+        self.primary += other.primary;
+        self.shadow += other.shadow;
+        self.reflection += other.reflection;
+    }
+}
+
+/// The colour of a path as bounds: the exact colour lies in `[lo, hi]`
+/// (equal unless the reflection-weight cutoff dropped a term).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bracket {
+    /// The colour with dropped reflections taken as black.
+    pub lo: DVec3,
+    /// The colour with dropped reflections taken as white.
+    pub hi: DVec3,
+}
+
+/// One level of a path: the local part of the colour and the weight of the
+/// reflection term (0 when there is no reflection term).
+#[derive(Debug, Clone, Copy)]
+struct Level {
+    local: DVec3,
+    ks: f64,
+}
+
+/// A path of reflections from one primary ray: its levels so far and, if
+/// the cutoff paused it, where it would go on.
+#[derive(Debug, Clone, Default)]
+struct Path {
+    levels: Vec<Level>,
+    paused: Option<Ray>,
+}
+
+/// What lies past the last level of a path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Tail {
+    /// Nothing (no reflection term, or the reflected ray hit nothing: black).
+    Black,
+    /// A reflected colour in `[0, 1]` that the cutoff did not compute.
+    Unknown,
+}
+
+/// Everything constant over one image that the formula needs.
+#[derive(Debug, Clone, Copy)]
+pub struct Lighting<'a> {
+    /// Ambient intensity Ia.
+    pub ambient: f64,
+    /// The lights.
+    pub lights: &'a [Light],
+    /// Number of reflections followed (SPEC 6 `depth`).
+    pub depth: u32,
+    /// Which work-saving shortcuts are on.
+    pub skips: Skips,
+}
+
+/// Traces paths; holds the ray counts of one tile and reusable buffers.
+pub struct Tracer<'a> {
+    geometry: &'a Prepared,
+    lighting: Lighting<'a>,
+    /// Rays traced so far.
+    pub counts: RayCounts,
+    /// Paused paths resumed so far.
+    pub resumed: u64,
+    /// One path per sample slot (kept to resume it).
+    paths: Vec<Path>,
+}
+
+impl<'a> Tracer<'a> {
+    /// A tracer over `geometry` with the image constants `lighting`, for
+    /// `slots` samples per pixel.
+    pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a> {
+        let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
+        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths }
+    }
+
+    /// The colour seen along a primary ray, each component in [0, 1]
+    /// (SPEC 6), as a bracket. The path is kept in `slot` so that
+    /// [`Tracer::resume`] can finish it if the cutoff paused it.
+    pub fn trace(&mut self, slot: usize, primary: &Ray) -> Bracket {
+        self.counts.primary += 1;
+        let mut levels = std::mem::take(&mut self.paths[slot].levels);
+        levels.clear();
+        let (tail, paused) = self.follow(&mut levels, *primary, self.lighting.skips.negligible_reflection);
+        let bracket = fold(&levels, tail);
+        self.paths[slot] = Path { levels, paused };
+        bracket
+    }
+
+    /// The exact colour of the path in `slot`: a paused path is followed to
+    /// its end without the cutoff; any other is folded again as it is.
+    pub fn resume(&mut self, slot: usize) -> DVec3 {
+        let mut levels = std::mem::take(&mut self.paths[slot].levels);
+        let tail = match self.paths[slot].paused.take() {
+            Some(ray) => {
+                self.resumed += 1;
+                self.counts.reflection += 1;
+                self.follow(&mut levels, ray, false).0
+            }
+            None => Tail::Black,
+        };
+        let colour = fold(&levels, tail).lo;
+        self.paths[slot].levels = levels;
+        colour
+    }
+
+    /// Follows the path from `ray` (at level `levels.len()`), appending a
+    /// level per hit. Returns what lies past the last level and, when the
+    /// cutoff stopped it, the reflected ray not traced.
+    fn follow(&mut self, levels: &mut Vec<Level>, mut ray: Ray, cutoff: bool) -> (Tail, Option<Ray>) {
+        let mut weight: f64 = levels.iter().map(|l| l.ks).product();
+        loop {
+            let Some(hit) = self.geometry.closest_hit(&ray) else { return (Tail::Black, None) };
+            let local = self.local_colour(&ray, &hit);
+            let ks = hit.material.ks;
+            let level = levels.len() as u32;
+            if level >= self.lighting.depth || (ks == 0.0 && self.lighting.skips.zero_ks) {
+                // SPEC 6: at level `depth` the reflection term is dropped; with
+                // ks = 0 it is `0 * colour = +0` and adding it changes nothing.
+                levels.push(Level { local, ks: 0.0 });
+                return (Tail::Black, None);
+            }
+            levels.push(Level { local, ks });
+            weight *= ks;
+            ray = reflected(&ray, &hit);
+            if cutoff && weight < NEGLIGIBLE_WEIGHT {
+                return (Tail::Unknown, Some(ray));
+            }
+            self.counts.reflection += 1;
+        }
+    }
+
+    /// Everything in SPEC 6's formula but the reflection term: the ambient
+    /// part and, for each visible light on the front side, the diffuse and
+    /// specular parts.
+    #[inline]
+    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit) -> DVec3 {
+        let Material { color, kd, ks, phong } = hit.material;
+        let n = hit.normal;
+        let skips = self.lighting.skips;
+        let origin = offset_origin(hit.point, n);
+        // kd * Ia * C
+        let mut c = color * (kd * self.lighting.ambient);
+        for light in self.lighting.lights {
+            let l = light.direction;
+            let n_dot_l = n.dot(l);
+            // The formula sums only lights with N·L > 0: for the others the
+            // shadow ray cannot matter, and the skip avoids it.
+            if skips.back_facing_light && n_dot_l <= 0.0 {
+                continue;
+            }
+            self.counts.shadow += 1;
+            let visible = !self.geometry.any_hit(&Ray::new(origin, l));
+            if !visible || n_dot_l <= 0.0 {
+                continue;
+            }
+            // kd * (N·L) * I * C
+            c += color * (kd * n_dot_l * light.intensity);
+            // ks * max(0, N·H)^n * I * C, with H = normalize(L - V). When
+            // ks = 0 this adds exactly +0 (the power is finite, in [0, 1]).
+            if skips.zero_ks && ks == 0.0 {
+                continue;
+            }
+            let h = (l - ray.dir).normalize_or_zero();
+            let n_dot_h = n.dot(h).max(0.0);
+            c += color * (ks * n_dot_h.powf(phong) * light.intensity);
+        }
+        c
+    }
+}
+
+/// Folds a path back up: `c = clamp(local + ks * c_next)` from the last
+/// level to the first (SPEC 6: clamped at every level). The tail gives
+/// `c_next` below the last level: black, or unknown in `[0, 1]`.
+fn fold(levels: &[Level], tail: Tail) -> Bracket {
+    let (mut lo, mut hi) = match tail {
+        Tail::Black => (DVec3::ZERO, DVec3::ZERO),
+        Tail::Unknown => (DVec3::ZERO, DVec3::ONE),
+    };
+    for level in levels.iter().rev() {
+        lo = clamp_unit(level.local + lo * level.ks);
+        hi = clamp_unit(level.local + hi * level.ks);
+    }
+    Bracket { lo, hi }
+}
+
+/// Clamps each component to [0, 1]; a NaN component becomes 0.
+#[inline]
+fn clamp_unit(c: DVec3) -> DVec3 {
+    // f64::max returns the non-NaN operand, so NaN maps to 0.
+    c.max(DVec3::ZERO).min(DVec3::ONE)
+}
+
+/// The mirror ray of SPEC 6: from P (moved off the surface) along
+/// `V - 2 (V·N) N`.
+#[inline]
+fn reflected(ray: &Ray, hit: &SurfaceHit) -> Ray {
+    let v = ray.dir;
+    let n = hit.normal;
+    Ray::new(offset_origin(hit.point, n), v - n * (2.0 * v.dot(n)))
+}
+
+/// Relative size of the offset that moves secondary rays off a surface.
+///
+/// A hit point computed in f64 is off the true surface by a few units in
+/// the last place of its largest coordinate (about `2.2e-16 * |P|`, times
+/// the small error growth of the intersection formulas, which are written
+/// to avoid cancellation). `1e-9 * max(1, max |P_i|)` is about a million
+/// times that, so a surface never shadows or reflects itself, even at
+/// coordinates of 50,000 (offset 5e-5); and it is far below anything
+/// visible: a shadow or reflection goes wrong only where two surfaces are
+/// closer than the offset (a billionth of the scene's size).
+pub const OFFSET_SCALE: f64 = 1e-9;
+
+/// SPEC 6: the start of secondary rays, P moved along N by an offset that
+/// scales with the magnitude of P's coordinates (see [`OFFSET_SCALE`]).
+#[inline]
+pub fn offset_origin(point: DVec3, normal: DVec3) -> DVec3 {
+    let scale = point.abs().max_element().max(1.0);
+    point + normal * (OFFSET_SCALE * scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fold_clamps_at_every_level() {
+        // Level 0: local 0.5, ks 0.5; level 1: local 3.0 (clamped to 1).
+        let levels = [
+            Level { local: DVec3::splat(0.5), ks: 0.5 },
+            Level { local: DVec3::splat(3.0), ks: 0.0 },
+        ];
+        let c = fold(&levels, Tail::Black);
+        // Clamped per level: 0.5 + 0.5 * 1 = 1.0; unclamped would also be 1,
+        // so check a case where it matters: local 0.2 -> 0.2 + 0.5*1 = 0.7,
+        // not 0.2 + 0.5*3 = 1.7 -> 1.
+        assert_eq!(c.lo, DVec3::ONE);
+        let levels = [
+            Level { local: DVec3::splat(0.2), ks: 0.5 },
+            Level { local: DVec3::splat(3.0), ks: 0.0 },
+        ];
+        assert_eq!(fold(&levels, Tail::Black).lo, DVec3::splat(0.7));
+    }
+
+    #[test]
+    fn fold_brackets_an_unknown_tail() {
+        let levels = [Level { local: DVec3::new(0.1, 0.99, 0.5), ks: 0.001 }];
+        let b = fold(&levels, Tail::Unknown);
+        assert_eq!(b.lo, DVec3::new(0.1, 0.99, 0.5));
+        assert_eq!(b.hi, DVec3::new(0.1 + 0.001, 0.99 + 0.001, 0.5 + 0.001));
+    }
+
+    #[test]
+    fn offset_scales_with_coordinates() {
+        assert_eq!(offset_origin(DVec3::ZERO, DVec3::Y), DVec3::new(0.0, 1e-9, 0.0));
+        let far = offset_origin(DVec3::new(50_000.0, 0.0, 0.0), DVec3::Y);
+        assert!((far.y - 5e-5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn clamp_unit_removes_nan() {
+        assert_eq!(clamp_unit(DVec3::new(f64::NAN, -1.0, 2.0)), DVec3::new(0.0, 0.0, 1.0));
+    }
+}
