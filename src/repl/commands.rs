@@ -1,6 +1,7 @@
 //! The session's commands (`:render`, `:time`, `:save`, ...), one function each.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
@@ -8,15 +9,17 @@ use image::RgbImage;
 
 use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
+use crate::render::Prepared;
 use crate::scene::Scene;
 
 use super::console::Console;
 use super::help;
 use super::rendering::{
-    ImageFormat, Progress, RenderError, Size, render_image, write_animation, write_image,
+    ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_animation,
+    write_image,
 };
 use super::report::{self, counted, number};
-use super::session::{Census, Session, Undone};
+use super::session::{Session, Undone};
 
 /// Largest width or height accepted for an image.
 const MAX_IMAGE_SIDE: u32 = 16_384;
@@ -326,7 +329,7 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
         }
     };
     explain_defaults(session, console);
-    let (image, took) = render_scene(session.scene(), size, session, console)?;
+    let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     match console.preview {
         Some(preview) => {
             preview
@@ -366,7 +369,7 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let path = PathBuf::from(file);
     output_format(&path)?;
     explain_defaults(session, console);
-    let (image, took) = render_scene(session.scene(), size, session, console)?;
+    let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     write_image(&path, &image)
         .map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
     console.say(format!(
@@ -419,11 +422,10 @@ fn time(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let value = parse_number(value)?;
     let previous = session.settings().time;
     match session.set_time(value) {
-        Ok(0) => console.say(format!("time = {}", number(value))),
-        Ok(readers) => console.say(format!(
-            "time = {} ({} reading time computed again)",
-            number(value),
-            counted(readers, "input")
+        Ok(false) => console.say(format!("time = {}", number(value))),
+        Ok(true) => console.say(format!(
+            "time = {} (the scene was computed again)",
+            number(value)
         )),
         Err(diagnostic) => {
             console.diagnostic(&diagnostic, session.sources());
@@ -533,33 +535,28 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
 
 fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
-    let defined = session.defined();
-    let numbers: Vec<String> = defined
+    let numbers: Vec<String> = session
         .numbers()
-        .map(|(name, value)| match value {
-            Some(value) => format!("{name} = {}", number(value)),
-            None => format!("{name} (value decided by an if)"),
-        })
+        .iter()
+        .map(|(name, value)| format!("{name} = {}", number(*value)))
         .collect();
-    let objects: Vec<String> = defined
+    let objects: Vec<String> = session
         .objects()
+        .iter()
         .map(|(name, what)| format!("{name} ({what})"))
         .collect();
-    let procedures: Vec<String> = defined
+    let procedures: Vec<String> = session
         .procedures()
+        .iter()
         .map(|(name, params)| format!("{name}({})", params.join(", ")))
         .collect();
     console.say(format!("numbers:    {}", numbers.join(", ")));
-    console.say(format!(
-        "objects:    {}",
-        or_none(
-            &objects,
-            "none yet: `object ball = sphere ... end` names one"
-        )
-    ));
+    let no_objects = "none yet: `object ball = sphere ... end` names one";
+    console.say(format!("objects:    {}", or_none(&objects, no_objects)));
+    let no_procedures = "none yet: see `:help proc`";
     console.say(format!(
         "procedures: {}",
-        or_none(&procedures, "none yet: see `:help proc`")
+        or_none(&procedures, no_procedures)
     ));
     Ok(Flow::Continue)
 }
@@ -586,12 +583,12 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
         "camera:   distance {}, angle {}{}",
         number(scene.camera.distance),
         number(scene.camera.angle),
-        default(session.camera_given())
+        default(session.has_camera())
     ));
     console.say(format!(
         "ambient:  {}{}",
         number(scene.ambient),
-        default(session.ambient_given())
+        default(session.has_ambient())
     ));
     console.say(format!("lights:   {}", scene.lights.len()));
     for (index, light) in scene.lights.iter().enumerate() {
@@ -605,13 +602,13 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
             number(light.intensity)
         ));
     }
-    let census = Census::of(scene);
+    let counts = scene.counts();
     let mut objects = format!(
         "objects:  {} ({}, {}, {})",
-        census.objects(),
-        counted(census.spheres, "sphere"),
-        counted(census.planes, "plane"),
-        counted(census.boxes, "box")
+        report::objects(&counts),
+        counted(counts.spheres, "sphere"),
+        counted(counts.planes, "plane"),
+        counted(counts.boxes, "box")
     );
     if !scene.timed_primitives.is_empty() {
         objects.push_str(&format!(
@@ -646,7 +643,7 @@ fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     }
     console.say(format!(
         "{} in the scene",
-        counted(Census::of(session.scene()).objects(), "object")
+        counted(report::objects(&session.scene().counts()), "object")
     ));
     Ok(Flow::Continue)
 }
@@ -670,14 +667,14 @@ fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) ->
 fn explain_defaults(session: &Session, console: &mut Console) {
     let scene = session.scene();
     let mut defaults = Vec::new();
-    if !session.camera_given() {
+    if !session.has_camera() {
         defaults.push(format!(
             "the default camera (distance {}, angle {}); set one with `camera distance 10 angle 0.8 end`",
             number(scene.camera.distance),
             number(scene.camera.angle)
         ));
     }
-    if !session.ambient_given() {
+    if !session.has_ambient() {
         defaults.push(format!(
             "the default ambient light {}; set it with `ambient 0.2`",
             number(scene.ambient)
@@ -697,26 +694,30 @@ fn explain_defaults(session: &Session, console: &mut Console) {
 fn render_scene(
     scene: &Scene,
     size: Size,
-    session: &Session,
+    settings: &RenderSettings,
     console: &Console,
 ) -> Result<(RgbImage, Duration), CommandError> {
-    let settings = *session.settings();
     let started = Instant::now();
+    let total = size.width as usize * size.height as usize;
     let progress = Progress {
         visible: console.progress,
         label: "rendering",
-        total: size.height as usize,
+        total,
     };
     let armed = console.cancel.map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
     let image = progress
-        .run(|rows| render_image(scene, size, &settings, cancel, rows))
+        .run(|pixels| {
+            let prepared = Prepared::new(scene);
+            render_image(scene, &prepared, size, settings, cancel, pixels)
+        })
         .map_err(render_failure)?;
     Ok((image, started.elapsed()))
 }
 
-/// Renders frames 1..=`frames` of the animation, each with `time` = its number.
+/// Renders frames 1..=`frames` of the animation, frame k with `time` = k.
+/// The geometry that does not depend on `time` is built once, from frame 1.
 fn render_frames(
     session: &Session,
     frames: u32,
@@ -724,7 +725,9 @@ fn render_frames(
     console: &Console,
 ) -> Result<Vec<RgbImage>, CommandError> {
     let settings = *session.settings();
-    let total = frames as usize * size.height as usize;
+    let timed = session.depends_on_time();
+    let rendered_frames = if timed { frames as usize } else { 1 };
+    let total = rendered_frames * size.width as usize * size.height as usize;
     let progress = Progress {
         visible: console.progress,
         label: "animating",
@@ -733,30 +736,33 @@ fn render_frames(
     let armed = console.cancel.map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
-    let timed = session.depends_on_time();
-    // Scenes are evaluated here, on this thread: the session's syntax trees
-    // are not shared with the renderer's threads.
-    let mut scenes = Vec::with_capacity(frames as usize);
-    for frame in 1..=frames {
-        if timed || frame == 1 {
-            let scene = session
-                .scene_at(f64::from(frame))
-                .map_err(|d| frame_failure(d, frame))?;
-            scenes.push(scene);
+    progress.run(|pixels| {
+        let render = |scene: &Scene, prepared: &Prepared| {
+            render_image(scene, prepared, size, &settings, cancel, pixels).map_err(render_failure)
+        };
+        if !timed {
+            // Nothing reads `time`: every frame is the same picture.
+            let scene = session.scene();
+            let image = render(scene, &Prepared::new(scene))?;
+            return Ok(vec![image; frames as usize]);
         }
-    }
-    let images = progress.run(|rows| {
-        scenes
-            .iter()
-            .map(|scene| render_image(scene, size, &settings, cancel, rows))
-            .collect::<Result<Vec<_>, _>>()
-    });
-    let mut images = images.map_err(render_failure)?;
-    if let [only] = images.as_slice() {
-        // Nothing reads `time`: every frame is the same picture.
-        images = vec![only.clone(); frames as usize];
-    }
-    Ok(images)
+        let first = session
+            .replay_at(1.0, false)
+            .map_err(|d| frame_failure(d, 1))?
+            .into_scene();
+        let first_prepared = Prepared::new(&first);
+        let mut images = vec![render(&first, &first_prepared)?];
+        for frame in 2..=frames {
+            let scene = session
+                .replay_at(f64::from(frame), true)
+                .map_err(|d| frame_failure(d, frame))?
+                .into_scene();
+            let static_part = Arc::clone(&first_prepared.static_part);
+            let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
+            images.push(render(&scene, &prepared)?);
+        }
+        Ok(images)
+    })
 }
 
 fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {
@@ -770,7 +776,6 @@ fn render_failure(error: RenderError) -> CommandError {
         RenderError::Cancelled => {
             CommandError::Cancelled("render cancelled; the session is as it was".to_string())
         }
-        RenderError::Failed(reason) => CommandError::Failed(format!("the render failed: {reason}")),
     }
 }
 

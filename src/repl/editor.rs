@@ -18,8 +18,8 @@ use rustyline::{Context, Helper};
 use crate::lang::is_incomplete;
 
 use super::commands::{COMMANDS, is_command};
-use super::defined::Defined;
 use super::help;
+use super::session::Vocabulary;
 use super::syntax::{KEYWORDS, TokenKind, is_word_char, tokens};
 
 /// Commands whose arguments are file names.
@@ -55,8 +55,8 @@ impl RayHelper {
     }
 
     /// Refreshes the names offered by completion.
-    pub(crate) fn set_names(&mut self, defined: &Defined) {
-        self.names = name_candidates(defined);
+    pub(crate) fn set_names(&mut self, vocabulary: &Vocabulary) {
+        self.names = name_candidates(vocabulary);
     }
 
     fn complete_command(
@@ -116,16 +116,15 @@ impl RayHelper {
     }
 }
 
-/// Completion candidates for what `defined` holds: procedures show their
+/// Completion candidates for the session's names: procedures show their
 /// parameters and complete up to the opening parenthesis.
-pub(crate) fn name_candidates(defined: &Defined) -> Vec<Pair> {
-    let numbers = defined.numbers().map(|(name, _)| plain(name, name));
-    let objects = defined.objects().map(|(name, _)| plain(name, name));
-    let procedures = defined.procedures().map(|(name, params)| Pair {
+pub(crate) fn name_candidates(vocabulary: &Vocabulary) -> Vec<Pair> {
+    let variables = vocabulary.variables.iter().map(|name| plain(name, name));
+    let procedures = vocabulary.procedures.iter().map(|(name, params)| Pair {
         display: format!("{name}({})", params.join(", ")),
         replacement: format!("{name}("),
     });
-    numbers.chain(objects).chain(procedures).collect()
+    variables.chain(procedures).collect()
 }
 
 /// A keyword followed by a space, or a function with its parenthesis.
@@ -278,15 +277,10 @@ mod tests {
         let mut helper = RayHelper::new(false);
         let (start, found) = complete(&helper, "put sph");
         assert_eq!((start, found), (4, vec!["sphere".to_string()]));
-        let mut defined = Defined::new(0.0);
-        let program = crate::lang::ast::Program {
-            items: vec![crate::repl::facts::tests::let_item(
-                "spin",
-                crate::repl::facts::tests::num(1.0),
-            )],
-        };
-        defined.record(&program);
-        helper.set_names(&defined);
+        helper.set_names(&Vocabulary {
+            variables: vec!["spin".to_string(), "time".to_string()],
+            procedures: vec![("spiral".to_string(), vec!["n".to_string(), "r".to_string()])],
+        });
         assert_eq!(
             complete(&helper, "let a = sp").1,
             vec!["sphere".to_string(), "spin".to_string()]
@@ -297,6 +291,10 @@ mod tests {
             ["scale", "shift", "sin(x)", "sphere", "spin", "sqrt(x)"].map(String::from)
         );
         assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
+        assert_eq!(
+            complete(&helper, "spir").1,
+            vec!["spiral(n, r)".to_string()]
+        );
     }
 
     #[test]

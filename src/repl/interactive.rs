@@ -144,10 +144,10 @@ impl Repl {
     }
 
     fn refresh_helper(&mut self, pending: &str) {
-        let defined = self.session.defined();
+        let vocabulary = self.session.vocabulary();
         if let Some(helper) = self.editor.helper_mut() {
             helper.set_pending(pending);
-            helper.set_names(defined);
+            helper.set_names(&vocabulary);
         }
     }
 }

@@ -16,9 +16,8 @@
 mod cancel;
 mod commands;
 mod console;
-mod defined;
+mod describe;
 mod editor;
-mod facts;
 mod help;
 mod interactive;
 mod preview;
@@ -31,7 +30,6 @@ mod syntax;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
-pub use defined::Defined;
 pub use interactive::{ReplError, run_interactive};
 pub use rendering::RenderSettings;
 pub use script::run_script;

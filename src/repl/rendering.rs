@@ -9,6 +9,8 @@ use std::time::{Duration, Instant};
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::output::{frame_path, write_gif};
+use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, render};
 use crate::scene::Scene;
 
 /// How the session renders: image size, reflections, antialiasing and time.
@@ -58,36 +60,39 @@ impl std::fmt::Display for Size {
 pub(crate) enum RenderError {
     /// Ctrl-C was pressed.
     Cancelled,
-    /// The renderer failed, for the reason given.
-    #[allow(dead_code)] // TEMPORARY(lead): constructed once the renderer is wired in.
-    Failed(String),
 }
 
-/// Renders `scene` at `size` with the depth and samples of `settings`.
+/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth
+/// and samples of `settings`.
 ///
-/// This is the only place that calls the renderer. It polls `cancel` and
-/// counts finished rows in `rows_done`, which drive cancellation and the
-/// progress bar.
+/// This is the only place that calls the renderer. It stops when `cancel`
+/// is raised and counts finished pixels in `pixels_done`, for the progress bar.
 pub(crate) fn render_image(
     scene: &Scene,
+    prepared: &Prepared,
     size: Size,
     settings: &RenderSettings,
     cancel: &AtomicBool,
-    rows_done: &AtomicUsize,
+    pixels_done: &AtomicUsize,
 ) -> Result<RgbImage, RenderError> {
-    // TEMPORARY(lead): the render branch is not merged yet. Replace this body
-    // with the call to `crate::render::render(scene, ...)`, mapping
-    // `settings.depth` and `settings.samples` to its options, `cancel` to its
-    // cancellation flag and `rows_done` to its progress counter.
-    let _ = (scene, settings);
-    let image = RgbImage::new(size.width, size.height);
-    for _row in 0..size.height {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(RenderError::Cancelled);
-        }
-        rows_done.fetch_add(1, Ordering::Relaxed);
+    let options = RenderOptions {
+        width: size.width,
+        height: size.height,
+        depth: settings.depth,
+        samples: settings.samples,
+        ..RenderOptions::default()
+    };
+    let count = |pixels: u64| {
+        pixels_done.fetch_add(pixels as usize, Ordering::Relaxed);
+    };
+    let control = RenderControl {
+        progress: Some(&count),
+        cancel: Some(cancel),
+    };
+    match render(scene, prepared, &options, &control) {
+        Ok((image, _stats)) => Ok(image),
+        Err(Cancelled) => Err(RenderError::Cancelled),
     }
-    Ok(image)
 }
 
 /// Progress reporting for a long job: after half a second a bar appears on
@@ -109,7 +114,7 @@ const PROGRESS_TICK: Duration = Duration::from_millis(50);
 impl Progress<'_> {
     /// Runs `job`, which counts its progress in the counter it is given, and
     /// shows a bar if it lasts longer than half a second.
-    pub(crate) fn run<R: Send>(&self, job: impl FnOnce(&AtomicUsize) -> R + Send) -> R {
+    pub(crate) fn run<R>(&self, job: impl FnOnce(&AtomicUsize) -> R) -> R {
         let counter = AtomicUsize::new(0);
         let finished = AtomicBool::new(false);
         thread::scope(|scope| {
@@ -176,81 +181,33 @@ impl ImageFormat {
     }
 }
 
+/// Delay between the frames of an animated GIF: ten frames a second.
+const GIF_FRAME_DELAY_MS: u32 = 100;
+
 /// Writes one image to `path`, in the format its extension names.
 pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
-    // TEMPORARY(lead): switch to `crate::output::write_image` once the render
-    // branch, which owns output.rs, is merged.
-    let format = match ImageFormat::of(path) {
-        Some(ImageFormat::Png) => image::ImageFormat::Png,
-        Some(ImageFormat::Ppm) => image::ImageFormat::Pnm,
-        Some(ImageFormat::Gif) => image::ImageFormat::Gif,
-        None => {
-            return Err(format!(
-                "cannot tell the image format of {}",
-                path.display()
-            ));
-        }
+    let written = match ImageFormat::of(path) {
+        Some(ImageFormat::Gif) => write_gif(path, std::slice::from_ref(image), GIF_FRAME_DELAY_MS),
+        _ => crate::output::write_image(path, image),
     };
-    image
-        .save_with_format(path, format)
-        .map_err(|e| e.to_string())
+    written.map_err(|e| e.to_string())
 }
 
 /// Writes the frames of an animation: one animated GIF if `path` ends in
-/// `.gif`, otherwise one numbered file per frame (`spin_01.png` ...).
-/// Returns the files written.
+/// `.gif`, otherwise one numbered file per frame (`spin.png` gives
+/// `spin0001.png`, ...). Returns the files written.
 pub(crate) fn write_animation(path: &Path, frames: &[RgbImage]) -> Result<Vec<PathBuf>, String> {
     if ImageFormat::of(path) == Some(ImageFormat::Gif) {
-        write_gif(path, frames)?;
+        write_gif(path, frames, GIF_FRAME_DELAY_MS).map_err(|e| e.to_string())?;
         return Ok(vec![path.to_path_buf()]);
     }
     let mut written = Vec::with_capacity(frames.len());
     for (index, frame) in frames.iter().enumerate() {
         let frame_path = frame_path(path, index + 1, frames.len());
-        write_image(&frame_path, frame)?;
+        crate::output::write_image(&frame_path, frame).map_err(|e| e.to_string())?;
         written.push(frame_path);
     }
     Ok(written)
-}
-
-/// Delay between the frames of an animated GIF: ten frames a second.
-const GIF_FRAME_DELAY_MS: u32 = 100;
-
-fn write_gif(path: &Path, frames: &[RgbImage]) -> Result<(), String> {
-    // TEMPORARY(lead): switch to `crate::output::write_gif` once the render
-    // branch is merged.
-    use image::codecs::gif::{GifEncoder, Repeat};
-    use image::{Delay, DynamicImage, Frame};
-    let file = std::fs::File::create(path).map_err(|e| e.to_string())?;
-    let mut encoder = GifEncoder::new_with_speed(std::io::BufWriter::new(file), 10);
-    encoder
-        .set_repeat(Repeat::Infinite)
-        .map_err(|e| e.to_string())?;
-    let delay = Delay::from_numer_denom_ms(GIF_FRAME_DELAY_MS, 1);
-    let frames = frames.iter().map(|frame| {
-        Frame::from_parts(
-            DynamicImage::ImageRgb8(frame.clone()).into_rgba8(),
-            0,
-            0,
-            delay,
-        )
-    });
-    encoder.encode_frames(frames).map_err(|e| e.to_string())
-}
-
-/// The name of frame `k` of `n` of an animation saved as `path`: the frame
-/// number, zero-padded to the width of `n`, goes before the extension.
-pub(crate) fn frame_path(path: &Path, k: usize, n: usize) -> PathBuf {
-    let width = n.to_string().len();
-    let stem = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let name = match path.extension() {
-        Some(extension) => format!("{stem}_{k:0width$}.{}", extension.to_string_lossy()),
-        None => format!("{stem}_{k:0width$}"),
-    };
-    path.with_file_name(name)
 }
 
 #[cfg(test)]
@@ -267,18 +224,6 @@ mod tests {
         assert_eq!(ImageFormat::of(Path::new("a.gif")), Some(ImageFormat::Gif));
         assert_eq!(ImageFormat::of(Path::new("a.jpg")), None);
         assert_eq!(ImageFormat::of(Path::new("a")), None);
-    }
-
-    #[test]
-    fn frames_are_numbered_to_the_width_of_the_count() {
-        assert_eq!(
-            frame_path(Path::new("out/spin.png"), 3, 12),
-            PathBuf::from("out/spin_03.png")
-        );
-        assert_eq!(
-            frame_path(Path::new("spin.ppm"), 7, 9),
-            PathBuf::from("spin_7.ppm")
-        );
     }
 
     #[test]

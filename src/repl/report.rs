@@ -3,7 +3,9 @@
 
 use crate::lang::ast::{InstrKind, Item};
 
-use super::session::{Accepted, Census, Session};
+use crate::scene::Counts;
+
+use super::session::{Accepted, Session};
 
 /// Above this many definitions in one input, they are listed on one line.
 const MAX_DEFINITION_LINES: usize = 4;
@@ -15,8 +17,8 @@ pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<Strin
     if lines.len() > MAX_DEFINITION_LINES {
         lines = vec![format!("defined {}", definition_names(accepted).join(", "))];
     }
-    let after = Census::of(session.scene());
-    let before = accepted.scene_before;
+    let after = session.scene().counts();
+    let before = accepted.counts_before;
     if after.lights > before.lights {
         lines.push(format!(
             "{} ({} in the scene)",
@@ -24,11 +26,11 @@ pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<Strin
             counted(after.lights, "light")
         ));
     }
-    if after.objects() > before.objects() {
+    if objects(&after) > objects(&before) {
         lines.push(format!(
             "put {} ({} in the scene)",
             added(&before, &after),
-            counted(after.objects(), "object")
+            counted(objects(&after), "object")
         ));
     } else if has_call(accepted) {
         lines.push("nothing was put".to_string());
@@ -36,8 +38,12 @@ pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<Strin
     lines
 }
 
+/// How many primitives `counts` holds.
+pub(crate) fn objects(counts: &Counts) -> usize {
+    counts.spheres + counts.planes + counts.boxes
+}
+
 fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
-    let defined = session.defined();
     let scene = session.scene();
     let mut lines = Vec::new();
     for item in &accepted.program.items {
@@ -50,21 +56,23 @@ fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
             Item::Ambient(_) => lines.push(format!("ambient light: {}", number(scene.ambient))),
             Item::Proc(proc_def) => {
                 let name = &*proc_def.name.name;
-                let verb = if accepted.defined_before.procedure(name).is_some() {
-                    "redefined"
-                } else {
-                    "defined"
-                };
+                let known = accepted
+                    .procedures_before
+                    .iter()
+                    .any(|before| &**before == name);
+                let verb = if known { "redefined" } else { "defined" };
                 let params: Vec<&str> = proc_def.params.iter().map(|p| &*p.name).collect();
                 lines.push(format!("{verb} proc {name}({})", params.join(", ")));
             }
             Item::Instr(instr) => match &instr.kind {
-                InstrKind::Let(name, _) => lines.push(match defined.number(&name.name) {
+                InstrKind::Let(name, _) => lines.push(match session.global_number(&name.name) {
                     Some(value) => format!("{} = {}", name.name, number(value)),
                     None => format!("{} defined", name.name),
                 }),
                 InstrKind::Object(name, _) => {
-                    let what = defined.object(&name.name).unwrap_or("object");
+                    let what = session
+                        .describe_object(&name.name)
+                        .unwrap_or_else(|| "object".to_string());
                     lines.push(format!("object {} = {what}", name.name));
                 }
                 InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) => {}
@@ -103,7 +111,7 @@ fn has_call(accepted: &Accepted) -> bool {
 }
 
 /// "1 sphere", "2 spheres and 1 box", "3 spheres, 1 plane and 2 boxes".
-fn added(before: &Census, after: &Census) -> String {
+fn added(before: &Counts, after: &Counts) -> String {
     let parts: Vec<String> = [
         (after.spheres - before.spheres.min(after.spheres), "sphere"),
         (after.planes - before.planes.min(after.planes), "plane"),

@@ -6,21 +6,18 @@ use std::rc::Rc;
 
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, parse_items};
-use crate::scene::Scene;
+use crate::scene::{Counts, Scene};
 
-use super::defined::Defined;
-use super::facts;
+use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
 
 /// One accepted input, kept so the session can be rebuilt without it.
 #[derive(Debug, Clone)]
-pub(crate) struct Input {
-    /// The text as typed (or the file's name, for `:load`), for `:undo`'s message.
-    pub text: String,
+struct Input {
+    /// The text as typed (`:load FILE` for a file), for `:undo`'s message.
+    text: String,
     /// The parsed items.
-    pub program: Rc<Program>,
-    /// Whether it reads `time` (then a change of time must evaluate it again).
-    pub reads_time: bool,
+    program: Rc<Program>,
 }
 
 /// What `:undo` takes back.
@@ -33,16 +30,16 @@ enum UndoStep {
 }
 
 /// What an accepted input did, for the confirmation printed after it.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub(crate) struct Accepted {
     /// The parsed items.
     pub program: Rc<Program>,
     /// Warnings the interpreter raised (clamped colours, ...).
     pub warnings: Vec<Diagnostic>,
-    /// What was defined before the input (to tell new names from redefined ones).
-    pub defined_before: Defined,
-    /// The scene before the input.
-    pub scene_before: Census,
+    /// The procedures defined before the input (to tell new from redefined).
+    pub procedures_before: Vec<Rc<str>>,
+    /// What the scene held before the input.
+    pub counts_before: Counts,
 }
 
 /// What `:undo` did.
@@ -56,55 +53,27 @@ pub(crate) enum Undone {
     Reset(usize),
 }
 
-/// Counts of what a scene holds, to report changes.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub(crate) struct Census {
-    /// Spheres put.
-    pub spheres: usize,
-    /// Planes put.
-    pub planes: usize,
-    /// Boxes put.
-    pub boxes: usize,
-    /// Lights.
-    pub lights: usize,
-}
-
-impl Census {
-    /// Counts the primitives and lights of `scene`.
-    pub(crate) fn of(scene: &Scene) -> Census {
-        use crate::scene::Shape;
-        let mut census = Census {
-            lights: scene.lights.len(),
-            ..Census::default()
-        };
-        for primitive in scene.all_primitives() {
-            match primitive.shape {
-                Shape::Sphere { .. } => census.spheres += 1,
-                Shape::Plane { .. } => census.planes += 1,
-                Shape::Box { .. } => census.boxes += 1,
-            }
-        }
-        census
-    }
-
-    /// All primitives.
-    pub(crate) fn objects(&self) -> usize {
-        self.spheres + self.planes + self.boxes
-    }
+/// Names defined by the session, for completion.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub(crate) struct Vocabulary {
+    /// Global numbers and objects.
+    pub variables: Vec<String>,
+    /// Procedures with their parameters.
+    pub procedures: Vec<(String, Vec<String>)>,
 }
 
 /// An interactive session or a script run: everything that accumulates.
 #[derive(Debug)]
 pub struct Session {
     interpreter: Interpreter,
-    /// The time `interpreter` was created with; it differs from
-    /// `settings.time` after a `:time` that needed no replay, until an input
-    /// that reads `time` arrives.
+    /// The time `interpreter` was created with. After a `:time` that needed
+    /// no replay (nothing had read `time`) it differs from `settings.time`
+    /// until the next input, which first rebuilds the interpreter.
     interpreter_time: f64,
     sources: SourceMap,
     history: Vec<Input>,
     undo_steps: Vec<UndoStep>,
-    defined: Defined,
+    descriptions: ObjectDescriptions,
     settings: RenderSettings,
     limits: Limits,
 }
@@ -118,15 +87,16 @@ impl Session {
             sources: SourceMap::new(),
             history: Vec::new(),
             undo_steps: Vec::new(),
-            defined: Defined::new(settings.time),
+            descriptions: ObjectDescriptions::default(),
             settings,
             limits,
         }
     }
 
     /// Parses and runs one input. `name` is shown in diagnostics and
-    /// `line_offset` is the number of lines before it in its script (SPEC 7:
-    /// on error the session is unchanged).
+    /// `line_offset` is the number of lines before it in its script. On
+    /// error the session is unchanged (SPEC 7).
+    #[allow(clippy::result_large_err)] // `Diagnostic` by value is the shared interface
     pub(crate) fn submit(
         &mut self,
         name: &str,
@@ -138,45 +108,46 @@ impl Session {
         self.run(text.to_string(), program)
     }
 
-    /// Runs an already parsed input and records it in the history.
-    fn run(&mut self, text: String, program: Program) -> Result<Accepted, Diagnostic> {
-        let reads_time = facts::reads_time(&program);
-        if reads_time && self.interpreter_time != self.settings.time {
-            self.rebuild(self.history.clone())?;
-        }
-        let scene_before = Census::of(self.interpreter.scene());
-        if let Err(error) = self.interpreter.run(&program) {
-            self.interpreter.take_warnings();
-            return Err(error);
-        }
-        let warnings = self.interpreter.take_warnings();
-        let defined_before = self.defined.clone();
-        self.defined.record(&program);
-        let program = Rc::new(program);
-        if !program.items.is_empty() {
-            self.history.push(Input {
-                text,
-                program: Rc::clone(&program),
-                reads_time,
-            });
-            self.undo_steps.push(UndoStep::Input);
-        }
-        Ok(Accepted {
-            program,
-            warnings,
-            defined_before,
-            scene_before,
-        })
-    }
-
     /// Runs the text of a file, all of it as one input (its items in any order).
+    #[allow(clippy::result_large_err)]
     pub(crate) fn load(&mut self, name: &str, text: &str) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, 0);
         let program = parse_items(source, text)?;
         self.run(format!(":load {name}"), program)
     }
 
+    /// Runs an already parsed input and records it in the history.
+    #[allow(clippy::result_large_err)]
+    fn run(&mut self, text: String, program: Program) -> Result<Accepted, Diagnostic> {
+        if self.interpreter_time != self.settings.time {
+            self.rebuild(self.history.clone())?;
+        }
+        let counts_before = self.interpreter.scene().counts();
+        let procedures_before = self.interpreter.procedure_names();
+        if let Err(error) = self.interpreter.run_with_sources(&program, &self.sources) {
+            self.interpreter.take_warnings();
+            return Err(error);
+        }
+        let warnings = self.interpreter.take_warnings();
+        self.descriptions.record(&program);
+        let program = Rc::new(program);
+        if !program.items.is_empty() {
+            self.history.push(Input {
+                text,
+                program: Rc::clone(&program),
+            });
+            self.undo_steps.push(UndoStep::Input);
+        }
+        Ok(Accepted {
+            program,
+            warnings,
+            procedures_before,
+            counts_before,
+        })
+    }
+
     /// Takes back the last input, or the last `:reset`.
+    #[allow(clippy::result_large_err)]
     pub(crate) fn undo(&mut self) -> Result<Undone, Diagnostic> {
         let Some(step) = self.undo_steps.pop() else {
             return Ok(Undone::Nothing);
@@ -203,68 +174,71 @@ impl Session {
         let cleared = std::mem::take(&mut self.history);
         self.interpreter = Interpreter::new(self.settings.time, self.limits);
         self.interpreter_time = self.settings.time;
-        self.defined = Defined::new(self.settings.time);
+        self.descriptions = ObjectDescriptions::default();
         self.undo_steps.push(UndoStep::Reset(cleared));
     }
 
-    /// Sets `time`. Inputs that read it are evaluated again at once; if one
-    /// of them fails at the new time, nothing changes. Returns how many
-    /// inputs read `time`.
-    pub(crate) fn set_time(&mut self, time: f64) -> Result<usize, Diagnostic> {
-        let readers = self.history.iter().filter(|input| input.reads_time).count();
+    /// Sets `time`. If anything read it, every input is evaluated again at
+    /// once, and if one of them fails at the new time nothing changes.
+    /// Returns whether inputs were evaluated again.
+    #[allow(clippy::result_large_err)]
+    pub(crate) fn set_time(&mut self, time: f64) -> Result<bool, Diagnostic> {
         let previous = self.settings.time;
         self.settings.time = time;
-        if readers > 0 {
-            if let Err(error) = self.rebuild(self.history.clone()) {
-                self.settings.time = previous;
-                return Err(error);
-            }
-        } else {
-            self.defined = self.defined_at(time);
+        if !self.interpreter.has_time_reads() {
+            return Ok(false);
         }
-        Ok(readers)
+        if let Err(error) = self.rebuild(self.history.clone()) {
+            self.settings.time = previous;
+            return Err(error);
+        }
+        Ok(true)
     }
 
-    /// The scene as it would be at `time`, leaving the session as it is.
-    pub(crate) fn scene_at(&self, time: f64) -> Result<Scene, Diagnostic> {
-        if !self.history.iter().any(|input| input.reads_time) {
-            return Ok(self.interpreter.scene().clone());
-        }
-        Ok(self.replay(time, &self.history)?.into_scene())
-    }
-
-    /// Whether any accepted input reads `time`.
+    /// Whether evaluation has read `time`: if not, every time gives the same scene.
     pub(crate) fn depends_on_time(&self) -> bool {
-        self.history.iter().any(|input| input.reads_time)
+        self.interpreter.has_time_reads()
+    }
+
+    /// A fresh interpreter that ran the history at `time`; with
+    /// `skip_static`, the scene holds only the primitives that depend on
+    /// `time` (the other frames of an animation).
+    #[allow(clippy::result_large_err)]
+    pub(crate) fn replay_at(
+        &self,
+        time: f64,
+        skip_static: bool,
+    ) -> Result<Interpreter, Diagnostic> {
+        let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
+        self.replay(interpreter, &self.history)
     }
 
     /// Replaces the interpreter by one that ran `history` at the current time.
+    #[allow(clippy::result_large_err)]
     fn rebuild(&mut self, history: Vec<Input>) -> Result<(), Diagnostic> {
         let time = self.settings.time;
-        self.interpreter = self.replay(time, &history)?;
+        self.interpreter = self.replay(Interpreter::new(time, self.limits), &history)?;
         self.interpreter_time = time;
+        let mut descriptions = ObjectDescriptions::default();
+        for input in &history {
+            descriptions.record(&input.program);
+        }
+        self.descriptions = descriptions;
         self.history = history;
-        self.defined = self.defined_at(time);
         Ok(())
     }
 
-    /// A fresh interpreter that ran `history` at `time`.
-    fn replay(&self, time: f64, history: &[Input]) -> Result<Interpreter, Diagnostic> {
-        let mut interpreter = Interpreter::new(time, self.limits);
+    #[allow(clippy::result_large_err)]
+    fn replay(
+        &self,
+        mut interpreter: Interpreter,
+        history: &[Input],
+    ) -> Result<Interpreter, Diagnostic> {
         for input in history {
-            interpreter.run(&input.program)?;
+            interpreter.run_with_sources(&input.program, &self.sources)?;
         }
         interpreter.take_warnings();
         Ok(interpreter)
-    }
-
-    /// What the history defines at `time`.
-    fn defined_at(&self, time: f64) -> Defined {
-        let mut defined = Defined::new(time);
-        for input in &self.history {
-            defined.record(&input.program);
-        }
-        defined
     }
 
     /// The scene built so far.
@@ -275,11 +249,6 @@ impl Session {
     /// The source texts seen so far, to render diagnostics.
     pub fn sources(&self) -> &SourceMap {
         &self.sources
-    }
-
-    /// The names and procedures defined so far.
-    pub fn defined(&self) -> &Defined {
-        &self.defined
     }
 
     /// The render settings.
@@ -308,17 +277,87 @@ impl Session {
         self.history.len()
     }
 
-    /// Whether an accepted input set the camera (otherwise the default is used).
-    pub(crate) fn camera_given(&self) -> bool {
-        self.history
-            .iter()
-            .any(|input| facts::sets_camera(&input.program))
+    /// Whether a `camera` was given (otherwise the default one is used).
+    pub fn has_camera(&self) -> bool {
+        self.interpreter.has_camera()
     }
 
-    /// Whether an accepted input set the ambient light.
-    pub(crate) fn ambient_given(&self) -> bool {
-        self.history
-            .iter()
-            .any(|input| facts::sets_ambient(&input.program))
+    /// Whether an `ambient` was given (otherwise the default one is used).
+    pub fn has_ambient(&self) -> bool {
+        self.interpreter.has_ambient()
+    }
+
+    /// The value of the global number `name`, if it is one.
+    pub fn global_number(&self, name: &str) -> Option<f64> {
+        self.interpreter.global_number(name)
+    }
+
+    /// The global numbers and their values, by name.
+    pub(crate) fn numbers(&self) -> Vec<(Rc<str>, f64)> {
+        let names = self.interpreter.global_names();
+        names
+            .into_iter()
+            .filter_map(|name| Some((Rc::clone(&name), self.global_number(&name)?)))
+            .collect()
+    }
+
+    /// The global objects and what they are, by name.
+    pub(crate) fn objects(&self) -> Vec<(Rc<str>, String)> {
+        let names = self.interpreter.global_names();
+        names
+            .into_iter()
+            .filter_map(|name| Some((Rc::clone(&name), self.describe_object(&name)?)))
+            .collect()
+    }
+
+    /// What the global object `name` is (`sphere`, `group of 2 objects`,
+    /// or its count of primitives), if it is one.
+    pub(crate) fn describe_object(&self, name: &str) -> Option<String> {
+        let primitives = self.interpreter.global_object_size(name)?;
+        Some(match self.descriptions.get(name) {
+            Some(description) => description.to_string(),
+            None if primitives == 1 => "1 primitive".to_string(),
+            None => format!("{primitives} primitives"),
+        })
+    }
+
+    /// The procedures and their parameters, by name.
+    pub(crate) fn procedures(&self) -> Vec<(Rc<str>, Vec<Rc<str>>)> {
+        let names = self.interpreter.procedure_names();
+        names
+            .into_iter()
+            .filter_map(|name| {
+                let params = self
+                    .interpreter
+                    .procedure(&name)?
+                    .params
+                    .iter()
+                    .map(|p| Rc::clone(&p.name))
+                    .collect();
+                Some((name, params))
+            })
+            .collect()
+    }
+
+    /// The names completion offers.
+    pub(crate) fn vocabulary(&self) -> Vocabulary {
+        Vocabulary {
+            variables: self
+                .interpreter
+                .global_names()
+                .iter()
+                .map(|name| name.to_string())
+                .collect(),
+            procedures: self
+                .procedures()
+                .into_iter()
+                .map(|(name, params)| {
+                    (
+                        name.to_string(),
+                        params.iter().map(|p| p.to_string()).collect(),
+                    )
+                })
+                .collect(),
+        }
     }
 }
