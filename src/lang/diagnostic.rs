@@ -4,6 +4,8 @@
 //! way a learner needs it: file, line and column, the source line, a caret
 //! under the spot, and a `help:` line when there is an obvious fix.
 
+use ariadne::{Color, Fmt};
+
 use super::source::{SourceMap, Span};
 
 /// How serious a diagnostic is.
@@ -79,9 +81,186 @@ impl Diagnostic {
 
     /// Renders the diagnostic for a person: a header naming file, line and
     /// column, the source line with a caret, then notes and help. `color`
-    /// turns ANSI colours on (for terminals only).
+    /// turns ANSI colours on (for terminals only); without it the output is
+    /// plain text whose frame is drawn in ASCII.
+    ///
+    /// The header is `error: <message>` then ` --> file:line:column`, as in
+    /// rustc; ariadne draws the source lines and labels in between; notes and
+    /// help follow as `note: ...` and `help: ...` lines.
     pub fn render(&self, sources: &SourceMap, color: bool) -> String {
-        let _ = (sources, color);
-        todo!("rendered with ariadne")
+        let mut out = self.header(color);
+        out.push_str(&render::snippet(self, sources, color));
+        for note in &self.notes {
+            out.push_str(&format!("{}: {note}\n", paint("note", Color::Cyan, color)));
+        }
+        if let Some(help) = &self.help {
+            out.push_str(&format!("{}: {help}\n", paint("help", Color::Cyan, color)));
+        }
+        out
+    }
+
+    /// `error: <message>`, the first line of the rendering.
+    fn header(&self, color: bool) -> String {
+        let (kind, kind_color) = match self.severity {
+            Severity::Error => ("error", Color::Red),
+            Severity::Warning => ("warning", Color::Yellow),
+        };
+        format!("{}: {}\n", paint(kind, kind_color, color), self.message)
+    }
+}
+
+/// `text` in `color` when colours are on, as is otherwise.
+fn paint(text: &str, color: Color, enabled: bool) -> String {
+    if enabled { text.fg(color).to_string() } else { text.to_string() }
+}
+
+/// The source snippet drawn by ariadne, with the location line in rustc's style.
+mod render {
+    use std::collections::HashMap;
+    use std::fmt;
+    use std::ops::Range;
+
+    use ariadne::{CharSet, Color, Config, IndexType, Label, Report, ReportKind, Source};
+
+    use super::{Diagnostic, Severity};
+    use crate::lang::source::{SourceId, SourceMap, Span};
+
+    /// The texts a diagnostic refers to, in the shape ariadne reads them.
+    ///
+    /// ariadne 0.6 applies `with_display_line_offset` to the location line but
+    /// not to the line numbers in the margin, so a text with a `line_offset`
+    /// is instead padded with that many empty lines in front, and spans are
+    /// shifted by as many bytes.
+    struct Texts {
+        files: HashMap<SourceId, (String, Source<String>)>,
+    }
+
+    impl Texts {
+        /// The texts of every source that `diagnostic` points into.
+        fn of(diagnostic: &Diagnostic, sources: &SourceMap) -> Texts {
+            let mut files = HashMap::new();
+            let spans = std::iter::once(diagnostic.span).chain(diagnostic.related.iter().map(|(s, _)| *s));
+            for span in spans {
+                files.entry(span.source).or_insert_with(|| {
+                    let file = sources.get(span.source);
+                    let padded = "\n".repeat(file.line_offset) + &file.text;
+                    (file.name.clone(), Source::from(padded))
+                });
+            }
+            Texts { files }
+        }
+    }
+
+    impl ariadne::Cache<SourceId> for Texts {
+        type Storage = String;
+
+        fn fetch(&mut self, id: &SourceId) -> Result<&Source<String>, impl fmt::Debug> {
+            self.files.get(id).map(|(_, source)| source).ok_or("unknown source")
+        }
+
+        fn display<'a>(&self, id: &'a SourceId) -> Option<impl fmt::Display + 'a> {
+            self.files.get(id).map(|(name, _)| name.clone())
+        }
+    }
+
+    /// The lines ariadne draws for `diagnostic`, after the header: the
+    /// location, the source lines with their labels, and the closing line.
+    pub(super) fn snippet(diagnostic: &Diagnostic, sources: &SourceMap, color: bool) -> String {
+        let file = sources.get(diagnostic.span.source);
+        let (line, column) = file.line_col(diagnostic.span.start as usize);
+        let location = format!("{}:{line}:{column}", file.name);
+        let Some(primary) = label_range(sources, diagnostic.span) else {
+            return format!(" --> {location}\n");
+        };
+        let drawn = draw(diagnostic, sources, color, primary);
+        // ariadne's first line is its own header and its second the
+        // location inside a box; both are replaced by the rustc-style line.
+        let mut lines = drawn.lines().skip(1);
+        let boxed_location = lines.next().unwrap_or("");
+        let margin = boxed_location.len() - boxed_location.trim_start().len();
+        let mut out = format!("{}--> {location}\n", " ".repeat(margin.saturating_sub(1)));
+        for line in lines {
+            out.push_str(line.trim_end());
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Runs ariadne over the diagnostic's labels.
+    fn draw(diagnostic: &Diagnostic, sources: &SourceMap, color: bool, primary: Range<usize>) -> String {
+        let (primary_color, secondary_color) = match diagnostic.severity {
+            Severity::Error => (Color::Red, Color::Blue),
+            Severity::Warning => (Color::Yellow, Color::Blue),
+        };
+        let config = Config::new()
+            .with_color(color)
+            .with_char_set(if color { CharSet::Unicode } else { CharSet::Ascii })
+            .with_index_type(IndexType::Byte);
+        let source = diagnostic.span.source;
+        let mut primary_label = Label::new((source, primary.clone())).with_color(primary_color);
+        primary_label = primary_label.with_order(label_order(sources, diagnostic.span, source));
+        // ariadne draws no underline for a label without a message.
+        primary_label = primary_label.with_message(diagnostic.label.as_deref().unwrap_or("here"));
+        let mut report = Report::build(ReportKind::Error, (source, primary)).with_config(config).with_label(primary_label);
+        for (span, text) in &diagnostic.related {
+            if let Some(range) = label_range(sources, *span) {
+                let label = Label::new((span.source, range))
+                    .with_message(text)
+                    .with_color(secondary_color)
+                    .with_order(label_order(sources, *span, source));
+                report = report.with_label(label);
+            }
+        }
+        let mut bytes = Vec::new();
+        let written = report.finish().write(Texts::of(diagnostic, sources), &mut bytes);
+        match written {
+            Ok(()) => String::from_utf8_lossy(&bytes).into_owned(),
+            Err(_) => String::new(),
+        }
+    }
+
+    /// Labels are drawn in this order: by line in the primary source, which
+    /// keeps them in one box, then the other sources.
+    fn label_order(sources: &SourceMap, span: Span, primary_source: SourceId) -> i32 {
+        let (line, _) = sources.get(span.source).line_col(span.start as usize);
+        let line = i32::try_from(line).unwrap_or(i32::MAX / 4).min(i32::MAX / 4);
+        if span.source == primary_source { line } else { i32::MAX / 2 + line / 2 }
+    }
+
+    /// The byte range of `span` in the padded text: clamped to the text, on
+    /// character boundaries, and at least one character wide when the text
+    /// has any (an empty range would not be drawn). `None` for an empty text.
+    fn label_range(sources: &SourceMap, span: Span) -> Option<Range<usize>> {
+        let file = sources.get(span.source);
+        let text: &str = &file.text;
+        if text.is_empty() {
+            return None;
+        }
+        let mut start = floor_boundary(text, (span.start as usize).min(text.len()));
+        let mut end = ceil_boundary(text, (span.end as usize).clamp(start, text.len()));
+        if start == end {
+            if start == text.len() {
+                start = floor_boundary(text, start - 1);
+            } else {
+                end = ceil_boundary(text, start + 1);
+            }
+        }
+        Some(start + file.line_offset..end + file.line_offset)
+    }
+
+    /// The largest character boundary at or before `offset`.
+    fn floor_boundary(text: &str, mut offset: usize) -> usize {
+        while !text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        offset
+    }
+
+    /// The smallest character boundary at or after `offset`.
+    fn ceil_boundary(text: &str, mut offset: usize) -> usize {
+        while !text.is_char_boundary(offset) {
+            offset += 1;
+        }
+        offset
     }
 }

@@ -370,10 +370,10 @@ impl<'a> Lexer<'a> {
         let literal = &self.text[start..end];
         match literal.parse::<f64>() {
             Ok(value) if value.is_finite() => Ok((start, Token::Number(value), end)),
-            _ => Err(Box::new(Diagnostic::error(
-                Span::new(self.source, start, end),
-                format!("the number `{literal}` is too large"),
-            ))),
+            _ => Err(Box::new(
+                Diagnostic::error(Span::new(self.source, start, end), format!("the number `{literal}` is too large"))
+                    .with_label("too large for a number"),
+            )),
         }
     }
 
@@ -389,7 +389,8 @@ impl<'a> Lexer<'a> {
             character.to_string()
         };
         let span = Span::new(self.source, start, end);
-        let diagnostic = Diagnostic::error(span, format!("unexpected character `{shown}`"));
+        let diagnostic = Diagnostic::error(span, format!("unexpected character `{shown}`"))
+            .with_label("this character is not part of the language");
         Box::new(match character_help(character) {
             Some(help) => diagnostic.with_help(help),
             None => diagnostic,

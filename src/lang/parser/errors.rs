@@ -230,6 +230,7 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
             span,
             format!("unexpected end of file: the `{name}` opened at line {line} is not closed with `end`"),
         )
+        .with_label("the file ends here")
         .with_related(*opened, format!("this `{name}` needs an `end`"));
     }
     let what = describe(place, context, &expected.essential());
@@ -239,7 +240,7 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
         }
         None => format!("unexpected end of file: expected {what}"),
     };
-    Diagnostic::error(span, message)
+    Diagnostic::error(span, message).with_label("the file ends here")
 }
 
 /// The span of the character that ends at byte `location` (the end of the
@@ -264,8 +265,8 @@ fn token_error(
     add_spelling_help(diagnostic, place, context, expected, found)
 }
 
-/// The message (and related spans) for an unexpected token, before any
-/// spelling help.
+/// The message (and label and related spans) for an unexpected token,
+/// before any spelling help.
 fn token_message(
     place: Place<'_>,
     context: &Context,
@@ -274,31 +275,45 @@ fn token_message(
     found: &Found,
 ) -> Diagnostic {
     let span = found.span;
+    let found_text = place.slice(span);
+    let unexpected = format!("unexpected `{found_text}`");
     let innermost = context.innermost();
     if found.token == Token::End && innermost.is_none() {
-        return Diagnostic::error(span, "unexpected `end`: nothing is open here");
+        return Diagnostic::error(span, "unexpected `end`: nothing is open here").with_label("this `end` closes nothing");
     }
     if found.token == Token::Else && !matches!(innermost, Some((Token::If, _))) {
-        return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`");
+        return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`")
+            .with_label("this `else` has no `if`");
     }
     if order.is_file() && order.phase() == Phase::Start && context.previous.is_none() {
         return Diagnostic::error(span, "a scenario file must start with `camera ... end`")
+            .with_label("expected `camera` here")
             .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`");
     }
-    let found_text = place.slice(span);
-    if TEXTURE.contains(&found_text) && found.token.is_keyword() && expected.has_any(&TEXTURE) {
-        return Diagnostic::error(span, format!("the texture must be {TEXTURE_SHAPE} in this order"));
+    if TEXTURE.contains(&found_text) && expected.has_any(&TEXTURE) {
+        return Diagnostic::error(span, format!("the texture must be {TEXTURE_SHAPE} in this order"))
+            .with_label("out of order");
+    }
+    if expected.has("let") && OBJECT_STARTS[..7].contains(&found_text) {
+        return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))
+            .with_label("an object is not an instruction")
+            .with_help("write `put` before it to add it to the scene, or `object name =` to give it a name");
     }
     let essential = expected.essential();
     match essential.as_slice() {
         [","] if context.triple.is_some() => {
             let triple = context.triple.unwrap_or("the triple");
-            return Diagnostic::error(span, format!("expected `,` between the parts of {triple}"));
+            return Diagnostic::error(span, format!("expected `,` between the parts of {triple}"))
+                .with_label("expected `,` before this");
         }
-        ["then"] => return Diagnostic::error(span, "expected `then` after the condition of `if`"),
+        ["then"] => {
+            return Diagnostic::error(span, "expected `then` after the condition of `if`")
+                .with_label("expected `then` before this");
+        }
         [")"] => {
             if let Some(paren) = context.parens.last() {
                 return Diagnostic::error(span, "expected `)` to close the parenthesis")
+                    .with_label("expected `)` before this")
                     .with_related(*paren, "the parenthesis opened here");
             }
         }
@@ -310,7 +325,7 @@ fn token_message(
         Some((_, previous)) if !closes => format!("expected {what} after `{}`", place.slice(*previous)),
         _ => format!("expected {what}"),
     };
-    let diagnostic = Diagnostic::error(span, message);
+    let diagnostic = Diagnostic::error(span, message).with_label(unexpected);
     match innermost {
         Some((opener, opened)) if closes => diagnostic.with_related(*opened, format!("the `{opener}` opened here")),
         _ => diagnostic,
@@ -364,7 +379,7 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
         take(&mut left, &EXPRESSION_STARTS, "an expression (a number, a name, `(`...)");
     }
     if left.contains(&"sphere") {
-        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, `translate`, `rotate`, `scale`, `group` or a name)");
+        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, a name...)");
     }
     if left.contains(&"let") {
         take(&mut left, &INSTRUCTION_STARTS, "an instruction (`let`, `object`, `put`, `if` or a procedure call)");

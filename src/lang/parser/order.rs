@@ -97,12 +97,14 @@ impl<'t> ItemOrder<'t> {
             (_, Item::Light(_)) => Some(self.out_of_place(
                 at,
                 "a `light` must come before procedures and instructions",
+                "this `light` comes too late",
                 self.first_proc_or_instr.get(),
                 "the first of them",
             )),
             (Phase::Instrs, Item::Proc(_)) => Some(self.out_of_place(
                 at,
                 "a `proc` must come before the instructions",
+                "this `proc` comes too late",
                 self.first_instr.get(),
                 "the first instruction",
             )),
@@ -146,11 +148,12 @@ impl<'t> ItemOrder<'t> {
         let Some(file) = self.file else { return Ok(()) };
         let end = end_of_text(file.source, text);
         match self.phase.get() {
-            Phase::Start => Err(start_error(end).with_note(ORDER_NOTE)),
+            Phase::Start => Err(start_error(end).with_label("the file ends here").with_note(ORDER_NOTE)),
             Phase::Camera => Err(Diagnostic::error(
                 end,
                 "unexpected end of file: `ambient` must come right after the camera",
             )
+            .with_label("the file ends here")
             .with_note(ORDER_NOTE)),
             _ => Ok(()),
         }
@@ -158,19 +161,27 @@ impl<'t> ItemOrder<'t> {
 
     /// The error for a second `camera` or `ambient`.
     fn only_one(&self, at: Span, what: &str, first: Option<Span>) -> Diagnostic {
-        let error = Diagnostic::error(at, format!("a file has only one `{what}`"));
+        let error = Diagnostic::error(at, format!("a file has only one `{what}`"))
+            .with_label(format!("a second `{what}`"));
         match (first, self.file) {
             (Some(first), Some(file)) => {
                 let line = line_of(file, first.start as usize);
-                error.with_related(first, format!("the `{what}` is already given here, at line {line}"))
+                error.with_related(first, format!("the first `{what}`, at line {line}"))
             }
             _ => error,
         }
     }
 
     /// An item that should have come before `earlier`.
-    fn out_of_place(&self, at: Span, message: &str, earlier: Option<Span>, earlier_name: &str) -> Diagnostic {
-        let error = Diagnostic::error(at, message);
+    fn out_of_place(
+        &self,
+        at: Span,
+        message: &str,
+        label: &str,
+        earlier: Option<Span>,
+        earlier_name: &str,
+    ) -> Diagnostic {
+        let error = Diagnostic::error(at, message).with_label(label);
         match earlier {
             Some(earlier) => error.with_related(earlier, format!("{earlier_name} is here")),
             None => error,
@@ -181,12 +192,13 @@ impl<'t> ItemOrder<'t> {
 /// The error for a file that does not start with the camera.
 fn start_error(at: Span) -> Diagnostic {
     Diagnostic::error(at, "a scenario file must start with `camera ... end`")
+        .with_label("expected `camera` here")
         .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`")
 }
 
 /// The error for a file whose camera is not followed by `ambient`.
 fn ambient_missing(at: Span) -> Diagnostic {
-    Diagnostic::error(at, "`ambient` must come right after the camera")
+    Diagnostic::error(at, "`ambient` must come right after the camera").with_label("expected `ambient` here")
 }
 
 /// The span of the first word of the item spanning `span`.
