@@ -171,7 +171,8 @@ pub(crate) fn execute(
 }
 
 fn dispatch(session: &mut Session, words: &[String], console: &mut Console) -> CommandResult {
-    let Some((name, arguments)) = words.split_first() else {
+    let Some((name, arguments)) = words.split_first().filter(|(name, _)| name.as_str() != ":")
+    else {
         return Err(CommandError::Failed(
             "type a command name after `:`, for example `:help`".to_string(),
         ));
