@@ -541,6 +541,7 @@ proc p()
   if time = 4 then put sphere center 0, 0, 0 radius 1 $T end end
 end
 :time 4
+:env
 let b = time
 p()
 ");
@@ -550,6 +551,7 @@ p()
         "no replay expected: {}",
         run.out
     );
+    assert!(run.out.contains("numbers:    a = 1, time = 4\n"), "{}", run.out);
     assert!(run.out.contains("b = 4\n"), "{}", run.out);
     assert!(
         run.out.contains("put 1 sphere"),

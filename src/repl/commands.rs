@@ -47,7 +47,7 @@ pub(crate) enum CommandError {
     /// It could not be done, for the reason given.
     Failed(String),
     /// Program text failed (`:load`, `:time` re-evaluation); already located.
-    Program(Diagnostic),
+    Program(Box<Diagnostic>),
     /// Ctrl-C stopped it; the session is as it was.
     Cancelled(String),
 }
@@ -523,7 +523,7 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
     })?;
     let accepted = session
         .load(&path.display().to_string(), &text)
-        .map_err(CommandError::Program)?;
+        .map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
     }
@@ -634,7 +634,7 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
 
 fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
-    match session.undo().map_err(CommandError::Program)? {
+    match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
         Undone::Nothing => console.say("nothing to undo"),
         Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
         Undone::Reset(count) => console.say(format!(
@@ -767,9 +767,8 @@ fn render_frames(
 }
 
 fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {
-    CommandError::Program(diagnostic.with_note(format!(
-        "while computing frame {frame}, with time = {frame}"
-    )))
+    let note = format!("while computing frame {frame}, with time = {frame}");
+    CommandError::Program(Box::new(diagnostic.with_note(note)))
 }
 
 fn render_failure(error: RenderError) -> CommandError {

@@ -207,13 +207,14 @@ impl Highlighter for RayHelper {
     fn highlight_prompt<'b, 's: 'b, 'p: 'b>(
         &'s self,
         prompt: &'p str,
-        default: bool,
+        _default: bool,
     ) -> Cow<'b, str> {
-        match (self.color, default) {
-            (true, true) => Cow::Owned(format!("\x1b[1;32m{prompt}\x1b[0m")),
-            (true, false) => Cow::Owned(format!("\x1b[33m{prompt}\x1b[0m")),
-            (false, _) => Cow::Borrowed(prompt),
+        if !self.color {
+            return Cow::Borrowed(prompt);
         }
+        // A continuation prompt (`...sphere> `) in yellow, the first one in green.
+        let code = if self.pending.is_empty() { "1;32" } else { "33" };
+        Cow::Owned(format!("\x1b[{code}m{prompt}\x1b[0m"))
     }
 
     fn highlight_char(&self, _line: &str, _pos: usize, _kind: CmdKind) -> bool {

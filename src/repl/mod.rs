@@ -29,6 +29,9 @@ mod syntax;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
+use std::process::ExitCode;
+
+use crate::lang::Limits;
 
 pub use interactive::{ReplError, run_interactive};
 pub use rendering::RenderSettings;
@@ -38,7 +41,7 @@ pub use session::Session;
 use console::Console;
 
 /// How a session starts: what the command line asked for.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct SessionOptions {
     /// Never show renders in the terminal (`--no-preview`).
     pub no_preview: bool,
@@ -47,44 +50,32 @@ pub struct SessionOptions {
     pub keep_going: bool,
     /// A file to load before the first input (`-i scene.ray`).
     pub initial_file: Option<PathBuf>,
-    /// Size, depth, samples and time to start with.
+    /// Size, depth, samples, time and screen convention to start with.
     pub settings: RenderSettings,
+    /// Limits on procedure calls and primitives (`--max-calls`, `--max-primitives`).
+    pub limits: Limits,
 }
 
-impl Default for SessionOptions {
-    fn default() -> SessionOptions {
-        SessionOptions {
-            no_preview: false,
-            keep_going: false,
-            initial_file: None,
-            settings: RenderSettings::default(),
-        }
-    }
-}
 
-/// Runs a session the way `rayrepl` without a file does: interactively when
-/// standard input is a terminal, otherwise as a script read from standard
-/// input (output on standard output, diagnostics on standard error).
-/// Returns the exit status: 0, or 1 after an error (a failed script, a
-/// terminal that cannot be used).
-pub fn run(options: &SessionOptions) -> i32 {
-    if std::io::stdin().is_terminal() {
+/// Runs a session the way `rayrepl` without a scene to render does:
+/// interactively when standard input is a terminal, otherwise as a script
+/// read from standard input (messages on standard output, diagnostics on
+/// standard error). Fails after an error in a script, or when the terminal
+/// cannot be used.
+pub fn run(options: &SessionOptions) -> ExitCode {
+    let code = if std::io::stdin().is_terminal() {
         match run_interactive(options) {
             Ok(()) => 0,
             Err(error) => {
-                eprintln!("error: {error}");
+                eprintln!("rayrepl: {error}");
                 1
             }
         }
     } else {
         let stdin = std::io::stdin();
-        run_script(
-            stdin.lock(),
-            &mut std::io::stdout(),
-            &mut std::io::stderr(),
-            options,
-        )
-    }
+        run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
+    };
+    if code == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE }
 }
 
 /// Runs one input of program text and prints what it did, or its error.
@@ -134,7 +125,7 @@ fn bare_command(text: &str) -> Option<String> {
     })
 }
 
-/// A session set up with `options`' settings.
+/// A session set up with `options`' settings and limits.
 fn new_session(options: &SessionOptions) -> Session {
-    Session::new(options.settings, crate::lang::Limits::default())
+    Session::new(options.settings, options.limits)
 }

@@ -10,7 +10,7 @@ use image::RgbImage;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::output::{frame_path, write_gif};
-use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, render};
+use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, Screen, render};
 use crate::scene::Scene;
 
 /// How the session renders: image size, reflections, antialiasing and time.
@@ -26,6 +26,8 @@ pub struct RenderSettings {
     pub samples: u32,
     /// The value of `time` for evaluation and renders (SPEC 3).
     pub time: f64,
+    /// Where the z axis meets the screen (SPEC 5).
+    pub screen: Screen,
 }
 
 impl Default for RenderSettings {
@@ -36,6 +38,7 @@ impl Default for RenderSettings {
             depth: 5,
             samples: 1,
             time: 0.0,
+            screen: Screen::Centered,
         }
     }
 }
@@ -80,6 +83,7 @@ pub(crate) fn render_image(
         height: size.height,
         depth: settings.depth,
         samples: settings.samples,
+        screen: settings.screen,
         ..RenderOptions::default()
     };
     let count = |pixels: u64| {
@@ -181,8 +185,9 @@ impl ImageFormat {
     }
 }
 
-/// Delay between the frames of an animated GIF: ten frames a second.
-const GIF_FRAME_DELAY_MS: u32 = 100;
+/// Delay between the frames of an animated GIF: 25 frames a second, as for
+/// `rayrepl --anim`.
+const GIF_FRAME_DELAY_MS: u32 = 40;
 
 /// Writes one image to `path`, in the format its extension names.
 pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {

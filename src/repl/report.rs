@@ -170,14 +170,14 @@ mod tests {
         assert_eq!(counted(1, "sphere"), "1 sphere");
         assert_eq!(counted(2, "box"), "2 boxes");
         assert_eq!(counted(0, "light"), "0 lights");
-        let before = Census::default();
-        let after = Census {
+        let before = Counts::default();
+        let after = Counts {
             spheres: 2,
             planes: 1,
             boxes: 3,
             lights: 0,
         };
         assert_eq!(added(&before, &after), "2 spheres, 1 plane and 3 boxes");
-        assert_eq!(added(&before, &Census { boxes: 1, ..before }), "1 box");
+        assert_eq!(added(&before, &Counts { boxes: 1, ..before }), "1 box");
     }
 }

@@ -297,8 +297,17 @@ impl Session {
         let names = self.interpreter.global_names();
         names
             .into_iter()
-            .filter_map(|name| Some((Rc::clone(&name), self.global_number(&name)?)))
+            .filter_map(|name| Some((Rc::clone(&name), self.number_shown(&name)?)))
             .collect()
+    }
+
+    /// The value of the global number `name` as the session shows it: after
+    /// a `:time` that needed no replay the interpreter still holds the old
+    /// `time` (until the next input rebuilds it), unless a `let` rebound it.
+    fn number_shown(&self, name: &str) -> Option<f64> {
+        let value = self.global_number(name)?;
+        let stale_time = name == "time" && value == self.interpreter_time;
+        Some(if stale_time { self.settings.time } else { value })
     }
 
     /// The global objects and what they are, by name.

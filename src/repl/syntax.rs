@@ -123,7 +123,7 @@ pub(crate) fn tokens(text: &str) -> Vec<Token> {
             kind
         };
         at_line_start = match kind {
-            TokenKind::Other => (at_line_start && c.is_whitespace() && c != '\n') || c == '\n',
+            TokenKind::Other => c == '\n' || (at_line_start && c.is_whitespace()),
             _ => false,
         };
         tokens.push(Token { kind, start, end });
