@@ -339,7 +339,7 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
             console.say(format!("{size} in {}", duration(took)));
         }
         None => console.say(format!(
-            "rendered {size} in {} (no preview: output is not a terminal)",
+            "rendered {size} in {} (previews are off)",
             duration(took)
         )),
     }
