@@ -551,7 +551,11 @@ p()
         "no replay expected: {}",
         run.out
     );
-    assert!(run.out.contains("numbers:    a = 1, time = 4\n"), "{}", run.out);
+    assert!(
+        run.out.contains("numbers:    a = 1, time = 4\n"),
+        "{}",
+        run.out
+    );
     assert!(run.out.contains("b = 4\n"), "{}", run.out);
     assert!(
         run.out.contains("put 1 sphere"),
@@ -645,7 +649,7 @@ fn save_explains_the_defaults_it_used() {
     let run = run_with(&format!(":save {}\n", png.display()), &small_size());
     assert_eq!(run.code, 0, "{}", run.err);
     assert!(
-        run.out.contains("note: using the default camera (distance 10, angle 1); set one with `camera distance 10 angle 0.8 end`"),
+        run.out.contains("note: default camera (distance 10, angle 1) and ambient light (0.2); set yours with `camera distance 12 angle 0.8 end`"),
         "{}",
         run.out
     );

@@ -634,7 +634,10 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
 
 fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
-    match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
+    match session
+        .undo()
+        .map_err(|d| CommandError::Program(Box::new(d)))?
+    {
         Undone::Nothing => console.say("nothing to undo"),
         Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
         Undone::Reset(count) => console.say(format!(
@@ -667,22 +670,18 @@ fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) ->
 /// an empty or unlit scene.
 fn explain_defaults(session: &Session, console: &mut Console) {
     let scene = session.scene();
-    let mut defaults = Vec::new();
-    if !session.has_camera() {
-        defaults.push(format!(
-            "the default camera (distance {}, angle {}); set one with `camera distance 10 angle 0.8 end`",
-            number(scene.camera.distance),
-            number(scene.camera.angle)
-        ));
-    }
-    if !session.has_ambient() {
-        defaults.push(format!(
-            "the default ambient light {}; set it with `ambient 0.2`",
-            number(scene.ambient)
-        ));
-    }
-    if !defaults.is_empty() {
-        console.note(format!("using {}", defaults.join(", and ")));
+    let camera = format!(
+        "camera (distance {}, angle {})",
+        number(scene.camera.distance),
+        number(scene.camera.angle)
+    );
+    let ambient = format!("ambient light ({})", number(scene.ambient));
+    let set_camera = "set yours with `camera distance 12 angle 0.8 end`";
+    match (session.has_camera(), session.has_ambient()) {
+        (false, false) => console.note(format!("default {camera} and {ambient}; {set_camera}")),
+        (false, true) => console.note(format!("default {camera}; {set_camera}")),
+        (true, false) => console.note(format!("default {ambient}; set yours with `ambient 0.3`")),
+        (true, true) => {}
     }
     if scene.all_primitives().next().is_none() {
         console.note("nothing has been put yet, so the picture is black (see `:help put`)");

@@ -213,7 +213,11 @@ impl Highlighter for RayHelper {
             return Cow::Borrowed(prompt);
         }
         // A continuation prompt (`...sphere> `) in yellow, the first one in green.
-        let code = if self.pending.is_empty() { "1;32" } else { "33" };
+        let code = if self.pending.is_empty() {
+            "1;32"
+        } else {
+            "33"
+        };
         Cow::Owned(format!("\x1b[{code}m{prompt}\x1b[0m"))
     }
 
@@ -282,15 +286,19 @@ mod tests {
             variables: vec!["spin".to_string(), "time".to_string()],
             procedures: vec![("spiral".to_string(), vec!["n".to_string(), "r".to_string()])],
         });
-        assert_eq!(
-            complete(&helper, "let a = sp").1,
-            vec!["sphere".to_string(), "spin".to_string()]
-        );
+        let found = complete(&helper, "let a = sp").1;
+        assert_eq!(found, ["sphere", "spin", "spiral(n, r)"].map(String::from));
         let found = complete(&helper, "let a = s").1;
-        assert_eq!(
-            found,
-            ["scale", "shift", "sin(x)", "sphere", "spin", "sqrt(x)"].map(String::from)
-        );
+        let expected = [
+            "scale",
+            "shift",
+            "sin(x)",
+            "sphere",
+            "spin",
+            "spiral(n, r)",
+            "sqrt(x)",
+        ];
+        assert_eq!(found, expected.map(String::from));
         assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
         assert_eq!(
             complete(&helper, "spir").1,

@@ -615,6 +615,33 @@ mod tests {
         }
     }
 
+    /// The program text of a page's example (its command lines left out).
+    fn example_program(topic: &Topic) -> String {
+        let example = topic
+            .text
+            .split_once("Example")
+            .map_or("", |(_, rest)| rest);
+        let lines = example
+            .lines()
+            .skip(1)
+            .filter(|line| !line.trim_start().starts_with(':'));
+        lines.collect::<Vec<_>>().join("\n")
+    }
+
+    #[test]
+    fn every_example_is_valid_syntax() {
+        use crate::lang::{SourceId, parse_items};
+        for topic in TOPICS {
+            let program = example_program(topic);
+            if let Err(error) = parse_items(SourceId::default(), &program) {
+                panic!(
+                    "the example of `{}` does not parse: {}\n{program}",
+                    topic.name, error.message
+                );
+            }
+        }
+    }
+
     #[test]
     fn names_are_found_with_or_without_colon() {
         assert_eq!(find("render").map(|t| t.name), Some(":render"));

@@ -56,7 +56,6 @@ pub struct SessionOptions {
     pub limits: Limits,
 }
 
-
 /// Runs a session the way `rayrepl` without a scene to render does:
 /// interactively when standard input is a terminal, otherwise as a script
 /// read from standard input (messages on standard output, diagnostics on
@@ -73,9 +72,18 @@ pub fn run(options: &SessionOptions) -> ExitCode {
         }
     } else {
         let stdin = std::io::stdin();
-        run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
+        run_script(
+            stdin.lock(),
+            &mut std::io::stdout(),
+            &mut std::io::stderr(),
+            options,
+        )
     };
-    if code == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE }
+    if code == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
 }
 
 /// Runs one input of program text and prints what it did, or its error.

@@ -231,6 +231,51 @@ mod tests {
         assert_eq!(ImageFormat::of(Path::new("a")), None);
     }
 
+    fn empty_scene() -> Scene {
+        crate::lang::Interpreter::new(0.0, crate::lang::Limits::default()).into_scene()
+    }
+
+    #[test]
+    fn a_raised_cancel_flag_stops_the_render() {
+        let scene = empty_scene();
+        let size = Size {
+            width: 64,
+            height: 64,
+        };
+        let settings = RenderSettings::default();
+        let cancel = AtomicBool::new(true);
+        let pixels = AtomicUsize::new(0);
+        let result = render_image(
+            &scene,
+            &Prepared::new(&scene),
+            size,
+            &settings,
+            &cancel,
+            &pixels,
+        );
+        assert_eq!(result, Err(RenderError::Cancelled));
+    }
+
+    #[test]
+    fn a_render_counts_every_pixel() {
+        let scene = empty_scene();
+        let size = Size {
+            width: 40,
+            height: 20,
+        };
+        let (cancel, pixels) = (AtomicBool::new(false), AtomicUsize::new(0));
+        let image = render_image(
+            &scene,
+            &Prepared::new(&scene),
+            size,
+            &RenderSettings::default(),
+            &cancel,
+            &pixels,
+        );
+        assert_eq!(image.map(|i| i.dimensions()), Ok((40, 20)));
+        assert_eq!(pixels.load(Ordering::Relaxed), 800);
+    }
+
     #[test]
     fn progress_runs_the_job_and_returns_its_result() {
         let progress = Progress {

@@ -307,7 +307,11 @@ impl Session {
     fn number_shown(&self, name: &str) -> Option<f64> {
         let value = self.global_number(name)?;
         let stale_time = name == "time" && value == self.interpreter_time;
-        Some(if stale_time { self.settings.time } else { value })
+        Some(if stale_time {
+            self.settings.time
+        } else {
+            value
+        })
     }
 
     /// The global objects and what they are, by name.
