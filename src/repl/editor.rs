@@ -165,7 +165,7 @@ impl Completer for RayHelper {
         pos: usize,
         ctx: &Context<'_>,
     ) -> rustyline::Result<(usize, Vec<Pair>)> {
-        if self.pending.is_empty() && is_command(line) {
+        if is_command(line) {
             return self.complete_command(line, pos, ctx);
         }
         Ok(self.complete_word(line, pos))
@@ -180,7 +180,7 @@ impl Validator for RayHelper {
     fn validate(&self, ctx: &mut ValidationContext<'_>) -> rustyline::Result<ValidationResult> {
         let input = ctx.input();
         let several_lines = input.trim_end().contains('\n');
-        if !several_lines || (self.pending.is_empty() && is_command(input)) {
+        if !several_lines || is_command(input) {
             return Ok(ValidationResult::Valid(None));
         }
         let whole = if self.pending.is_empty() {
@@ -201,7 +201,7 @@ impl Highlighter for RayHelper {
         if !self.color {
             return Cow::Borrowed(line);
         }
-        Cow::Owned(colorize(line, self.pending.is_empty()))
+        Cow::Owned(colorize(line))
     }
 
     fn highlight_prompt<'b, 's: 'b, 'p: 'b>(
@@ -229,8 +229,8 @@ impl Highlighter for RayHelper {
 impl Helper for RayHelper {}
 
 /// `line` with ANSI colours: keywords, built-ins, numbers, comments and
-/// commands. `first_line` says whether a leading `:` starts a command.
-pub(crate) fn colorize(line: &str, first_line: bool) -> String {
+/// commands.
+pub(crate) fn colorize(line: &str) -> String {
     let mut out = String::with_capacity(line.len() * 2);
     for token in tokens(line) {
         let text = &line[token.start..token.end];
@@ -239,8 +239,8 @@ pub(crate) fn colorize(line: &str, first_line: bool) -> String {
             TokenKind::Builtin => Some("36"),
             TokenKind::Number => Some("33"),
             TokenKind::Comment => Some("2;37"),
-            TokenKind::Command if first_line => Some("1;32"),
-            TokenKind::Command | TokenKind::Ident | TokenKind::Other => None,
+            TokenKind::Command => Some("1;32"),
+            TokenKind::Ident | TokenKind::Other => None,
         };
         match code {
             Some(code) => out.push_str(&format!("\x1b[{code}m{text}\x1b[0m")),
@@ -309,7 +309,7 @@ mod tests {
     #[test]
     fn colours_keep_the_text() {
         let line = "put sphere # ball";
-        let painted = colorize(line, true);
+        let painted = colorize(line);
         assert!(painted.contains("\x1b[1;34mput\x1b[0m"));
         let stripped: String = painted
             .split('\x1b')

@@ -59,7 +59,7 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     }
     let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
     let mut console = Console::plain(&mut out, &mut err);
-    console.color = color;
+    console.color = color && std::io::stderr().is_terminal();
     console.preview = Preview::new(options.no_preview);
     console.progress = std::io::stderr().is_terminal();
     console.cancel = CancelSwitch::install();
@@ -98,7 +98,9 @@ impl Repl {
             };
             match self.editor.readline(&prompt) {
                 Ok(line) => {
-                    if pending.is_empty() && is_command(&line) {
+                    // Commands work in the middle of an unfinished input too,
+                    // which then goes on (`:help sphere` while typing one).
+                    if is_command(&line) {
                         self.remember(&line);
                         if commands::execute(&mut self.session, &line, console) == Ok(Flow::Quit) {
                             return Ok(());
