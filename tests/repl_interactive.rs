@@ -69,7 +69,9 @@ fn an_input_continues_while_a_construct_is_open() {
     session.expect("...sphere> ").unwrap();
     // A command in the middle of an input runs, and the input goes on.
     session.send_line(":help sphere").unwrap();
-    session.expect("sphere center X, Y, Z radius R TEXTURE end").unwrap();
+    session
+        .expect("sphere center X, Y, Z radius R TEXTURE end")
+        .unwrap();
     session.expect("...sphere> ").unwrap();
     session
         .send_line("    radius 0.5 kd 1 ks 0 phong 1 color 255, 0, 0")

@@ -643,6 +643,15 @@ fn save_writes_the_same_image_as_rendering_the_file() {
 }
 
 #[test]
+fn save_writes_a_gif_too() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let gif = dir.path().join("a.gif");
+    let run = run_with(&format!("{SCENE}:save {}\n", gif.display()), &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert_eq!(read_rgb(&gif).dimensions(), (32, 24));
+}
+
+#[test]
 fn save_explains_the_defaults_it_used() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let png = dir.path().join("a.png");

@@ -213,16 +213,23 @@ fn report_error(error: CommandError, session: &Session, console: &mut Console) {
     }
 }
 
-/// Splits a command line into words; double quotes keep spaces in a word.
+/// Splits a command line into words. Double quotes keep spaces in a word,
+/// and (except on Windows, where it separates folders) a backslash keeps the
+/// next character as it is, as file name completion writes `my\ scene.ray`.
 pub(crate) fn split_arguments(line: &str) -> Result<Vec<String>, String> {
     let mut words = Vec::new();
     let mut word: Option<String> = None;
     let mut quoted = false;
-    for c in line.trim().chars() {
+    let mut chars = line.trim().chars();
+    while let Some(c) = chars.next() {
         match c {
             '"' => {
                 quoted = !quoted;
                 word.get_or_insert_with(String::new);
+            }
+            '\\' if cfg!(not(windows)) && !quoted => {
+                let escaped = chars.next().unwrap_or('\\');
+                word.get_or_insert_with(String::new).push(escaped);
             }
             c if c.is_whitespace() && !quoted => words.extend(word.take()),
             c => word.get_or_insert_with(String::new).push(c),
@@ -822,6 +829,12 @@ mod tests {
         );
         assert_eq!(split_arguments(":load \"\"").unwrap(), vec![":load", ""]);
         assert!(split_arguments(":load \"oops").is_err());
+        if cfg!(not(windows)) {
+            assert_eq!(
+                split_arguments(r":load my\ scene.ray").unwrap(),
+                vec![":load", "my scene.ray"]
+            );
+        }
     }
 
     #[test]

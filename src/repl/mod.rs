@@ -120,17 +120,14 @@ pub(crate) fn handle_input(
 /// The command a learner probably meant by typing its name without the
 /// colon (`help`, `quit`), if the input is just that.
 fn bare_command(text: &str) -> Option<String> {
-    let word = text.trim();
-    let command = format!(":{word}");
-    let known =
-        commands::COMMANDS.iter().any(|c| c.name == command) || matches!(word, "exit" | "q");
-    known.then(|| {
-        if matches!(word, "exit" | "q") {
-            ":quit".to_string()
-        } else {
-            command
-        }
-    })
+    let command = match text.trim() {
+        "exit" | "q" => ":quit".to_string(),
+        word => format!(":{word}"),
+    };
+    commands::COMMANDS
+        .iter()
+        .any(|c| c.name == command)
+        .then_some(command)
 }
 
 /// A session set up with `options`' settings and limits.
