@@ -194,12 +194,13 @@ pub struct Instr {
 pub enum InstrKind {
     /// `let x = e`
     Let(Ident, Expr),
-    /// `object x = o`
-    Object(Ident, Obj),
+    /// `object x = o` (boxed: an `Obj` is large, and a program is mostly
+    /// small instructions; this keeps `Instr` and `Item` small)
+    Object(Ident, Box<Obj>),
     /// `p(e, ...)`
     Call(Ident, Vec<Expr>),
-    /// `put o`
-    Put(Obj),
+    /// `put o` (boxed, as in `Object`)
+    Put(Box<Obj>),
     /// `if c then ... [else ...] end`
     If(Cond, Vec<Instr>, Option<Vec<Instr>>),
 }

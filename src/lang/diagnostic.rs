@@ -143,12 +143,25 @@ mod render {
             for span in spans {
                 files.entry(span.source).or_insert_with(|| {
                     let file = sources.get(span.source);
-                    let padded = "\n".repeat(file.line_offset) + &file.text;
+                    let padded = "\n".repeat(file.line_offset) + &printable(&file.text);
                     (file.name.clone(), Source::from(padded))
                 });
             }
             Texts { files }
         }
+    }
+
+    /// `text` with its control characters (an escape could drive the
+    /// terminal) replaced by as many `?` as they take bytes, so that byte
+    /// offsets stay valid.
+    fn printable(text: &str) -> String {
+        text.chars()
+            .flat_map(|c| {
+                let shown = if c.is_control() && !matches!(c, '\n' | '\t' | '\r') { None } else { Some(c) };
+                let count = if shown.is_some() { 1 } else { c.len_utf8() };
+                std::iter::repeat_n(shown.unwrap_or('?'), count)
+            })
+            .collect()
     }
 
     impl ariadne::Cache<SourceId> for Texts {

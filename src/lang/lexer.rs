@@ -8,6 +8,7 @@
 
 use std::collections::HashMap;
 use std::fmt;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::rc::Rc;
 
 use super::diagnostic::Diagnostic;
@@ -273,14 +274,37 @@ pub struct Lexer<'a> {
     text: &'a str,
     pos: usize,
     source: SourceId,
-    names: HashMap<&'a str, Rc<str>>,
+    names: HashMap<&'a str, Rc<str>, BuildHasherDefault<NameHasher>>,
     failed: bool,
+}
+
+/// FNV-1a: names are short and come from the program itself, so a simple
+/// fast hash beats the default DoS-resistant one here.
+#[derive(Debug)]
+pub struct NameHasher(u64);
+
+impl Default for NameHasher {
+    fn default() -> NameHasher {
+        NameHasher(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Hasher for NameHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
 }
 
 impl<'a> Lexer<'a> {
     /// A lexer over `text`, whose spans in diagnostics name `source`.
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
-        Lexer { text, pos: 0, source, names: HashMap::new(), failed: false }
+        Lexer { text, pos: 0, source, names: HashMap::default(), failed: false }
     }
 
     /// Moves past blanks and comments.
@@ -368,6 +392,9 @@ impl<'a> Lexer<'a> {
         }
         self.pos = end;
         let literal = &self.text[start..end];
+        if let Some(value) = small_integer(literal) {
+            return Ok((start, Token::Number(value), end));
+        }
         match literal.parse::<f64>() {
             Ok(value) if value.is_finite() => Ok((start, Token::Number(value), end)),
             _ => Err(Box::new(
@@ -396,6 +423,19 @@ impl<'a> Lexer<'a> {
             None => diagnostic,
         })
     }
+}
+
+/// The value of `literal` if it is a plain integer of at most 15 digits,
+/// which converts to `f64` exactly; most literals are, and this is much
+/// quicker than the general float parser.
+fn small_integer(literal: &str) -> Option<f64> {
+    let bytes = literal.as_bytes();
+    if bytes.len() > 15 || !bytes.iter().all(u8::is_ascii_digit) {
+        return None;
+    }
+    let value = bytes.iter().fold(0u64, |value, digit| value * 10 + u64::from(digit - b'0'));
+    // At most 15 digits: below 2^53, so the conversion is exact.
+    Some(value as f64)
 }
 
 /// A hint for characters learners often type by habit from other languages.

@@ -8,12 +8,12 @@
 mod errors;
 mod order;
 
-use lalrpop_util::lalrpop_mod;
+use lalrpop_util::{ParseError, lalrpop_mod};
 
-use super::ast::Program;
+use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
 use super::lexer::{Lexer, Token};
-use super::source::SourceId;
+use super::source::{SourceId, Span};
 
 pub(crate) use order::ItemOrder;
 
@@ -56,6 +56,36 @@ fn parse(source: SourceId, text: &str, order: &ItemOrder, line_offset: usize) ->
         }
         Err(error) => Err(errors::syntax_error(source, text, line_offset, order, error)),
     }
+}
+
+/// Appends `item`, spanning `span`, to `items` if the file order allows it
+/// here (the grammar's action for each completed item).
+pub(crate) fn push_item(
+    mut items: Vec<Item>,
+    item: Item,
+    order: &ItemOrder<'_>,
+    span: Span,
+) -> Result<Vec<Item>, ParseError<usize, Token, Box<Diagnostic>>> {
+    order.check(&item, span).map_err(|error| ParseError::User { error })?;
+    items.push(item);
+    Ok(items)
+}
+
+/// Appends the instruction of `kind` spanning `span` to `items` (the
+/// grammar's action for a top-level instruction).
+pub(crate) fn push_instr(
+    items: Vec<Item>,
+    kind: InstrKind,
+    order: &ItemOrder<'_>,
+    span: Span,
+) -> Result<Vec<Item>, ParseError<usize, Token, Box<Diagnostic>>> {
+    push_item(items, Item::Instr(Instr { kind, span }), order, span)
+}
+
+/// Appends the instruction of `kind` spanning `span` to a block.
+pub(crate) fn push(mut instrs: Vec<Instr>, kind: InstrKind, span: Span) -> Vec<Instr> {
+    instrs.push(Instr { kind, span });
+    instrs
 }
 
 /// Whether `text` is an unfinished input that the session should continue on
