@@ -156,6 +156,17 @@ fn report(name: &str, elapsed: Duration, stats: &RenderStats) {
 }
 
 fn run_report(which: &str) {
+    if let Some(size) = which.strip_prefix("solar-") {
+        // One frame of a given size, e.g. `solar-320x180` (for callgrind).
+        let (w, h) = size.split_once('x').expect("solar-WxH");
+        let (w, h) = (w.parse().expect("width"), h.parse().expect("height"));
+        let scene = solar(0.0);
+        let prepared = Prepared::new(&scene);
+        let start = Instant::now();
+        let stats = render_once(&scene, &prepared, w, h);
+        report(&format!("solar {w}x{h} d5"), start.elapsed(), &stats);
+        return;
+    }
     if which.contains("solar") || which == "1" {
         let scene = solar(0.0);
         let prepared = Prepared::new(&scene);

@@ -112,13 +112,14 @@ impl Bvh {
             test_range(&self.objects, 0, ray, &mut best);
             return best;
         }
+        let inv_dir = ray.dir.recip();
         let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
         let mut current = 0usize;
         loop {
             let node = &self.nodes[current];
-            if node.bounds.hit(ray, best.0) {
+            if node.bounds.hit(ray, inv_dir, best.0) {
                 if node.count > 0 {
                     let start = node.index as usize;
                     test_range(&self.objects[start..start + node.count as usize], start, ray, &mut best);
@@ -151,12 +152,13 @@ impl Bvh {
         if self.nodes.is_empty() {
             return self.objects.iter().any(|o| o.hit(ray) < t_max);
         }
+        let inv_dir = ray.dir.recip();
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
         let mut current = 0usize;
         loop {
             let node = &self.nodes[current];
-            if node.bounds.hit(ray, t_max) {
+            if node.bounds.hit(ray, inv_dir, t_max) {
                 if node.count > 0 {
                     let start = node.index as usize;
                     if self.objects[start..start + node.count as usize].iter().any(|o| o.hit(ray) < t_max) {
