@@ -100,7 +100,7 @@ fn render_once(scene: &Scene, prepared: &Prepared, width: u32, height: u32) -> R
 
 /// Renders `frames` frames of the solar animation, reusing the static part.
 fn solar_animation(frames: u32, width: u32, height: u32) -> RenderStats {
-    let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..solar(0.0) }).static_part;
+    let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..solar(0.0) }).static_part().clone();
     let mut total = RenderStats::default();
     for k in 1..=frames {
         let scene = solar(f64::from(k));

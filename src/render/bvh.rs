@@ -24,11 +24,11 @@ const MAX_LEAF: usize = 8;
 
 /// Below this depth the SAH decides splits; deeper, ranges are split by
 /// object count, which halves them, so the tree depth stays below
-/// `SAH_MAX_DEPTH + 64` whatever the object layout.
-const SAH_MAX_DEPTH: usize = 48;
+/// `SAH_MAX_DEPTH + 32` for up to 2³² objects, whatever their layout.
+const SAH_MAX_DEPTH: usize = 32;
 
-/// Traversal stack size: the tree depth bound above, with margin.
-const STACK_SIZE: usize = 128;
+/// Traversal stack size: the tree depth bound above.
+const STACK_SIZE: usize = 64;
 
 /// Estimated cost of a node's box test relative to an object test (SAH).
 const TRAVERSAL_COST: f64 = 1.0;
@@ -91,6 +91,18 @@ impl Bvh {
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         let objects = order.iter().map(|&k| objects[k as usize]).collect();
         (Bvh { nodes, objects }, order)
+    }
+
+    /// Whether this is a flat list (no tree: at most [`BRUTE_FORCE_MAX`]
+    /// objects).
+    pub fn is_flat(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// A flat list of the objects of two flat lists, `a`'s first.
+    pub fn concat_flat(a: &Bvh, b: &Bvh) -> Option<Bvh> {
+        (a.is_flat() && b.is_flat())
+            .then(|| Bvh { nodes: Vec::new(), objects: a.objects.iter().chain(&b.objects).copied().collect() })
     }
 
     /// The objects, in tree order.
@@ -191,7 +203,7 @@ impl Bvh {
 
 /// Tests `objects` (whose first one has index `first`), keeping the nearest
 /// hit in `best`.
-#[inline]
+#[inline(always)]
 fn test_range(objects: &[Bounded], first: usize, ray: &Ray, best: &mut (f64, u32)) {
     for (k, object) in objects.iter().enumerate() {
         let t = object.hit(ray);
