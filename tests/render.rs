@@ -441,15 +441,17 @@ fn same_bytes_with_one_and_two_threads() {
 
 #[test]
 fn static_and_timed_parts_render_like_one_scene() {
-    let whole = random_scene(3, 40);
-    let mut split = whole.clone();
-    split.timed_primitives = split.primitives.split_off(20);
-    let o = options(80, 60);
-    let (a, _) = render_with(&whole, &o);
-    let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..split.clone() }).static_part;
-    let prepared = Prepared::with_static(Arc::clone(&static_part), &split.timed_primitives);
-    let (b, _) = render(&split, &prepared, &o, &RenderControl::default()).expect("no cancel");
-    assert!(a == b);
+    // Large parts (two trees) and small ones (merged into one flat list).
+    for (whole, split_at) in [(random_scene(3, 40), 20), (solar(), 2)] {
+        let mut split = whole.clone();
+        split.timed_primitives = split.primitives.split_off(split_at);
+        let o = options(80, 60);
+        let (a, _) = render_with(&whole, &o);
+        let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..split.clone() }).static_part().clone();
+        let prepared = Prepared::with_static(Arc::clone(&static_part), &split.timed_primitives);
+        let (b, _) = render(&split, &prepared, &o, &RenderControl::default()).expect("no cancel");
+        assert!(a == b);
+    }
 }
 
 #[test]

@@ -24,11 +24,11 @@ const MAX_LEAF: usize = 8;
 
 /// Below this depth the SAH decides splits; deeper, ranges are split by
 /// object count, which halves them, so the tree depth stays below
-/// `SAH_MAX_DEPTH + 64` whatever the object layout.
-const SAH_MAX_DEPTH: usize = 48;
+/// `SAH_MAX_DEPTH + 32` for up to 2³² objects, whatever their layout.
+const SAH_MAX_DEPTH: usize = 32;
 
-/// Traversal stack size: the tree depth bound above, with margin.
-const STACK_SIZE: usize = 128;
+/// Traversal stack size: the tree depth bound above.
+const STACK_SIZE: usize = 64;
 
 /// Estimated cost of a node's box test relative to an object test (SAH).
 const TRAVERSAL_COST: f64 = 1.0;
@@ -93,6 +93,18 @@ impl Bvh {
         (Bvh { nodes, objects }, order)
     }
 
+    /// Whether this is a flat list (no tree: at most [`BRUTE_FORCE_MAX`]
+    /// objects).
+    pub fn is_flat(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// A flat list of the objects of two flat lists, `a`'s first.
+    pub fn concat_flat(a: &Bvh, b: &Bvh) -> Option<Bvh> {
+        (a.is_flat() && b.is_flat())
+            .then(|| Bvh { nodes: Vec::new(), objects: a.objects.iter().chain(&b.objects).copied().collect() })
+    }
+
     /// The objects, in tree order.
     pub fn objects(&self) -> &[Bounded] {
         &self.objects
@@ -112,13 +124,14 @@ impl Bvh {
             test_range(&self.objects, 0, ray, &mut best);
             return best;
         }
+        let inv_dir = ray.dir.recip();
         let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
         let mut current = 0usize;
         loop {
             let node = &self.nodes[current];
-            if node.bounds.hit(ray, best.0) {
+            if node.bounds.hit(ray, inv_dir, best.0) {
                 if node.count > 0 {
                     let start = node.index as usize;
                     test_range(&self.objects[start..start + node.count as usize], start, ray, &mut best);
@@ -151,12 +164,13 @@ impl Bvh {
         if self.nodes.is_empty() {
             return self.objects.iter().any(|o| o.hit(ray) < t_max);
         }
+        let inv_dir = ray.dir.recip();
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
         let mut current = 0usize;
         loop {
             let node = &self.nodes[current];
-            if node.bounds.hit(ray, t_max) {
+            if node.bounds.hit(ray, inv_dir, t_max) {
                 if node.count > 0 {
                     let start = node.index as usize;
                     if self.objects[start..start + node.count as usize].iter().any(|o| o.hit(ray) < t_max) {
@@ -189,7 +203,7 @@ impl Bvh {
 
 /// Tests `objects` (whose first one has index `first`), keeping the nearest
 /// hit in `best`.
-#[inline]
+#[inline(always)]
 fn test_range(objects: &[Bounded], first: usize, ray: &Ray, best: &mut (f64, u32)) {
     for (k, object) in objects.iter().enumerate() {
         let t = object.hit(ray);

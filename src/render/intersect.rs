@@ -10,23 +10,20 @@ use glam::{DMat3, DVec3};
 
 use crate::scene::Shape;
 
-/// A ray `origin + t * dir`, with the reciprocal of `dir` cached for slab
-/// tests.
+/// A ray `origin + t * dir`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray {
     /// Where the ray starts.
     pub origin: DVec3,
     /// Unit direction.
     pub dir: DVec3,
-    /// `1 / dir` per component (±∞ where a component is 0).
-    pub inv_dir: DVec3,
 }
 
 impl Ray {
     /// A ray from `origin` along the unit vector `dir`.
     #[inline]
     pub fn new(origin: DVec3, dir: DVec3) -> Ray {
-        Ray { origin, dir, inv_dir: dir.recip() }
+        Ray { origin, dir }
     }
 
     /// The point at distance `t`.
@@ -324,11 +321,11 @@ impl Aabb {
     }
 
     /// The slab test: whether the ray meets the box at some `t` in
-    /// `[0, t_max)`.
+    /// `[0, t_max]`; `inv_dir` is `1 / ray.dir` per component.
     #[inline]
-    pub fn hit(&self, ray: &Ray, t_max: f64) -> bool {
-        let t1 = (self.min - ray.origin) * ray.inv_dir;
-        let t2 = (self.max - ray.origin) * ray.inv_dir;
+    pub fn hit(&self, ray: &Ray, inv_dir: DVec3, t_max: f64) -> bool {
+        let t1 = (self.min - ray.origin) * inv_dir;
+        let t2 = (self.max - ray.origin) * inv_dir;
         let t_near = t1.min(t2).max_element().max(0.0);
         let t_far = t1.max(t2).min_element().min(t_max);
         t_near <= t_far

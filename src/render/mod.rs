@@ -170,12 +170,14 @@ pub fn render(
     let start = Instant::now();
     let (width, height) = (options.width, options.height);
     let mut buffer = vec![0u8; width as usize * height as usize * 3];
+    let blocking_planes: Vec<_> = scene.lights.iter().map(|l| prepared.planes_blocking(l.direction)).collect();
     let job = Job {
         rays: PrimaryRays::new(&scene.camera, width, height, options.screen),
         offsets: sample_offsets(options.samples),
         lighting: Lighting {
             ambient: scene.ambient,
             lights: &scene.lights,
+            blocking_planes: &blocking_planes,
             depth: options.depth,
             skips: options.skips,
         },

@@ -33,7 +33,7 @@ use glam::DVec3;
 
 use super::Skips;
 use super::geometry::{Prepared, SurfaceHit};
-use super::intersect::Ray;
+use super::intersect::{PlaneShape, Ray};
 use crate::scene::{Light, Material};
 
 /// Paths whose accumulated weight is below this stop (half an 8-bit level).
@@ -100,6 +100,9 @@ pub struct Lighting<'a> {
     pub ambient: f64,
     /// The lights.
     pub lights: &'a [Light],
+    /// For each light, the planes that can block rays towards it
+    /// ([`Prepared::planes_blocking`]).
+    pub blocking_planes: &'a [Vec<PlaneShape>],
     /// Number of reflections followed (SPEC 6 `depth`).
     pub depth: u32,
     /// Which work-saving shortcuts are on.
@@ -193,7 +196,7 @@ impl<'a> Tracer<'a> {
         let origin = offset_origin(hit.point, n);
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
-        for light in self.lighting.lights {
+        for (light, planes) in self.lighting.lights.iter().zip(self.lighting.blocking_planes) {
             let l = light.direction;
             let n_dot_l = n.dot(l);
             // The formula sums only lights with N·L > 0: for the others the
@@ -202,7 +205,7 @@ impl<'a> Tracer<'a> {
                 continue;
             }
             self.counts.shadow += 1;
-            let visible = !self.geometry.any_hit(&Ray::new(origin, l));
+            let visible = !self.geometry.blocked(&Ray::new(origin, l), planes);
             if !visible || n_dot_l <= 0.0 {
                 continue;
             }
