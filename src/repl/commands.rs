@@ -764,7 +764,7 @@ fn render_frames(
                 .replay_at(f64::from(frame), true)
                 .map_err(|d| frame_failure(d, frame))?
                 .into_scene();
-            let static_part = Arc::clone(&first_prepared.static_part);
+            let static_part = Arc::clone(first_prepared.static_part());
             let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
             images.push(render(&scene, &prepared)?);
         }
