@@ -15,8 +15,7 @@ use crate::scene::Scene;
 use super::console::Console;
 use super::help;
 use super::rendering::{
-    ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_animation,
-    write_image,
+    FrameSink, ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_image,
 };
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
@@ -403,9 +402,13 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         height: session.settings().height,
     };
     let started = Instant::now();
-    let images = render_frames(session, frames, size, console)?;
-    let written = write_animation(&path, &images)
-        .map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
+    let mut sink = FrameSink::new(&path, frames as usize);
+    let cannot_write =
+        |e: String| CommandError::Failed(format!("cannot write {}: {e}", path.display()));
+    render_frames(session, frames, size, console, &mut |frame, image| {
+        sink.add(frame, image).map_err(cannot_write)
+    })?;
+    let written = sink.finish().map_err(cannot_write)?;
     let names = match written.as_slice() {
         [only] => only.display().to_string(),
         [first, .., last] => format!("{} ... {}", first.display(), last.display()),
@@ -413,7 +416,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     };
     console.say(format!(
         "wrote {names} ({} of {size}, {})",
-        counted(images.len(), "frame"),
+        counted(frames as usize, "frame"),
         duration(started.elapsed())
     ));
     Ok(Flow::Continue)
@@ -723,14 +726,16 @@ fn render_scene(
     Ok((image, started.elapsed()))
 }
 
-/// Renders frames 1..=`frames` of the animation, frame k with `time` = k.
-/// The geometry that does not depend on `time` is built once, from frame 1.
+/// Renders frames 1..=`frames` of the animation, frame k with `time` = k,
+/// and hands each to `sink` with its number. The geometry that does not
+/// depend on `time` is built once, from frame 1.
 fn render_frames(
     session: &Session,
     frames: u32,
     size: Size,
     console: &Console,
-) -> Result<Vec<RgbImage>, CommandError> {
+    sink: &mut dyn FnMut(usize, RgbImage) -> Result<(), CommandError>,
+) -> Result<(), CommandError> {
     let settings = *session.settings();
     let timed = session.depends_on_time();
     let rendered_frames = if timed { frames as usize } else { 1 };
@@ -751,14 +756,17 @@ fn render_frames(
             // Nothing reads `time`: every frame is the same picture.
             let scene = session.scene();
             let image = render(scene, &Prepared::new(scene))?;
-            return Ok(vec![image; frames as usize]);
+            for frame in 1..=frames as usize {
+                sink(frame, image.clone())?;
+            }
+            return Ok(());
         }
         let first = session
             .replay_at(1.0, false)
             .map_err(|d| frame_failure(d, 1))?
             .into_scene();
         let first_prepared = Prepared::new(&first);
-        let mut images = vec![render(&first, &first_prepared)?];
+        sink(1, render(&first, &first_prepared)?)?;
         for frame in 2..=frames {
             let scene = session
                 .replay_at(f64::from(frame), true)
@@ -766,9 +774,9 @@ fn render_frames(
                 .into_scene();
             let static_part = Arc::clone(first_prepared.static_part());
             let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
-            images.push(render(&scene, &prepared)?);
+            sink(frame as usize, render(&scene, &prepared)?)?;
         }
-        Ok(images)
+        Ok(())
     })
 }
 

@@ -75,6 +75,7 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
         editor,
         session,
         history,
+        inputs: 0,
     };
     repl.run(&mut console)
 }
@@ -84,6 +85,8 @@ struct Repl {
     editor: Editor<RayHelper, FileHistory>,
     session: Session,
     history: Option<PathBuf>,
+    /// Inputs submitted so far, to name each one in diagnostics.
+    inputs: usize,
 }
 
 impl Repl {
@@ -133,7 +136,8 @@ impl Repl {
             return;
         }
         self.remember(input);
-        let name = format!("<input {}>", self.session.history_len() + 1);
+        self.inputs += 1;
+        let name = format!("<input {}>", self.inputs);
         let _ = handle_input(&mut self.session, console, &name, input, 0);
     }
 

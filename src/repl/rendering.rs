@@ -206,21 +206,49 @@ pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
     written.map_err(|e| e.to_string())
 }
 
-/// Writes the frames of an animation: one animated GIF if `path` ends in
-/// `.gif`, otherwise one numbered file per frame (`spin.png` gives
-/// `spin0001.png`, ...). Returns the files written.
-pub(crate) fn write_animation(path: &Path, frames: &[RgbImage]) -> Result<Vec<PathBuf>, String> {
-    if ImageFormat::of(path) == Some(ImageFormat::Gif) {
-        write_gif(path, frames, GIF_FRAME_DELAY_MS).map_err(|e| e.to_string())?;
-        return Ok(vec![path.to_path_buf()]);
+/// Where the frames of an animation go as they are rendered: kept for one
+/// animated GIF if the file name ends in `.gif`, otherwise written at once as
+/// numbered images (`spin.png` gives `spin0001.png`, ...), so that a long
+/// animation does not have to fit in memory.
+pub(crate) struct FrameSink {
+    path: PathBuf,
+    count: usize,
+    gif_frames: Option<Vec<RgbImage>>,
+    written: Vec<PathBuf>,
+}
+
+impl FrameSink {
+    /// A sink for `count` frames named after `path`.
+    pub(crate) fn new(path: &Path, count: usize) -> FrameSink {
+        let gif = ImageFormat::of(path) == Some(ImageFormat::Gif);
+        FrameSink {
+            path: path.to_path_buf(),
+            count,
+            gif_frames: gif.then(|| Vec::with_capacity(count)),
+            written: Vec::new(),
+        }
     }
-    let mut written = Vec::with_capacity(frames.len());
-    for (index, frame) in frames.iter().enumerate() {
-        let frame_path = frame_path(path, index + 1, frames.len());
-        crate::output::write_image(&frame_path, frame).map_err(|e| e.to_string())?;
-        written.push(frame_path);
+
+    /// Takes frame number `frame` (from 1).
+    pub(crate) fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), String> {
+        if let Some(frames) = &mut self.gif_frames {
+            frames.push(image);
+            return Ok(());
+        }
+        let path = frame_path(&self.path, frame, self.count);
+        crate::output::write_image(&path, &image).map_err(|e| e.to_string())?;
+        self.written.push(path);
+        Ok(())
     }
-    Ok(written)
+
+    /// Writes what is left to write; returns the files written.
+    pub(crate) fn finish(mut self) -> Result<Vec<PathBuf>, String> {
+        if let Some(frames) = self.gif_frames.take() {
+            write_gif(&self.path, &frames, GIF_FRAME_DELAY_MS).map_err(|e| e.to_string())?;
+            self.written.push(self.path);
+        }
+        Ok(self.written)
+    }
 }
 
 #[cfg(test)]
