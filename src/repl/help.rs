@@ -29,8 +29,9 @@ A first scene:
     :render
 
 An input may span several lines: the prompt shows `...sphere>` while a
-`sphere` is still waiting for its `end`. Ctrl-C drops the input being typed,
-Ctrl-D leaves. Tab completes names, commands and file names.
+`sphere` is still waiting for its `end` (a command typed meanwhile runs at
+once). Ctrl-C drops the input being typed, Ctrl-D leaves. Tab completes
+names, commands and file names.
 
 `:help NAME` explains one of these:";
 
@@ -416,7 +417,7 @@ Example:
 :anim N FILE
   Computes the scene N times with time = 1, 2, ..., N and writes the frames:
   one animated GIF if FILE ends in .gif, otherwise numbered images
-  (spin.png gives spin_01.png, spin_02.png, ...).
+  (spin.png gives spin0001.png, spin0002.png, ...).
 Example:
   :anim 24 spin.gif",
     },
