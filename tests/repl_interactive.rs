@@ -16,19 +16,13 @@ use expectrl::{ControlCode, Eof, Expect, Session};
 
 /// The binary under test.
 fn binary() -> PathBuf {
-    std::env::var_os("RAYREPL_TEST_BIN").map_or_else(
-        || PathBuf::from(env!("CARGO_BIN_EXE_rayrepl")),
-        PathBuf::from,
-    )
+    std::env::var_os("RAYREPL_TEST_BIN").map_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_rayrepl")), PathBuf::from)
 }
 
 /// A session on a terminal, its history kept under `data_home`.
 fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsSession {
     let mut command = Command::new(binary());
-    command
-        .args(args)
-        .env("XDG_DATA_HOME", data_home)
-        .env("TERM", "xterm-256color");
+    command.args(args).env("XDG_DATA_HOME", data_home).env("TERM", "xterm-256color");
     if color {
         command.env_remove("NO_COLOR");
     } else {
@@ -52,9 +46,7 @@ fn plain() -> (expectrl::session::OsSession, tempfile::TempDir) {
 /// mode, where Ctrl-D means something else.)
 fn leave(mut session: expectrl::session::OsSession) -> i32 {
     session.expect("ray> ").expect("a prompt");
-    session
-        .send(ControlCode::EndOfTransmission)
-        .expect("Ctrl-D is sent");
+    session.send(ControlCode::EndOfTransmission).expect("Ctrl-D is sent");
     session.expect(Eof).expect("the session ends");
     match session.get_process().wait().expect("the exit status") {
         WaitStatus::Exited(_, code) => code,
@@ -72,13 +64,9 @@ fn an_input_continues_while_a_construct_is_open() {
     session.expect("...sphere> ").unwrap();
     // A command in the middle of an input runs, and the input goes on.
     session.send_line(":help sphere").unwrap();
-    session
-        .expect("sphere center X, Y, Z radius R TEXTURE end")
-        .unwrap();
+    session.expect("sphere center X, Y, Z radius R TEXTURE end").unwrap();
     session.expect("...sphere> ").unwrap();
-    session
-        .send_line("    radius 0.5 kd 1 ks 0 phong 1 color 255, 0, 0")
-        .unwrap();
+    session.send_line("    radius 0.5 kd 1 ks 0 phong 1 color 255, 0, 0").unwrap();
     session.expect("...sphere> ").unwrap();
     session.send_line("  end").unwrap();
     session.expect("...proc> ").unwrap();
@@ -89,9 +77,7 @@ fn an_input_continues_while_a_construct_is_open() {
     session.send_line("2").unwrap();
     session.expect("x = 3").unwrap();
     session.send_line("row(1)").unwrap();
-    session
-        .expect("put 1 sphere (1 object in the scene)")
-        .unwrap();
+    session.expect("put 1 sphere (1 object in the scene)").unwrap();
     assert_eq!(leave(session), 0);
 }
 
@@ -125,10 +111,7 @@ fn ctrl_c_drops_the_input_being_typed_and_stays() {
     session.expect("objects:  0 ").unwrap();
     session.send_line(":quit").unwrap();
     session.expect(Eof).unwrap();
-    assert!(matches!(
-        session.get_process().wait().unwrap(),
-        WaitStatus::Exited(_, 0)
-    ));
+    assert!(matches!(session.get_process().wait().unwrap(), WaitStatus::Exited(_, 0)));
 }
 
 #[test]
@@ -170,8 +153,7 @@ fn history_is_kept_between_sessions() {
     session.send_line("let kept = 42").unwrap();
     session.expect("kept = 42").unwrap();
     assert_eq!(leave(session), 0);
-    let history =
-        std::fs::read_to_string(data_home.path().join("rayrepl/history")).expect("a history file");
+    let history = std::fs::read_to_string(data_home.path().join("rayrepl/history")).expect("a history file");
     assert!(history.contains("let kept = 42"), "{history}");
     let mut session = spawn(&["--no-preview"], data_home.path(), false);
     session.send("\x1b[A").unwrap();

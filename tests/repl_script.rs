@@ -46,22 +46,12 @@ fn run(script: &str) -> Run {
 
 /// Runs `script` and goes on after errors.
 fn run_keep_going(script: &str) -> Run {
-    run_with(
-        script,
-        &SessionOptions {
-            keep_going: true,
-            ..SessionOptions::default()
-        },
-    )
+    run_with(script, &SessionOptions { keep_going: true, ..SessionOptions::default() })
 }
 
 fn small_size() -> SessionOptions {
     SessionOptions {
-        settings: RenderSettings {
-            width: 32,
-            height: 24,
-            ..RenderSettings::default()
-        },
+        settings: RenderSettings { width: 32, height: 24, ..RenderSettings::default() },
         ..SessionOptions::default()
     }
 }
@@ -70,9 +60,7 @@ fn small_size() -> SessionOptions {
 
 #[test]
 fn items_accumulate_and_are_confirmed() {
-    let run = run(&format!(
-        "{SCENE}let r = 2 * 3\nobject ball = sphere center 0, 0, 0 radius 1 $T end\n"
-    ));
+    let run = run(&format!("{SCENE}let r = 2 * 3\nobject ball = sphere center 0, 0, 0 radius 1 $T end\n"));
     assert_eq!(run.code, 0, "{}", run.err);
     assert_eq!(run.err, "");
     let expected = "\
@@ -118,11 +106,7 @@ light vector 0, 0, 0 intensity 0.5 end
 :scene
 ");
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("camera:   distance 20, angle 0.5\n"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("camera:   distance 20, angle 0.5\n"), "{}", run.out);
     assert!(run.out.contains("ambient:  0.3\n"), "{}", run.out);
     assert!(run.out.contains("lights:   2\n"), "{}", run.out);
 }
@@ -171,19 +155,10 @@ fn every_kind_of_failing_input_leaves_the_session_as_it_was() {
         assert_eq!(run.code, 1, "`{bad}` should fail:\n{}", run.out);
         assert!(!run.err.is_empty(), "`{bad}` printed no error");
         let lines: Vec<&str> = run.out.lines().collect();
-        let first = lines
-            .iter()
-            .position(|l| l.starts_with("camera:   "))
-            .expect(":scene output");
-        let depth = lines
-            .iter()
-            .position(|l| l.starts_with("depth = "))
-            .expect(":depth output");
+        let first = lines.iter().position(|l| l.starts_with("camera:   ")).expect(":scene output");
+        let depth = lines.iter().position(|l| l.starts_with("depth = ")).expect(":depth output");
         let before = &lines[first..=depth];
-        let after_start = lines[depth + 1..]
-            .iter()
-            .position(|l| l.starts_with("camera:   "))
-            .map(|i| i + depth + 1);
+        let after_start = lines[depth + 1..].iter().position(|l| l.starts_with("camera:   ")).map(|i| i + depth + 1);
         let Some(after_start) = after_start else {
             // Unfinished input swallows the rest of the script: checked below.
             assert_eq!(bad, failing[0]);
@@ -245,92 +220,45 @@ fn a_command_typed_without_colon_gets_a_hint() {
 fn help_lists_topics_and_explains_each() {
     let run = run(":help\n:help sphere\n:help :save\n:help kd\n");
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("camera distance 10 angle 0.8 end"),
-        "{}",
-        run.out
-    );
-    assert!(
-        run.out
-            .contains("sphere center X, Y, Z radius R TEXTURE end"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("camera distance 10 angle 0.8 end"), "{}", run.out);
+    assert!(run.out.contains("sphere center X, Y, Z radius R TEXTURE end"), "{}", run.out);
     assert!(run.out.contains(":save FILE W H"), "{}", run.out);
-    assert!(
-        run.out.contains("phong  how small the highlight is"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("phong  how small the highlight is"), "{}", run.out);
 }
 
 #[test]
 fn help_on_an_unknown_word_suggests_a_close_one() {
     let run = run(":help spehre\n");
     assert_eq!(run.code, 1);
-    assert!(
-        run.err
-            .contains("no help about `spehre`; did you mean `sphere`?"),
-        "{}",
-        run.err
-    );
+    assert!(run.err.contains("no help about `spehre`; did you mean `sphere`?"), "{}", run.err);
 }
 
 #[test]
 fn unknown_commands_get_a_did_you_mean() {
     let run = run(":rendr\n");
     assert_eq!(run.code, 1);
-    assert!(
-        run.err
-            .contains("there is no command `:rendr`; did you mean `:render`?"),
-        "{}",
-        run.err
-    );
+    assert!(run.err.contains("there is no command `:rendr`; did you mean `:render`?"), "{}", run.err);
     let run = run_keep_going(":\n:xyzzy\n");
-    assert!(
-        run.err.contains("type a command name after `:`"),
-        "{}",
-        run.err
-    );
-    assert!(
-        run.err
-            .contains("there is no command `:xyzzy`\n`:help` lists the commands"),
-        "{}",
-        run.err
-    );
+    assert!(run.err.contains("type a command name after `:`"), "{}", run.err);
+    assert!(run.err.contains("there is no command `:xyzzy`\n`:help` lists the commands"), "{}", run.err);
 }
 
 #[test]
 fn bad_arguments_get_usage_messages() {
     let cases = [
         (":size 10", "usage: :size [WIDTH HEIGHT]"),
-        (
-            ":size 0 10",
-            "the width must be a whole number from 1 to 16384, not `0`",
-        ),
+        (":size 0 10", "the width must be a whole number from 1 to 16384, not `0`"),
         (":size a 10", "not `a`"),
-        (
-            ":depth -1",
-            "the depth must be a whole number from 0 to 100, not `-1`",
-        ),
+        (":depth -1", "the depth must be a whole number from 0 to 100, not `-1`"),
         (":depth 1 2", "usage: :depth [REFLECTIONS]"),
-        (
-            ":samples 0",
-            "the number of samples must be a whole number from 1 to 1024",
-        ),
+        (":samples 0", "the number of samples must be a whole number from 1 to 1024"),
         (":time x", "`x` is not a number"),
         (":time 1 2", "usage: :time [NUMBER]"),
         (":render 10", "give both a width and a height, or neither"),
         (":save", "give the name of the file to write"),
-        (
-            ":save x.jpg",
-            "cannot tell the format of `x.jpg`: end the name in .png, .ppm or .gif",
-        ),
+        (":save x.jpg", "cannot tell the format of `x.jpg`: end the name in .png, .ppm or .gif"),
         (":save x.png 10", "usage: :save FILE [WIDTH HEIGHT]"),
-        (
-            ":anim 0 x.gif",
-            "the number of frames must be a whole number from 1 to 10000",
-        ),
+        (":anim 0 x.gif", "the number of frames must be a whole number from 1 to 10000"),
         (":anim 3", "usage: :anim FRAMES FILE"),
         (":load", "give the file to load"),
         (":load \"unclosed", "a `\"` is not closed"),
@@ -340,11 +268,7 @@ fn bad_arguments_get_usage_messages() {
     for (line, message) in cases {
         let run = run(&format!("{line}\n"));
         assert_eq!(run.code, 1, "`{line}` should fail");
-        assert!(
-            run.err.contains(message),
-            "`{line}`: expected `{message}` in\n{}",
-            run.err
-        );
+        assert!(run.err.contains(message), "`{line}`: expected `{message}` in\n{}", run.err);
     }
 }
 
@@ -361,11 +285,7 @@ fn settings_are_shown_and_changed() {
         "time = 0",
         "settings: time 0, size 320×200, depth 2, samples 4",
     ] {
-        assert!(
-            run.out.contains(expected),
-            "`{expected}` missing from\n{}",
-            run.out
-        );
+        assert!(run.out.contains(expected), "`{expected}` missing from\n{}", run.out);
     }
 }
 
@@ -375,30 +295,16 @@ fn env_lists_numbers_objects_and_procedures() {
         "let r = 2\nobject g = group sphere center 0,0,0 radius 1 $T end box center 0,0,0 length 1,1,1 $T end end\nproc p(a, b) end\n:env\n",
     );
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("numbers:    r = 2, time = 0\n"),
-        "{}",
-        run.out
-    );
-    assert!(
-        run.out.contains("objects:    g (group of 2 objects)\n"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("numbers:    r = 2, time = 0\n"), "{}", run.out);
+    assert!(run.out.contains("objects:    g (group of 2 objects)\n"), "{}", run.out);
     assert!(run.out.contains("procedures: p(a, b)\n"), "{}", run.out);
 }
 
 #[test]
 fn scene_counts_what_was_put() {
-    let run = run(&format!(
-        "{SCENE}put box center 0, 0, 0 length 1, 1, 1 $T end\n:scene\n"
-    ));
+    let run = run(&format!("{SCENE}put box center 0, 0, 0 length 1, 1, 1 $T end\n:scene\n"));
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("objects:  3 (1 sphere, 1 plane, 1 box)"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("objects:  3 (1 sphere, 1 plane, 1 box)"), "{}", run.out);
     let run = run_keep_going(":scene\n");
     assert!(run.out.contains("(default: none given yet)"), "{}", run.out);
 }
@@ -426,23 +332,14 @@ took back: put sphere center 0, 0, 0 radius 2 kd 0.7 ks 0.3 phong 20 color 255, 
 the session is empty again (`:undo` brings it all back)
 ";
     assert!(run.out.starts_with(expected), "{}", run.out);
-    assert!(
-        run.out
-            .contains("took back the :reset (1 input back)\n1 object in the scene\n"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("took back the :reset (1 input back)\n1 object in the scene\n"), "{}", run.out);
 }
 
 #[test]
 fn undo_restores_definitions_too() {
     let run = run("let a = 1\nlet a = 2\n:undo\n:env\n");
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("numbers:    a = 1, time = 0"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("numbers:    a = 1, time = 0"), "{}", run.out);
 }
 
 #[test]
@@ -460,23 +357,10 @@ fn load_runs_a_file_as_one_input() {
     );
     let run = run_keep_going(&script);
     assert_eq!(run.code, 1);
-    assert!(
-        run.out.contains(&format!("loaded {}\n", file.display())),
-        "{}",
-        run.out
-    );
-    assert!(
-        run.out
-            .contains("put 1 sphere and 1 plane (2 objects in the scene)"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains(&format!("loaded {}\n", file.display())), "{}", run.out);
+    assert!(run.out.contains("put 1 sphere and 1 plane (2 objects in the scene)"), "{}", run.out);
     assert!(run.err.contains("bad.ray:2:"), "{}", run.err);
-    assert!(
-        run.out.contains("numbers:    time = 0\n"),
-        "the failed load left `a`: {}",
-        run.out
-    );
+    assert!(run.out.contains("numbers:    time = 0\n"), "the failed load left `a`: {}", run.out);
     assert!(run.out.contains("took back: :load"), "{}", run.out);
     assert!(run.out.contains("objects:  0 "), "{}", run.out);
     assert!(run.err.contains("missing.ray: no such file"), "{}", run.err);
@@ -487,17 +371,11 @@ fn an_initial_file_is_loaded_first() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let file = dir.path().join("start.ray");
     std::fs::write(&file, "let r = 4\n").expect("write the scene");
-    let options = SessionOptions {
-        initial_file: Some(file.clone()),
-        ..SessionOptions::default()
-    };
+    let options = SessionOptions { initial_file: Some(file.clone()), ..SessionOptions::default() };
     let run = run_with("let s = r * 2\n", &options);
     assert_eq!(run.code, 0, "{}", run.err);
     assert!(run.out.ends_with("r = 4\ns = 8\n"), "{}", run.out);
-    let options = SessionOptions {
-        initial_file: Some(dir.path().join("none.ray")),
-        ..SessionOptions::default()
-    };
+    let options = SessionOptions { initial_file: Some(dir.path().join("none.ray")), ..SessionOptions::default() };
     let run = run_with("let s = 1\n", &options);
     assert_eq!(run.code, 1);
     assert_eq!(run.out, "");
@@ -516,21 +394,9 @@ fn quit_stops_the_script() {
 fn time_changes_reevaluate_what_reads_it() {
     let run = run("let t = time * 2\n:time 3\n:env\n:time 0.5\n:env\n");
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("time = 3 (the scene was computed again)"),
-        "{}",
-        run.out
-    );
-    assert!(
-        run.out.contains("numbers:    t = 6, time = 3"),
-        "{}",
-        run.out
-    );
-    assert!(
-        run.out.contains("numbers:    t = 1, time = 0.5"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("time = 3 (the scene was computed again)"), "{}", run.out);
+    assert!(run.out.contains("numbers:    t = 6, time = 3"), "{}", run.out);
+    assert!(run.out.contains("numbers:    t = 1, time = 0.5"), "{}", run.out);
 }
 
 #[test]
@@ -546,34 +412,17 @@ let b = time
 p()
 ");
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out.contains("time = 4\n"),
-        "no replay expected: {}",
-        run.out
-    );
-    assert!(
-        run.out.contains("numbers:    a = 1, time = 4\n"),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains("time = 4\n"), "no replay expected: {}", run.out);
+    assert!(run.out.contains("numbers:    a = 1, time = 4\n"), "{}", run.out);
     assert!(run.out.contains("b = 4\n"), "{}", run.out);
-    assert!(
-        run.out.contains("put 1 sphere"),
-        "the procedure saw the old time: {}",
-        run.out
-    );
+    assert!(run.out.contains("put 1 sphere"), "the procedure saw the old time: {}", run.out);
 }
 
 #[test]
 fn a_time_at_which_an_input_fails_is_refused() {
     let run = run_keep_going("let x = 1 / (time - 2)\n:time 2\n:time\n:env\n");
     assert_eq!(run.code, 1);
-    assert!(
-        run.err
-            .contains("at time 2 an earlier input fails, so time stays 0"),
-        "{}",
-        run.err
-    );
+    assert!(run.err.contains("at time 2 an earlier input fails, so time stays 0"), "{}", run.err);
     assert!(run.out.contains("time = 0\n"), "{}", run.out);
     assert!(run.out.contains("x = -0.5"), "{}", run.out);
 }
@@ -581,34 +430,15 @@ fn a_time_at_which_an_input_fails_is_refused() {
 // ------------------------------------------------------------ images
 
 /// Renders `file_text` the way the renderer does for a file.
-fn render_file(
-    file_text: &str,
-    width: u32,
-    height: u32,
-    depth: u32,
-    samples: u32,
-) -> image::RgbImage {
+fn render_file(file_text: &str, width: u32, height: u32, depth: u32, samples: u32) -> image::RgbImage {
     let mut sources = SourceMap::new();
     let id = sources.add("scene.ray", file_text, 0);
     let program = parse_file(id, file_text).expect("the file parses");
     let mut interpreter = Interpreter::new(0.0, Limits::default());
     interpreter.run(&program).expect("the file runs");
     let scene = interpreter.into_scene();
-    let options = RenderOptions {
-        width,
-        height,
-        depth,
-        samples,
-        ..RenderOptions::default()
-    };
-    render(
-        &scene,
-        &Prepared::new(&scene),
-        &options,
-        &RenderControl::default(),
-    )
-    .expect("not cancelled")
-    .0
+    let options = RenderOptions { width, height, depth, samples, ..RenderOptions::default() };
+    render(&scene, &Prepared::new(&scene), &options, &RenderControl::default()).expect("not cancelled").0
 }
 
 fn read_rgb(path: &Path) -> image::RgbImage {
@@ -629,12 +459,7 @@ fn save_writes_the_same_image_as_rendering_the_file() {
     );
     let run = run(&script);
     assert_eq!(run.code, 0, "{}", run.err);
-    assert!(
-        run.out
-            .contains(&format!("saved {} (40×30, ", png.display())),
-        "{}",
-        run.out
-    );
+    assert!(run.out.contains(&format!("saved {} (40×30, ", png.display())), "{}", run.out);
     let file = SCENE.replace("$T", TEX);
     let expected = render_file(&file, 40, 30, 2, 4);
     assert_eq!(read_rgb(&png), expected);
@@ -697,14 +522,8 @@ fn anim_writes_a_gif_or_numbered_frames_following_time() {
     assert_eq!(run.code, 0, "{}", run.err);
     assert!(gif.exists());
     assert!(run.out.contains("(3 frames of 32×24, "), "{}", run.out);
-    assert!(
-        run.out.ends_with("time = 0\n"),
-        "the session's time changed: {}",
-        run.out
-    );
-    let frames: Vec<_> = (1..=3)
-        .map(|k| read_rgb(&dir.path().join(format!("rise000{k}.png"))))
-        .collect();
+    assert!(run.out.ends_with("time = 0\n"), "the session's time changed: {}", run.out);
+    let frames: Vec<_> = (1..=3).map(|k| read_rgb(&dir.path().join(format!("rise000{k}.png")))).collect();
     assert_ne!(frames[0], frames[1]);
     assert_ne!(frames[1], frames[2]);
     // Frame 2 is the scene at time 2.
@@ -723,10 +542,7 @@ fn anim_writes_a_gif_or_numbered_frames_following_time() {
 fn anim_of_a_scene_without_time_repeats_one_picture() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let png = dir.path().join("still.ppm");
-    let run = run_with(
-        &format!("{SCENE}:anim 2 {}\n", png.display()),
-        &small_size(),
-    );
+    let run = run_with(&format!("{SCENE}:anim 2 {}\n", png.display()), &small_size());
     assert_eq!(run.code, 0, "{}", run.err);
     let first = read_rgb(&dir.path().join("still0001.ppm"));
     assert_eq!(first, read_rgb(&dir.path().join("still0002.ppm")));
@@ -736,15 +552,8 @@ fn anim_of_a_scene_without_time_repeats_one_picture() {
 fn anim_reports_the_frame_that_fails() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let gif = dir.path().join("bad.gif");
-    let run = run_with(
-        &format!("let x = 1 / (time - 2)\n:anim 3 {}\n", gif.display()),
-        &small_size(),
-    );
+    let run = run_with(&format!("let x = 1 / (time - 2)\n:anim 3 {}\n", gif.display()), &small_size());
     assert_eq!(run.code, 1);
-    assert!(
-        run.err.contains("while computing frame 2, with time = 2"),
-        "{}",
-        run.err
-    );
+    assert!(run.err.contains("while computing frame 2, with time = 2"), "{}", run.err);
     assert!(!gif.exists());
 }

@@ -28,13 +28,7 @@ impl CancelSwitch {
     /// The switch, with its Ctrl-C handler installed on first use. `None` if
     /// the handler could not be installed (another one was set already).
     pub(crate) fn install() -> Option<&'static CancelSwitch> {
-        SWITCH
-            .get_or_init(|| {
-                ctrlc::set_handler(on_ctrl_c)
-                    .is_ok()
-                    .then(CancelSwitch::default)
-            })
-            .as_ref()
+        SWITCH.get_or_init(|| ctrlc::set_handler(on_ctrl_c).is_ok().then(CancelSwitch::default)).as_ref()
     }
 
     /// Arms the switch for one job; it is disarmed when the guard drops.
@@ -67,9 +61,7 @@ impl Drop for ArmedSwitch {
 
 fn on_ctrl_c() {
     match SWITCH.get() {
-        Some(Some(switch)) if switch.armed.load(Ordering::SeqCst) => {
-            switch.cancel.store(true, Ordering::SeqCst)
-        }
+        Some(Some(switch)) if switch.armed.load(Ordering::SeqCst) => switch.cancel.store(true, Ordering::SeqCst),
         _ => std::process::exit(INTERRUPTED_EXIT_CODE),
     }
 }

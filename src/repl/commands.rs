@@ -65,85 +65,24 @@ pub(crate) struct CommandSpec {
 
 /// Every command, in the order `:help` lists them.
 pub(crate) const COMMANDS: &[CommandSpec] = &[
-    CommandSpec {
-        name: ":help",
-        usage: ":help [NAME]",
-        run: help_command,
-    },
-    CommandSpec {
-        name: ":render",
-        usage: ":render [WIDTH HEIGHT]",
-        run: render,
-    },
-    CommandSpec {
-        name: ":save",
-        usage: ":save FILE [WIDTH HEIGHT]",
-        run: save,
-    },
-    CommandSpec {
-        name: ":anim",
-        usage: ":anim FRAMES FILE",
-        run: anim,
-    },
-    CommandSpec {
-        name: ":time",
-        usage: ":time [NUMBER]",
-        run: time,
-    },
-    CommandSpec {
-        name: ":size",
-        usage: ":size [WIDTH HEIGHT]",
-        run: size,
-    },
-    CommandSpec {
-        name: ":depth",
-        usage: ":depth [REFLECTIONS]",
-        run: depth,
-    },
-    CommandSpec {
-        name: ":samples",
-        usage: ":samples [RAYS PER PIXEL]",
-        run: samples,
-    },
-    CommandSpec {
-        name: ":load",
-        usage: ":load FILE",
-        run: load,
-    },
-    CommandSpec {
-        name: ":env",
-        usage: ":env",
-        run: env,
-    },
-    CommandSpec {
-        name: ":scene",
-        usage: ":scene",
-        run: scene,
-    },
-    CommandSpec {
-        name: ":undo",
-        usage: ":undo",
-        run: undo,
-    },
-    CommandSpec {
-        name: ":reset",
-        usage: ":reset",
-        run: reset,
-    },
-    CommandSpec {
-        name: ":quit",
-        usage: ":quit",
-        run: quit,
-    },
+    CommandSpec { name: ":help", usage: ":help [NAME]", run: help_command },
+    CommandSpec { name: ":render", usage: ":render [WIDTH HEIGHT]", run: render },
+    CommandSpec { name: ":save", usage: ":save FILE [WIDTH HEIGHT]", run: save },
+    CommandSpec { name: ":anim", usage: ":anim FRAMES FILE", run: anim },
+    CommandSpec { name: ":time", usage: ":time [NUMBER]", run: time },
+    CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
+    CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },
+    CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
+    CommandSpec { name: ":load", usage: ":load FILE", run: load },
+    CommandSpec { name: ":env", usage: ":env", run: env },
+    CommandSpec { name: ":scene", usage: ":scene", run: scene },
+    CommandSpec { name: ":undo", usage: ":undo", run: undo },
+    CommandSpec { name: ":reset", usage: ":reset", run: reset },
+    CommandSpec { name: ":quit", usage: ":quit", run: quit },
 ];
 
 /// Other names for commands.
-const ALIASES: &[(&str, &str)] = &[
-    (":q", ":quit"),
-    (":exit", ":quit"),
-    (":h", ":help"),
-    (":?", ":help"),
-];
+const ALIASES: &[(&str, &str)] = &[(":q", ":quit"), (":exit", ":quit"), (":h", ":help"), (":?", ":help")];
 
 /// Whether `line` is a command rather than program text.
 pub(crate) fn is_command(line: &str) -> bool {
@@ -152,14 +91,9 @@ pub(crate) fn is_command(line: &str) -> bool {
 
 /// Runs the command on `line`, reporting any failure on the console.
 /// Returns `Err(())` if it failed, so scripts can count errors.
-pub(crate) fn execute(
-    session: &mut Session,
-    line: &str,
-    console: &mut Console,
-) -> Result<Flow, ()> {
-    let result = split_arguments(line)
-        .map_err(CommandError::Failed)
-        .and_then(|words| dispatch(session, &words, console));
+pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) -> Result<Flow, ()> {
+    let result =
+        split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(session, &words, console));
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
@@ -170,32 +104,21 @@ pub(crate) fn execute(
 }
 
 fn dispatch(session: &mut Session, words: &[String], console: &mut Console) -> CommandResult {
-    let Some((name, arguments)) = words.split_first().filter(|(name, _)| name.as_str() != ":")
-    else {
-        return Err(CommandError::Failed(
-            "type a command name after `:`, for example `:help`".to_string(),
-        ));
+    let Some((name, arguments)) = words.split_first().filter(|(name, _)| name.as_str() != ":") else {
+        return Err(CommandError::Failed("type a command name after `:`, for example `:help`".to_string()));
     };
-    let name = ALIASES
-        .iter()
-        .find(|(alias, _)| alias == name)
-        .map_or(name.as_str(), |(_, real)| real);
+    let name = ALIASES.iter().find(|(alias, _)| alias == name).map_or(name.as_str(), |(_, real)| real);
     let Some(command) = COMMANDS.iter().find(|command| command.name == name) else {
         return Err(unknown_command(name));
     };
     (command.run)(session, arguments, console).map_err(|error| match error {
-        CommandError::Usage(problem) => {
-            CommandError::Usage(format!("{problem}\nusage: {}", command.usage))
-        }
+        CommandError::Usage(problem) => CommandError::Usage(format!("{problem}\nusage: {}", command.usage)),
         other => other,
     })
 }
 
 fn unknown_command(name: &str) -> CommandError {
-    let names = COMMANDS
-        .iter()
-        .map(|c| c.name)
-        .chain(ALIASES.iter().map(|(alias, _)| *alias));
+    let names = COMMANDS.iter().map(|c| c.name).chain(ALIASES.iter().map(|(alias, _)| *alias));
     let mut message = format!("there is no command `{name}`");
     if let Some(close) = closest(name, names) {
         message.push_str(&format!("; did you mean `{close}`?"));
@@ -246,23 +169,15 @@ pub(crate) fn split_arguments(line: &str) -> Result<Vec<String>, String> {
 fn no_arguments(arguments: &[String]) -> Result<(), CommandError> {
     match arguments {
         [] => Ok(()),
-        _ => Err(CommandError::Usage(
-            "this command takes no arguments".to_string(),
-        )),
+        _ => Err(CommandError::Usage("this command takes no arguments".to_string())),
     }
 }
 
-fn parse_count(
-    text: &str,
-    what: &str,
-    range: std::ops::RangeInclusive<u32>,
-) -> Result<u32, CommandError> {
+fn parse_count(text: &str, what: &str, range: std::ops::RangeInclusive<u32>) -> Result<u32, CommandError> {
     let (low, high) = (*range.start(), *range.end());
     match text.parse::<u32>() {
         Ok(value) if range.contains(&value) => Ok(value),
-        _ => Err(CommandError::Usage(format!(
-            "{what} must be a whole number from {low} to {high}, not `{text}`"
-        ))),
+        _ => Err(CommandError::Usage(format!("{what} must be a whole number from {low} to {high}, not `{text}`"))),
     }
 }
 
@@ -292,122 +207,79 @@ fn output_format(path: &Path) -> Result<ImageFormat, CommandError> {
 
 // ---------------------------------------------------------------- commands
 
-fn help_command(
-    _session: &mut Session,
-    arguments: &[String],
-    console: &mut Console,
-) -> CommandResult {
+fn help_command(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => console.say(help::overview()),
         [name] => match help::find(name) {
             Some(topic) => console.say(topic.text),
             None => {
-                let hint = help::suggestion(name)
-                    .map(|s| format!("; did you mean `{s}`?"))
-                    .unwrap_or_default();
+                let hint = help::suggestion(name).map(|s| format!("; did you mean `{s}`?")).unwrap_or_default();
                 return Err(CommandError::Failed(format!(
                     "no help about `{name}`{hint}\n`:help` lists what it explains"
                 )));
             }
         },
         _ => {
-            return Err(CommandError::Usage(
-                "ask about one name at a time".to_string(),
-            ));
+            return Err(CommandError::Usage("ask about one name at a time".to_string()));
         }
     }
     Ok(Flow::Continue)
 }
 
 fn render(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
-    let configured = Size {
-        width: session.settings().width,
-        height: session.settings().height,
-    };
+    let configured = Size { width: session.settings().width, height: session.settings().height };
     let size = match arguments {
-        [] => console
-            .preview
-            .map_or(configured, |preview| preview.render_size(configured)),
+        [] => console.preview.map_or(configured, |preview| preview.render_size(configured)),
         [width, height] => parse_size(width, height)?,
         _ => {
-            return Err(CommandError::Usage(
-                "give both a width and a height, or neither".to_string(),
-            ));
+            return Err(CommandError::Usage("give both a width and a height, or neither".to_string()));
         }
     };
     explain_defaults(session, console);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     match console.preview {
         Some(preview) => {
-            preview
-                .show(&image)
-                .map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
+            preview.show(&image).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
             console.say(format!("{size} in {}", duration(took)));
         }
-        None => console.say(format!(
-            "rendered {size} in {} (previews are off)",
-            duration(took)
-        )),
+        None => console.say(format!("rendered {size} in {} (previews are off)", duration(took))),
     }
     Ok(Flow::Continue)
 }
 
 fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     let (file, size) = match arguments {
-        [file] => (
-            file,
-            Size {
-                width: session.settings().width,
-                height: session.settings().height,
-            },
-        ),
+        [file] => (file, Size { width: session.settings().width, height: session.settings().height }),
         [file, width, height] => (file, parse_size(width, height)?),
         [] => {
-            return Err(CommandError::Usage(
-                "give the name of the file to write".to_string(),
-            ));
+            return Err(CommandError::Usage("give the name of the file to write".to_string()));
         }
         _ => {
-            return Err(CommandError::Usage(
-                "give a file name, then optionally a width and a height".to_string(),
-            ));
+            return Err(CommandError::Usage("give a file name, then optionally a width and a height".to_string()));
         }
     };
     let path = PathBuf::from(file);
     output_format(&path)?;
     explain_defaults(session, console);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    write_image(&path, &image)
-        .map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
-    console.say(format!(
-        "saved {} ({size}, {})",
-        path.display(),
-        duration(took)
-    ));
+    write_image(&path, &image).map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
+    console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)
 }
 
 fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     let [frames, file] = arguments else {
-        return Err(CommandError::Usage(
-            "give the number of frames and a file name".to_string(),
-        ));
+        return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
     };
     let frames = parse_count(frames, "the number of frames", 1..=MAX_FRAMES)?;
     let path = PathBuf::from(file);
     output_format(&path)?;
     explain_defaults(session, console);
-    let size = Size {
-        width: session.settings().width,
-        height: session.settings().height,
-    };
+    let size = Size { width: session.settings().width, height: session.settings().height };
     let started = Instant::now();
     let mut sink = FrameSink::new(&path, frames as usize);
-    let cannot_write =
-        |e: String| CommandError::Failed(format!("cannot write {}: {e}", path.display()));
-    render_frames(session, frames, size, console, &mut |frame, image| {
-        sink.add(frame, image).map_err(cannot_write)
-    })?;
+    let cannot_write = |e: String| CommandError::Failed(format!("cannot write {}: {e}", path.display()));
+    render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write))?;
     let written = sink.finish().map_err(cannot_write)?;
     let names = match written.as_slice() {
         [only] => only.display().to_string(),
@@ -434,10 +306,7 @@ fn time(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let previous = session.settings().time;
     match session.set_time(value) {
         Ok(false) => console.say(format!("time = {}", number(value))),
-        Ok(true) => console.say(format!(
-            "time = {} (the scene was computed again)",
-            number(value)
-        )),
+        Ok(true) => console.say(format!("time = {} (the scene was computed again)", number(value))),
         Err(diagnostic) => {
             console.diagnostic(&diagnostic, session.sources());
             return Err(CommandError::Failed(format!(
@@ -458,19 +327,11 @@ fn size(session: &mut Session, arguments: &[String], console: &mut Console) -> C
             session.set_size(size.width, size.height);
         }
         _ => {
-            return Err(CommandError::Usage(
-                "give a width and a height in pixels".to_string(),
-            ));
+            return Err(CommandError::Usage("give a width and a height in pixels".to_string()));
         }
     }
     let settings = session.settings();
-    console.say(format!(
-        "size = {}",
-        Size {
-            width: settings.width,
-            height: settings.height
-        }
-    ));
+    console.say(format!("size = {}", Size { width: settings.width, height: settings.height }));
     Ok(Flow::Continue)
 }
 
@@ -487,11 +348,7 @@ fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> 
 fn samples(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => {}
-        [value] => session.set_samples(parse_count(
-            value,
-            "the number of samples",
-            1..=MAX_SAMPLES,
-        )?),
+        [value] => session.set_samples(parse_count(value, "the number of samples", 1..=MAX_SAMPLES)?),
         _ => return Err(CommandError::Usage("give one whole number".to_string())),
     }
     console.say(format!("samples = {}", session.settings().samples));
@@ -512,28 +369,15 @@ fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 
 /// Runs the file at `path` into the session, reporting any failure on the
 /// console; `Err(())` if it failed (the session is then unchanged).
-pub(crate) fn load_reporting(
-    session: &mut Session,
-    path: &Path,
-    console: &mut Console,
-) -> Result<(), ()> {
-    load_file(session, path, console)
-        .map(|_| ())
-        .map_err(|error| report_error(error, session, console))
+pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
+    load_file(session, path, console).map(|_| ()).map_err(|error| report_error(error, session, console))
 }
 
 /// Runs the file at `path` into the session, as one input.
 fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        CommandError::Failed(format!(
-            "cannot read {}: {}",
-            path.display(),
-            plain_io_error(&e)
-        ))
-    })?;
-    let accepted = session
-        .load(&path.display().to_string(), &text)
-        .map_err(|d| CommandError::Program(Box::new(d)))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), plain_io_error(&e))))?;
+    let accepted = session.load(&path.display().to_string(), &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
     }
@@ -546,49 +390,28 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
 
 fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
-    let numbers: Vec<String> = session
-        .numbers()
-        .iter()
-        .map(|(name, value)| format!("{name} = {}", number(*value)))
-        .collect();
-    let objects: Vec<String> = session
-        .objects()
-        .iter()
-        .map(|(name, what)| format!("{name} ({what})"))
-        .collect();
-    let procedures: Vec<String> = session
-        .procedures()
-        .iter()
-        .map(|(name, params)| format!("{name}({})", params.join(", ")))
-        .collect();
+    let numbers: Vec<String> =
+        session.numbers().iter().map(|(name, value)| format!("{name} = {}", number(*value))).collect();
+    let objects: Vec<String> = session.objects().iter().map(|(name, what)| format!("{name} ({what})")).collect();
+    let procedures: Vec<String> =
+        session.procedures().iter().map(|(name, params)| format!("{name}({})", params.join(", "))).collect();
     console.say(format!("numbers:    {}", numbers.join(", ")));
     let no_objects = "none yet: `object ball = sphere ... end` names one";
     console.say(format!("objects:    {}", or_none(&objects, no_objects)));
     let no_procedures = "none yet: see `:help proc`";
-    console.say(format!(
-        "procedures: {}",
-        or_none(&procedures, no_procedures)
-    ));
+    console.say(format!("procedures: {}", or_none(&procedures, no_procedures)));
     Ok(Flow::Continue)
 }
 
 fn or_none(items: &[String], none: &str) -> String {
-    if items.is_empty() {
-        none.to_string()
-    } else {
-        items.join(", ")
-    }
+    if items.is_empty() { none.to_string() } else { items.join(", ") }
 }
 
 fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
     let scene = session.scene();
     let default = |given: bool| {
-        if given {
-            ""
-        } else {
-            " (default: none given yet)"
-        }
+        if given { "" } else { " (default: none given yet)" }
     };
     console.say(format!(
         "camera:   distance {}, angle {}{}",
@@ -596,11 +419,7 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
         number(scene.camera.angle),
         default(session.has_camera())
     ));
-    console.say(format!(
-        "ambient:  {}{}",
-        number(scene.ambient),
-        default(session.has_ambient())
-    ));
+    console.say(format!("ambient:  {}{}", number(scene.ambient), default(session.has_ambient())));
     console.say(format!("lights:   {}", scene.lights.len()));
     for (index, light) in scene.lights.iter().enumerate() {
         let d = light.direction;
@@ -622,20 +441,14 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
         counted(counts.boxes, "box")
     );
     if !scene.timed_primitives.is_empty() {
-        objects.push_str(&format!(
-            ", {} depending on time",
-            scene.timed_primitives.len()
-        ));
+        objects.push_str(&format!(", {} depending on time", scene.timed_primitives.len()));
     }
     console.say(objects);
     let s = session.settings();
     console.say(format!(
         "settings: time {}, size {}, depth {}, samples {}",
         number(s.time),
-        Size {
-            width: s.width,
-            height: s.height
-        },
+        Size { width: s.width, height: s.height },
         s.depth,
         s.samples
     ));
@@ -644,21 +457,12 @@ fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> 
 
 fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
-    match session
-        .undo()
-        .map_err(|d| CommandError::Program(Box::new(d)))?
-    {
+    match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
         Undone::Nothing => console.say("nothing to undo"),
         Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
-        Undone::Reset(count) => console.say(format!(
-            "took back the :reset ({} back)",
-            counted(count, "input")
-        )),
+        Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
     }
-    console.say(format!(
-        "{} in the scene",
-        counted(report::objects(&session.scene().counts()), "object")
-    ));
+    console.say(format!("{} in the scene", counted(report::objects(&session.scene().counts()), "object")));
     Ok(Flow::Continue)
 }
 
@@ -680,11 +484,7 @@ fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) ->
 /// an empty or unlit scene.
 fn explain_defaults(session: &Session, console: &mut Console) {
     let scene = session.scene();
-    let camera = format!(
-        "camera (distance {}, angle {})",
-        number(scene.camera.distance),
-        number(scene.camera.angle)
-    );
+    let camera = format!("camera (distance {}, angle {})", number(scene.camera.distance), number(scene.camera.angle));
     let ambient = format!("ambient light ({})", number(scene.ambient));
     let set_camera = "set yours with `camera distance 12 angle 0.8 end`";
     match (session.has_camera(), session.has_ambient()) {
@@ -709,11 +509,7 @@ fn render_scene(
 ) -> Result<(RgbImage, Duration), CommandError> {
     let started = Instant::now();
     let total = size.width as usize * size.height as usize;
-    let progress = Progress {
-        visible: console.progress,
-        label: "rendering",
-        total,
-    };
+    let progress = Progress { visible: console.progress, label: "rendering", total };
     let armed = console.cancel.map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
@@ -740,11 +536,7 @@ fn render_frames(
     let timed = session.depends_on_time();
     let rendered_frames = if timed { frames as usize } else { 1 };
     let total = rendered_frames * size.width as usize * size.height as usize;
-    let progress = Progress {
-        visible: console.progress,
-        label: "animating",
-        total,
-    };
+    let progress = Progress { visible: console.progress, label: "animating", total };
     let armed = console.cancel.map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
@@ -761,17 +553,11 @@ fn render_frames(
             }
             return Ok(());
         }
-        let first = session
-            .replay_at(1.0, false)
-            .map_err(|d| frame_failure(d, 1))?
-            .into_scene();
+        let first = session.replay_at(1.0, false).map_err(|d| frame_failure(d, 1))?.into_scene();
         let first_prepared = Prepared::new(&first);
         sink(1, render(&first, &first_prepared)?)?;
         for frame in 2..=frames {
-            let scene = session
-                .replay_at(f64::from(frame), true)
-                .map_err(|d| frame_failure(d, frame))?
-                .into_scene();
+            let scene = session.replay_at(f64::from(frame), true).map_err(|d| frame_failure(d, frame))?.into_scene();
             let static_part = Arc::clone(first_prepared.static_part());
             let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
             sink(frame as usize, render(&scene, &prepared)?)?;
@@ -787,9 +573,7 @@ fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {
 
 fn render_failure(error: RenderError) -> CommandError {
     match error {
-        RenderError::Cancelled => {
-            CommandError::Cancelled("render cancelled; the session is as it was".to_string())
-        }
+        RenderError::Cancelled => CommandError::Cancelled("render cancelled; the session is as it was".to_string()),
     }
 }
 
@@ -805,11 +589,7 @@ fn duration(took: Duration) -> String {
 fn first_line(text: &str) -> String {
     let mut lines = text.lines().filter(|line| !line.trim().is_empty());
     let first = lines.next().unwrap_or("").trim().to_string();
-    if lines.next().is_some() {
-        format!("{first} ...")
-    } else {
-        first
-    }
+    if lines.next().is_some() { format!("{first} ...") } else { first }
 }
 
 /// An I/O error in plain words, without the OS error number.
@@ -827,21 +607,12 @@ mod tests {
 
     #[test]
     fn arguments_split_on_spaces_and_keep_quoted_ones() {
-        assert_eq!(
-            split_arguments(" :save  a.png 10 20 ").unwrap(),
-            vec![":save", "a.png", "10", "20"]
-        );
-        assert_eq!(
-            split_arguments(":load \"my scene.ray\"").unwrap(),
-            vec![":load", "my scene.ray"]
-        );
+        assert_eq!(split_arguments(" :save  a.png 10 20 ").unwrap(), vec![":save", "a.png", "10", "20"]);
+        assert_eq!(split_arguments(":load \"my scene.ray\"").unwrap(), vec![":load", "my scene.ray"]);
         assert_eq!(split_arguments(":load \"\"").unwrap(), vec![":load", ""]);
         assert!(split_arguments(":load \"oops").is_err());
         if cfg!(not(windows)) {
-            assert_eq!(
-                split_arguments(r":load my\ scene.ray").unwrap(),
-                vec![":load", "my scene.ray"]
-            );
+            assert_eq!(split_arguments(r":load my\ scene.ray").unwrap(), vec![":load", "my scene.ray"]);
         }
     }
 

@@ -26,14 +26,7 @@ pub(crate) struct Console<'a> {
 impl<'a> Console<'a> {
     /// A plain console: no colours, previews, progress bars or Ctrl-C handling.
     pub(crate) fn plain(out: &'a mut dyn Write, err: &'a mut dyn Write) -> Console<'a> {
-        Console {
-            out,
-            err,
-            color: false,
-            preview: None,
-            progress: false,
-            cancel: None,
-        }
+        Console { out, err, color: false, preview: None, progress: false, cancel: None }
     }
 
     /// Writes one line of information. Output errors (a closed pipe) are
@@ -68,10 +61,6 @@ impl<'a> Console<'a> {
 
     /// `text` in the ANSI style `code` when colours are on.
     pub(crate) fn paint(&self, text: &str, code: &str) -> String {
-        if self.color {
-            format!("\x1b[{code}m{text}\x1b[0m")
-        } else {
-            text.to_string()
-        }
+        if self.color { format!("\x1b[{code}m{text}\x1b[0m") } else { text.to_string() }
     }
 }

@@ -41,12 +41,7 @@ pub(crate) struct RayHelper {
 impl RayHelper {
     /// A helper; `color` turns syntax colouring on.
     pub(crate) fn new(color: bool) -> RayHelper {
-        RayHelper {
-            color,
-            pending: String::new(),
-            names: Vec::new(),
-            files: FilenameCompleter::new(),
-        }
+        RayHelper { color, pending: String::new(), names: Vec::new(), files: FilenameCompleter::new() }
     }
 
     /// Tells the helper the lines of the current input entered so far.
@@ -59,25 +54,14 @@ impl RayHelper {
         self.names = name_candidates(vocabulary);
     }
 
-    fn complete_command(
-        &self,
-        line: &str,
-        pos: usize,
-        ctx: &Context<'_>,
-    ) -> rustyline::Result<(usize, Vec<Pair>)> {
+    fn complete_command(&self, line: &str, pos: usize, ctx: &Context<'_>) -> rustyline::Result<(usize, Vec<Pair>)> {
         let before = &line[..pos];
         let start = before.len() - before.trim_start().len();
         let command_end = before[start..].find(char::is_whitespace).map(|i| start + i);
         let Some(command_end) = command_end else {
             let typed = &before[start..];
-            let names = COMMANDS
-                .iter()
-                .map(|c| c.name)
-                .filter(|name| name.starts_with(typed));
-            return Ok((
-                start,
-                names.map(|name| plain(name, &format!("{name} "))).collect(),
-            ));
+            let names = COMMANDS.iter().map(|c| c.name).filter(|name| name.starts_with(typed));
+            return Ok((start, names.map(|name| plain(name, &format!("{name} "))).collect()));
         };
         let command = &before[start..command_end];
         if FILE_COMMANDS.contains(&command) {
@@ -86,15 +70,10 @@ impl RayHelper {
         if command == ":help" {
             let word_start = word_start(before);
             let typed = &before[word_start..];
-            let mut topics: Vec<&str> = help::all_names()
-                .filter(|name| name.starts_with(typed))
-                .collect();
+            let mut topics: Vec<&str> = help::all_names().filter(|name| name.starts_with(typed)).collect();
             topics.sort_unstable();
             topics.dedup();
-            return Ok((
-                word_start,
-                topics.into_iter().map(|name| plain(name, name)).collect(),
-            ));
+            return Ok((word_start, topics.into_iter().map(|name| plain(name, name)).collect()));
         }
         Ok((pos, Vec::new()))
     }
@@ -106,10 +85,8 @@ impl RayHelper {
             return (pos, Vec::new());
         }
         let keywords = KEYWORDS.iter().map(|k| keyword_candidate(k));
-        let mut candidates: Vec<Pair> = keywords
-            .chain(self.names.iter().cloned())
-            .filter(|pair| pair.replacement.starts_with(typed))
-            .collect();
+        let mut candidates: Vec<Pair> =
+            keywords.chain(self.names.iter().cloned()).filter(|pair| pair.replacement.starts_with(typed)).collect();
         candidates.sort_by(|a, b| a.display.cmp(&b.display));
         candidates.dedup_by(|a, b| a.display == b.display);
         (start, candidates)
@@ -130,41 +107,25 @@ pub(crate) fn name_candidates(vocabulary: &Vocabulary) -> Vec<Pair> {
 /// A keyword followed by a space, or a function with its parenthesis.
 fn keyword_candidate(keyword: &str) -> Pair {
     if FUNCTIONS.contains(&keyword) {
-        Pair {
-            display: format!("{keyword}(x)"),
-            replacement: format!("{keyword}("),
-        }
+        Pair { display: format!("{keyword}(x)"), replacement: format!("{keyword}(") }
     } else {
         plain(keyword, &format!("{keyword} "))
     }
 }
 
 fn plain(display: &str, replacement: &str) -> Pair {
-    Pair {
-        display: display.to_string(),
-        replacement: replacement.to_string(),
-    }
+    Pair { display: display.to_string(), replacement: replacement.to_string() }
 }
 
 /// Where the name that ends at the end of `before` starts.
 fn word_start(before: &str) -> usize {
-    before
-        .char_indices()
-        .rev()
-        .take_while(|(_, c)| is_word_char(*c))
-        .last()
-        .map_or(before.len(), |(i, _)| i)
+    before.char_indices().rev().take_while(|(_, c)| is_word_char(*c)).last().map_or(before.len(), |(i, _)| i)
 }
 
 impl Completer for RayHelper {
     type Candidate = Pair;
 
-    fn complete(
-        &self,
-        line: &str,
-        pos: usize,
-        ctx: &Context<'_>,
-    ) -> rustyline::Result<(usize, Vec<Pair>)> {
+    fn complete(&self, line: &str, pos: usize, ctx: &Context<'_>) -> rustyline::Result<(usize, Vec<Pair>)> {
         if is_command(line) {
             return self.complete_command(line, pos, ctx);
         }
@@ -183,16 +144,8 @@ impl Validator for RayHelper {
         if !several_lines || is_command(input) {
             return Ok(ValidationResult::Valid(None));
         }
-        let whole = if self.pending.is_empty() {
-            input.to_string()
-        } else {
-            format!("{}\n{input}", self.pending)
-        };
-        Ok(if is_incomplete(&whole) {
-            ValidationResult::Incomplete
-        } else {
-            ValidationResult::Valid(None)
-        })
+        let whole = if self.pending.is_empty() { input.to_string() } else { format!("{}\n{input}", self.pending) };
+        Ok(if is_incomplete(&whole) { ValidationResult::Incomplete } else { ValidationResult::Valid(None) })
     }
 }
 
@@ -204,20 +157,12 @@ impl Highlighter for RayHelper {
         Cow::Owned(colorize(line))
     }
 
-    fn highlight_prompt<'b, 's: 'b, 'p: 'b>(
-        &'s self,
-        prompt: &'p str,
-        _default: bool,
-    ) -> Cow<'b, str> {
+    fn highlight_prompt<'b, 's: 'b, 'p: 'b>(&'s self, prompt: &'p str, _default: bool) -> Cow<'b, str> {
         if !self.color {
             return Cow::Borrowed(prompt);
         }
         // A continuation prompt (`...sphere> `) in yellow, the first one in green.
-        let code = if self.pending.is_empty() {
-            "1;32"
-        } else {
-            "33"
-        };
+        let code = if self.pending.is_empty() { "1;32" } else { "33" };
         Cow::Owned(format!("\x1b[{code}m{prompt}\x1b[0m"))
     }
 
@@ -258,23 +203,15 @@ mod tests {
     fn complete(helper: &RayHelper, line: &str) -> (usize, Vec<String>) {
         let history = DefaultHistory::new();
         let ctx = Context::new(&history);
-        let (start, pairs) = helper
-            .complete(line, line.len(), &ctx)
-            .expect("completion does not fail");
+        let (start, pairs) = helper.complete(line, line.len(), &ctx).expect("completion does not fail");
         (start, pairs.into_iter().map(|p| p.display).collect())
     }
 
     #[test]
     fn commands_complete_after_a_colon() {
         let helper = RayHelper::new(false);
-        assert_eq!(
-            complete(&helper, ":re"),
-            (0, vec![":render".to_string(), ":reset".to_string()])
-        );
-        assert_eq!(
-            complete(&helper, ":help sph"),
-            (6, vec!["sphere".to_string()])
-        );
+        assert_eq!(complete(&helper, ":re"), (0, vec![":render".to_string(), ":reset".to_string()]));
+        assert_eq!(complete(&helper, ":help sph"), (6, vec!["sphere".to_string()]));
     }
 
     #[test]
@@ -289,21 +226,10 @@ mod tests {
         let found = complete(&helper, "let a = sp").1;
         assert_eq!(found, ["sphere", "spin", "spiral(n, r)"].map(String::from));
         let found = complete(&helper, "let a = s").1;
-        let expected = [
-            "scale",
-            "shift",
-            "sin(x)",
-            "sphere",
-            "spin",
-            "spiral(n, r)",
-            "sqrt(x)",
-        ];
+        let expected = ["scale", "shift", "sin(x)", "sphere", "spin", "spiral(n, r)", "sqrt(x)"];
         assert_eq!(found, expected.map(String::from));
         assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
-        assert_eq!(
-            complete(&helper, "spir").1,
-            vec!["spiral(n, r)".to_string()]
-        );
+        assert_eq!(complete(&helper, "spir").1, vec!["spiral(n, r)".to_string()]);
     }
 
     #[test]
@@ -311,10 +237,8 @@ mod tests {
         let line = "put sphere # ball";
         let painted = colorize(line);
         assert!(painted.contains("\x1b[1;34mput\x1b[0m"));
-        let stripped: String = painted
-            .split('\x1b')
-            .map(|part| part.split_once('m').map_or(part, |(_, rest)| rest))
-            .collect();
+        let stripped: String =
+            painted.split('\x1b').map(|part| part.split_once('m').map_or(part, |(_, rest)| rest)).collect();
         assert_eq!(stripped, line);
     }
 }

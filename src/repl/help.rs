@@ -39,23 +39,14 @@ names, commands and file names.
 const GROUPS: &[(&str, &[&str])] = &[
     ("Scene set-up", &["camera", "ambient", "light"]),
     ("Shapes", &["sphere", "plane", "box", "texture"]),
-    (
-        "Moving shapes",
-        &["translate", "rotate", "scale", "group", "by", "rotation"],
-    ),
-    (
-        "Building the scene",
-        &["put", "object", "let", "proc", "if", "conditions", "end"],
-    ),
-    (
-        "Numbers",
-        &["numbers", "time", "functions", "pi", "comments"],
-    ),
+    ("Moving shapes", &["translate", "rotate", "scale", "group", "by", "rotation"]),
+    ("Building the scene", &["put", "object", "let", "proc", "if", "conditions", "end"]),
+    ("Numbers", &["numbers", "time", "functions", "pi", "comments"]),
     (
         "Commands",
         &[
-            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":load",
-            ":env", ":scene", ":undo", ":reset", ":quit",
+            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":load", ":env", ":scene",
+            ":undo", ":reset", ":quit",
         ],
     ),
 ];
@@ -535,24 +526,19 @@ Example:
 
 /// The page for `name` (a topic or one of its aliases), if there is one.
 pub(crate) fn find(name: &str) -> Option<&'static Topic> {
-    TOPICS
-        .iter()
-        .find(|topic| topic.name == name || topic.aliases.contains(&name))
-        .or_else(|| {
-            // `:help :sphere` or `:help help`: try with and without the colon.
-            let other = match name.strip_prefix(':') {
-                Some(bare) => bare.to_string(),
-                None => format!(":{name}"),
-            };
-            TOPICS.iter().find(|topic| topic.name == other)
-        })
+    TOPICS.iter().find(|topic| topic.name == name || topic.aliases.contains(&name)).or_else(|| {
+        // `:help :sphere` or `:help help`: try with and without the colon.
+        let other = match name.strip_prefix(':') {
+            Some(bare) => bare.to_string(),
+            None => format!(":{name}"),
+        };
+        TOPICS.iter().find(|topic| topic.name == other)
+    })
 }
 
 /// Every name `:help` knows, for completion and suggestions.
 pub(crate) fn all_names() -> impl Iterator<Item = &'static str> {
-    TOPICS
-        .iter()
-        .flat_map(|topic| std::iter::once(topic.name).chain(topic.aliases.iter().copied()))
+    TOPICS.iter().flat_map(|topic| std::iter::once(topic.name).chain(topic.aliases.iter().copied()))
 }
 
 /// The known name closest to a misspelt one.
@@ -594,13 +580,8 @@ mod tests {
     #[test]
     fn every_command_has_a_page_with_an_example() {
         for command in COMMANDS {
-            let topic =
-                find(command.name).unwrap_or_else(|| panic!("no help for `{}`", command.name));
-            assert!(
-                topic.text.contains("Example"),
-                "no example for `{}`",
-                command.name
-            );
+            let topic = find(command.name).unwrap_or_else(|| panic!("no help for `{}`", command.name));
+            assert!(topic.text.contains("Example"), "no example for `{}`", command.name);
         }
     }
 
@@ -618,14 +599,8 @@ mod tests {
 
     /// The program text of a page's example (its command lines left out).
     fn example_program(topic: &Topic) -> String {
-        let example = topic
-            .text
-            .split_once("Example")
-            .map_or("", |(_, rest)| rest);
-        let lines = example
-            .lines()
-            .skip(1)
-            .filter(|line| !line.trim_start().starts_with(':'));
+        let example = topic.text.split_once("Example").map_or("", |(_, rest)| rest);
+        let lines = example.lines().skip(1).filter(|line| !line.trim_start().starts_with(':'));
         lines.collect::<Vec<_>>().join("\n")
     }
 
@@ -635,10 +610,7 @@ mod tests {
         for topic in TOPICS {
             let program = example_program(topic);
             if let Err(error) = parse_items(SourceId::default(), &program) {
-                panic!(
-                    "the example of `{}` does not parse: {}\n{program}",
-                    topic.name, error.message
-                );
+                panic!("the example of `{}` does not parse: {}\n{program}", topic.name, error.message);
             }
         }
     }

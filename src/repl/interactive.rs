@@ -71,12 +71,7 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     if let Some(path) = &options.initial_file {
         let _ = commands::load_reporting(&mut session, path, &mut console);
     }
-    let mut repl = Repl {
-        editor,
-        session,
-        history,
-        inputs: 0,
-    };
+    let mut repl = Repl { editor, session, history, inputs: 0 };
     repl.run(&mut console)
 }
 
@@ -94,11 +89,7 @@ impl Repl {
         let mut pending = String::new();
         loop {
             self.refresh_helper(&pending);
-            let prompt = if pending.is_empty() {
-                PROMPT.to_string()
-            } else {
-                continuation_prompt(&pending)
-            };
+            let prompt = if pending.is_empty() { PROMPT.to_string() } else { continuation_prompt(&pending) };
             match self.editor.readline(&prompt) {
                 Ok(line) => {
                     // Commands work in the middle of an unfinished input too,
@@ -164,11 +155,7 @@ fn new_editor(color: bool) -> rustyline::Result<Editor<RayHelper, FileHistory>> 
         .history_ignore_dups(true)?
         .history_ignore_space(true)
         .completion_type(CompletionType::List)
-        .color_mode(if color {
-            ColorMode::Enabled
-        } else {
-            ColorMode::Disabled
-        })
+        .color_mode(if color { ColorMode::Enabled } else { ColorMode::Disabled })
         .build();
     let mut editor = Editor::with_config(config)?;
     editor.set_helper(Some(RayHelper::new(color)));

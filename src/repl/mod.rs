@@ -72,18 +72,9 @@ pub fn run(options: &SessionOptions) -> ExitCode {
         }
     } else {
         let stdin = std::io::stdin();
-        run_script(
-            stdin.lock(),
-            &mut std::io::stdout(),
-            &mut std::io::stderr(),
-            options,
-        )
+        run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
     };
-    if code == 0 {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    }
+    if code == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE }
 }
 
 /// Runs one input of program text and prints what it did, or its error.
@@ -108,9 +99,7 @@ pub(crate) fn handle_input(
         Err(error) => {
             console.diagnostic(&error, session.sources());
             if let Some(command) = bare_command(text) {
-                console.note(format!(
-                    "commands start with a colon: did you mean `{command}`?"
-                ));
+                console.note(format!("commands start with a colon: did you mean `{command}`?"));
             }
             Err(())
         }
@@ -124,10 +113,7 @@ fn bare_command(text: &str) -> Option<String> {
         "exit" | "q" => ":quit".to_string(),
         word => format!(":{word}"),
     };
-    commands::COMMANDS
-        .iter()
-        .any(|c| c.name == command)
-        .then_some(command)
+    commands::COMMANDS.iter().any(|c| c.name == command).then_some(command)
 }
 
 /// A session set up with `options`' settings and limits.

@@ -32,14 +32,7 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     fn default() -> RenderSettings {
-        RenderSettings {
-            width: 640,
-            height: 480,
-            depth: 5,
-            samples: 1,
-            time: 0.0,
-            screen: Screen::Centered,
-        }
+        RenderSettings { width: 640, height: 480, depth: 5, samples: 1, time: 0.0, screen: Screen::Centered }
     }
 }
 
@@ -89,10 +82,7 @@ pub(crate) fn render_image(
     let count = |pixels: u64| {
         pixels_done.fetch_add(pixels as usize, Ordering::Relaxed);
     };
-    let control = RenderControl {
-        progress: Some(&count),
-        cancel: Some(cancel),
-    };
+    let control = RenderControl { progress: Some(&count), cancel: Some(cancel) };
     match render(scene, prepared, &options, &control) {
         Ok((image, _stats)) => Ok(image),
         Err(Cancelled) => Err(RenderError::Cancelled),
@@ -122,9 +112,7 @@ impl Progress<'_> {
         let counter = AtomicUsize::new(0);
         let finished = AtomicBool::new(false);
         thread::scope(|scope| {
-            let watcher = self
-                .visible
-                .then(|| scope.spawn(|| self.watch(&counter, &finished)));
+            let watcher = self.visible.then(|| scope.spawn(|| self.watch(&counter, &finished)));
             let result = job(&counter);
             finished.store(true, Ordering::SeqCst);
             // Wake the watcher now rather than at its next tick: a fast
@@ -157,11 +145,8 @@ impl Progress<'_> {
     }
 
     fn new_bar(&self) -> ProgressBar {
-        let bar =
-            ProgressBar::with_draw_target(Some(self.total as u64), ProgressDrawTarget::stderr());
-        if let Ok(style) =
-            ProgressStyle::with_template("{msg} [{bar:30}] {percent}% ({elapsed}, Ctrl-C cancels)")
-        {
+        let bar = ProgressBar::with_draw_target(Some(self.total as u64), ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:30}] {percent}% ({elapsed}, Ctrl-C cancels)") {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message(self.label.to_string());
@@ -258,10 +243,7 @@ mod tests {
     #[test]
     fn formats_follow_the_extension() {
         assert_eq!(ImageFormat::of(Path::new("a.PNG")), Some(ImageFormat::Png));
-        assert_eq!(
-            ImageFormat::of(Path::new("dir/a.ppm")),
-            Some(ImageFormat::Ppm)
-        );
+        assert_eq!(ImageFormat::of(Path::new("dir/a.ppm")), Some(ImageFormat::Ppm));
         assert_eq!(ImageFormat::of(Path::new("a.gif")), Some(ImageFormat::Gif));
         assert_eq!(ImageFormat::of(Path::new("a.jpg")), None);
         assert_eq!(ImageFormat::of(Path::new("a")), None);
@@ -274,70 +256,35 @@ mod tests {
     #[test]
     fn a_raised_cancel_flag_stops_the_render() {
         let scene = empty_scene();
-        let size = Size {
-            width: 64,
-            height: 64,
-        };
+        let size = Size { width: 64, height: 64 };
         let settings = RenderSettings::default();
         let cancel = AtomicBool::new(true);
         let pixels = AtomicUsize::new(0);
-        let result = render_image(
-            &scene,
-            &Prepared::new(&scene),
-            size,
-            &settings,
-            &cancel,
-            &pixels,
-        );
+        let result = render_image(&scene, &Prepared::new(&scene), size, &settings, &cancel, &pixels);
         assert_eq!(result, Err(RenderError::Cancelled));
     }
 
     #[test]
     fn a_render_counts_every_pixel() {
         let scene = empty_scene();
-        let size = Size {
-            width: 40,
-            height: 20,
-        };
+        let size = Size { width: 40, height: 20 };
         let (cancel, pixels) = (AtomicBool::new(false), AtomicUsize::new(0));
-        let image = render_image(
-            &scene,
-            &Prepared::new(&scene),
-            size,
-            &RenderSettings::default(),
-            &cancel,
-            &pixels,
-        );
+        let image = render_image(&scene, &Prepared::new(&scene), size, &RenderSettings::default(), &cancel, &pixels);
         assert_eq!(image.map(|i| i.dimensions()), Ok((40, 20)));
         assert_eq!(pixels.load(Ordering::Relaxed), 800);
     }
 
     #[test]
     fn a_visible_progress_does_not_delay_a_fast_job() {
-        let progress = Progress {
-            visible: true,
-            label: "test",
-            total: 1,
-        };
+        let progress = Progress { visible: true, label: "test", total: 1 };
         let started = Instant::now();
         progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed));
-        assert!(
-            started.elapsed() < PROGRESS_TICK,
-            "took {:?}",
-            started.elapsed()
-        );
+        assert!(started.elapsed() < PROGRESS_TICK, "took {:?}", started.elapsed());
     }
 
     #[test]
     fn progress_runs_the_job_and_returns_its_result() {
-        let progress = Progress {
-            visible: false,
-            label: "test",
-            total: 1,
-        };
-        assert_eq!(
-            progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed) + 41),
-            41
-        );
+        let progress = Progress { visible: false, label: "test", total: 1 };
+        assert_eq!(progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed) + 41), 41);
     }
 }

@@ -27,11 +27,7 @@ pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<Strin
         ));
     }
     if objects(&after) > objects(&before) {
-        lines.push(format!(
-            "put {} ({} in the scene)",
-            added(&before, &after),
-            counted(objects(&after), "object")
-        ));
+        lines.push(format!("put {} ({} in the scene)", added(&before, &after), counted(objects(&after), "object")));
     } else if has_call(accepted) {
         lines.push("nothing was put".to_string());
     }
@@ -56,10 +52,7 @@ fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
             Item::Ambient(_) => lines.push(format!("ambient light: {}", number(scene.ambient))),
             Item::Proc(proc_def) => {
                 let name = &*proc_def.name.name;
-                let known = accepted
-                    .procedures_before
-                    .iter()
-                    .any(|before| &**before == name);
+                let known = accepted.procedures_before.iter().any(|before| &**before == name);
                 let verb = if known { "redefined" } else { "defined" };
                 let params: Vec<&str> = proc_def.params.iter().map(|p| &*p.name).collect();
                 lines.push(format!("{verb} proc {name}({})", params.join(", ")));
@@ -70,9 +63,7 @@ fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
                     None => format!("{} defined", name.name),
                 }),
                 InstrKind::Object(name, _) => {
-                    let what = session
-                        .describe_object(&name.name)
-                        .unwrap_or_else(|| "object".to_string());
+                    let what = session.describe_object(&name.name).unwrap_or_else(|| "object".to_string());
                     lines.push(format!("object {} = {what}", name.name));
                 }
                 InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) => {}
@@ -91,9 +82,7 @@ fn definition_names(accepted: &Accepted) -> Vec<String> {
             Item::Ambient(_) => names.push("the ambient light".to_string()),
             Item::Proc(proc_def) => names.push(format!("proc {}", proc_def.name.name)),
             Item::Instr(instr) => match &instr.kind {
-                InstrKind::Let(name, _) | InstrKind::Object(name, _) => {
-                    names.push(name.name.to_string())
-                }
+                InstrKind::Let(name, _) | InstrKind::Object(name, _) => names.push(name.name.to_string()),
                 _ => {}
             },
             Item::Light(_) => {}
@@ -144,11 +133,7 @@ pub(crate) fn number(value: f64) -> String {
     }
     let text = format!("{value:.6}");
     let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "0" || text == "-0" {
-        format!("{value:e}")
-    } else {
-        text.to_string()
-    }
+    if text == "0" || text == "-0" { format!("{value:e}") } else { text.to_string() }
 }
 
 #[cfg(test)]
@@ -171,12 +156,7 @@ mod tests {
         assert_eq!(counted(2, "box"), "2 boxes");
         assert_eq!(counted(0, "light"), "0 lights");
         let before = Counts::default();
-        let after = Counts {
-            spheres: 2,
-            planes: 1,
-            boxes: 3,
-            lights: 0,
-        };
+        let after = Counts { spheres: 2, planes: 1, boxes: 3, lights: 0 };
         assert_eq!(added(&before, &after), "2 spheres, 1 plane and 3 boxes");
         assert_eq!(added(&before, &Counts { boxes: 1, ..before }), "1 box");
     }

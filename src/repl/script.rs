@@ -18,20 +18,10 @@ const SCRIPT_NAME: &str = "<stdin>";
 /// diagnostics to `err`. The first error stops the script unless
 /// `options.keep_going`; `options.initial_file` is loaded first. Returns the
 /// exit status: 0 if everything succeeded, 1 otherwise.
-pub fn run_script(
-    input: impl BufRead,
-    out: &mut dyn Write,
-    err: &mut dyn Write,
-    options: &SessionOptions,
-) -> i32 {
+pub fn run_script(input: impl BufRead, out: &mut dyn Write, err: &mut dyn Write, options: &SessionOptions) -> i32 {
     let mut session = new_session(options);
     let mut console = Console::plain(out, err);
-    let mut script = Script {
-        session: &mut session,
-        console: &mut console,
-        keep_going: options.keep_going,
-        errors: 0,
-    };
+    let mut script = Script { session: &mut session, console: &mut console, keep_going: options.keep_going, errors: 0 };
     if let Some(path) = &options.initial_file {
         let loaded = commands::load_reporting(script.session, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
@@ -64,9 +54,7 @@ impl Script<'_, '_> {
         for (index, line) in input.lines().enumerate() {
             let number = index + 1;
             let Ok(line) = line else {
-                self.console.error(format!(
-                    "line {number} of the script cannot be read as text"
-                ));
+                self.console.error(format!("line {number} of the script cannot be read as text"));
                 self.errors += 1;
                 return;
             };
@@ -100,13 +88,7 @@ impl Script<'_, '_> {
         if text.trim().is_empty() {
             return Step::Next;
         }
-        let result = handle_input(
-            self.session,
-            self.console,
-            SCRIPT_NAME,
-            text,
-            first_line.saturating_sub(1),
-        );
+        let result = handle_input(self.session, self.console, SCRIPT_NAME, text, first_line.saturating_sub(1));
         self.after(result.is_ok())
     }
 
@@ -123,10 +105,6 @@ impl Script<'_, '_> {
             return Step::Next;
         }
         self.errors += 1;
-        if self.keep_going {
-            Step::Next
-        } else {
-            Step::Stop
-        }
+        if self.keep_going { Step::Next } else { Step::Stop }
     }
 }

@@ -97,12 +97,7 @@ impl Session {
     /// `line_offset` is the number of lines before it in its script. On
     /// error the session is unchanged (SPEC 7).
     #[allow(clippy::result_large_err)] // `Diagnostic` by value is the shared interface
-    pub(crate) fn submit(
-        &mut self,
-        name: &str,
-        text: &str,
-        line_offset: usize,
-    ) -> Result<Accepted, Diagnostic> {
+    pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
         let program = parse_items(source, text)?;
         self.run(text.to_string(), program)
@@ -132,18 +127,10 @@ impl Session {
         self.descriptions.record(&program);
         let program = Rc::new(program);
         if !program.items.is_empty() {
-            self.history.push(Input {
-                text,
-                program: Rc::clone(&program),
-            });
+            self.history.push(Input { text, program: Rc::clone(&program) });
             self.undo_steps.push(UndoStep::Input);
         }
-        Ok(Accepted {
-            program,
-            warnings,
-            procedures_before,
-            counts_before,
-        })
+        Ok(Accepted { program, warnings, procedures_before, counts_before })
     }
 
     /// Takes back the last input, or the last `:reset`.
@@ -154,9 +141,7 @@ impl Session {
         };
         let mut history = self.history.clone();
         let undone = match &step {
-            UndoStep::Input => {
-                Undone::Input(history.pop().map(|input| input.text).unwrap_or_default())
-            }
+            UndoStep::Input => Undone::Input(history.pop().map(|input| input.text).unwrap_or_default()),
             UndoStep::Reset(cleared) => {
                 history = cleared.clone();
                 Undone::Reset(history.len())
@@ -204,11 +189,7 @@ impl Session {
     /// `skip_static`, the scene holds only the primitives that depend on
     /// `time` (the other frames of an animation).
     #[allow(clippy::result_large_err)]
-    pub(crate) fn replay_at(
-        &self,
-        time: f64,
-        skip_static: bool,
-    ) -> Result<Interpreter, Diagnostic> {
+    pub(crate) fn replay_at(&self, time: f64, skip_static: bool) -> Result<Interpreter, Diagnostic> {
         let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
         self.replay(interpreter, &self.history)
     }
@@ -229,11 +210,7 @@ impl Session {
     }
 
     #[allow(clippy::result_large_err)]
-    fn replay(
-        &self,
-        mut interpreter: Interpreter,
-        history: &[Input],
-    ) -> Result<Interpreter, Diagnostic> {
+    fn replay(&self, mut interpreter: Interpreter, history: &[Input]) -> Result<Interpreter, Diagnostic> {
         for input in history {
             interpreter.run_with_sources(&input.program, &self.sources)?;
         }
@@ -295,10 +272,7 @@ impl Session {
     /// The global numbers and their values, by name.
     pub(crate) fn numbers(&self) -> Vec<(Rc<str>, f64)> {
         let names = self.interpreter.global_names();
-        names
-            .into_iter()
-            .filter_map(|name| Some((Rc::clone(&name), self.number_shown(&name)?)))
-            .collect()
+        names.into_iter().filter_map(|name| Some((Rc::clone(&name), self.number_shown(&name)?))).collect()
     }
 
     /// The value of the global number `name` as the session shows it: after
@@ -307,20 +281,13 @@ impl Session {
     fn number_shown(&self, name: &str) -> Option<f64> {
         let value = self.global_number(name)?;
         let stale_time = name == "time" && value == self.interpreter_time;
-        Some(if stale_time {
-            self.settings.time
-        } else {
-            value
-        })
+        Some(if stale_time { self.settings.time } else { value })
     }
 
     /// The global objects and what they are, by name.
     pub(crate) fn objects(&self) -> Vec<(Rc<str>, String)> {
         let names = self.interpreter.global_names();
-        names
-            .into_iter()
-            .filter_map(|name| Some((Rc::clone(&name), self.describe_object(&name)?)))
-            .collect()
+        names.into_iter().filter_map(|name| Some((Rc::clone(&name), self.describe_object(&name)?))).collect()
     }
 
     /// What the global object `name` is (`sphere`, `group of 2 objects`,
@@ -340,13 +307,7 @@ impl Session {
         names
             .into_iter()
             .filter_map(|name| {
-                let params = self
-                    .interpreter
-                    .procedure(&name)?
-                    .params
-                    .iter()
-                    .map(|p| Rc::clone(&p.name))
-                    .collect();
+                let params = self.interpreter.procedure(&name)?.params.iter().map(|p| Rc::clone(&p.name)).collect();
                 Some((name, params))
             })
             .collect()
@@ -355,21 +316,11 @@ impl Session {
     /// The names completion offers.
     pub(crate) fn vocabulary(&self) -> Vocabulary {
         Vocabulary {
-            variables: self
-                .interpreter
-                .global_names()
-                .iter()
-                .map(|name| name.to_string())
-                .collect(),
+            variables: self.interpreter.global_names().iter().map(|name| name.to_string()).collect(),
             procedures: self
                 .procedures()
                 .into_iter()
-                .map(|(name, params)| {
-                    (
-                        name.to_string(),
-                        params.iter().map(|p| p.to_string()).collect(),
-                    )
-                })
+                .map(|(name, params)| (name.to_string(), params.iter().map(|p| p.to_string()).collect()))
                 .collect(),
         }
     }

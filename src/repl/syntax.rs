@@ -45,19 +45,8 @@ pub(crate) const KEYWORDS: &[&str] = &[
 ];
 
 /// Keywords that open a construct closed by `end`.
-const OPENERS: &[&str] = &[
-    "camera",
-    "light",
-    "proc",
-    "sphere",
-    "plane",
-    "box",
-    "translate",
-    "rotate",
-    "scale",
-    "group",
-    "if",
-];
+const OPENERS: &[&str] =
+    &["camera", "light", "proc", "sphere", "plane", "box", "translate", "rotate", "scale", "group", "if"];
 
 /// Names the language gives a meaning to without reserving them as keywords
 /// (plus the built-in functions and `pi`, coloured alike).
@@ -117,11 +106,7 @@ pub(crate) fn tokens(text: &str) -> Vec<Token> {
             TokenKind::Other
         };
         let end = rest.peek().map_or(text.len(), |&(i, _)| i);
-        let kind = if kind == TokenKind::Ident {
-            classify_word(&text[start..end])
-        } else {
-            kind
-        };
+        let kind = if kind == TokenKind::Ident { classify_word(&text[start..end]) } else { kind };
         at_line_start = match kind {
             TokenKind::Other => c == '\n' || (at_line_start && c.is_whitespace()),
             _ => false,
@@ -175,16 +160,10 @@ fn classify_word(word: &str) -> TokenKind {
 }
 
 fn next_is_digit(text: &str, at: usize) -> bool {
-    text[at..]
-        .chars()
-        .nth(1)
-        .is_some_and(|c| c.is_ascii_digit())
+    text[at..].chars().nth(1).is_some_and(|c| c.is_ascii_digit())
 }
 
-fn take_while(
-    chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>,
-    keep: impl Fn(char) -> bool,
-) {
+fn take_while(chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>, keep: impl Fn(char) -> bool) {
     while chars.peek().is_some_and(|&(_, c)| keep(c)) {
         chars.next();
     }
@@ -232,38 +211,22 @@ mod tests {
                 (Comment, "# half"),
             ]
         );
-        assert_eq!(
-            kinds("  :render 80 40"),
-            vec![(Command, ":render"), (Number, "80"), (Number, "40")]
-        );
+        assert_eq!(kinds("  :render 80 40"), vec![(Command, ":render"), (Number, "80"), (Number, "40")]);
         assert_eq!(
             kinds("let a = b :c"),
-            vec![
-                (Keyword, "let"),
-                (Ident, "a"),
-                (Other, "="),
-                (Ident, "b"),
-                (Other, ":"),
-                (Ident, "c")
-            ]
+            vec![(Keyword, "let"), (Ident, "a"), (Other, "="), (Ident, "b"), (Other, ":"), (Ident, "c")]
         );
     }
 
     #[test]
     fn open_constructs_follow_end() {
-        assert_eq!(
-            open_constructs("proc p(n)\n put sphere center 0,0,0"),
-            vec!["proc", "sphere"]
-        );
+        assert_eq!(open_constructs("proc p(n)\n put sphere center 0,0,0"), vec!["proc", "sphere"]);
         assert_eq!(
             open_constructs("put sphere center 0,0,0 radius 1 kd 1 ks 0 phong 1 color 1,1,1 end"),
             Vec::<&str>::new()
         );
         assert_eq!(open_constructs("if x < 1 then # sphere end\n"), vec!["if"]);
-        assert_eq!(
-            open_constructs("put group translate"),
-            vec!["group", "translate"]
-        );
+        assert_eq!(open_constructs("put group translate"), vec!["group", "translate"]);
     }
 
     #[test]
