@@ -557,3 +557,61 @@ fn anim_reports_the_frame_that_fails() {
     assert!(run.err.contains("while computing frame 2, with time = 2"), "{}", run.err);
     assert!(!gif.exists());
 }
+
+// ------------------------------------------------------------ the binary
+
+/// Scripts piped into the `rayrepl` binary. Ignored until `main` hands a
+/// session without a scene to `rayrepl::repl::run`; run them against any
+/// binary that does with `RAYREPL_TEST_BIN=... cargo test -- --ignored`.
+mod binary {
+    use assert_cmd::Command;
+    use predicates::prelude::PredicateBooleanExt;
+    use predicates::str::contains;
+
+    fn rayrepl() -> Command {
+        match std::env::var_os("RAYREPL_TEST_BIN") {
+            Some(path) => Command::new(path),
+            None => Command::new(env!("CARGO_BIN_EXE_rayrepl")),
+        }
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn a_piped_script_runs_without_prompts_or_colours() {
+        let script = "let r = 2\nput sphere center 0, 0, 0\n  radius r kd 1 ks 0 phong 1 color 255, 0, 0 end\n:scene\n";
+        rayrepl()
+            .write_stdin(script)
+            .assert()
+            .success()
+            .stdout(contains("r = 2\nput 1 sphere (1 object in the scene)\n"))
+            .stdout(contains("objects:  1 (1 sphere, 0 planes, 0 boxes)"))
+            .stdout(contains("ray>").not())
+            .stdout(contains("\x1b[").not());
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn the_first_error_stops_a_piped_script_with_status_1() {
+        rayrepl()
+            .write_stdin("let a = 1\nlet b = oops\nlet c = 3\n")
+            .assert()
+            .code(1)
+            .stdout("a = 1\n")
+            .stderr(contains("<stdin>:2:"));
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn keep_going_runs_the_whole_script_and_fails_at_the_end() {
+        rayrepl().arg("--keep-going").write_stdin("let b = oops\nlet c = 3\n").assert().code(1).stdout("c = 3\n");
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn a_file_given_with_i_is_loaded_before_the_script() {
+        let dir = tempfile::tempdir().expect("temporary directory");
+        let file = dir.path().join("start.ray");
+        std::fs::write(&file, "let r = 4\n").expect("write the scene");
+        rayrepl().arg("-i").arg(&file).write_stdin("let s = r * 2\n").assert().success().stdout(contains("s = 8\n"));
+    }
+}
