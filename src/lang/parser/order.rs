@@ -55,7 +55,14 @@ struct FileText<'t> {
 impl<'t> ItemOrder<'t> {
     /// The order check for a whole file.
     pub(crate) fn file(source: SourceId, text: &'t str, line_offset: usize) -> ItemOrder<'t> {
-        ItemOrder { file: Some(FileText { source, text, line_offset }), ..ItemOrder::any() }
+        ItemOrder {
+            file: Some(FileText {
+                source,
+                text,
+                line_offset,
+            }),
+            ..ItemOrder::any()
+        }
     }
 
     /// No check: a session input takes items in any order.
@@ -94,14 +101,14 @@ impl<'t> ItemOrder<'t> {
             (Phase::Camera, _) => Some(ambient_missing(at)),
             (_, Item::Ambient(_)) => Some(self.only_one(at, "ambient", self.first_ambient.get())),
             (Phase::Lights, _) => None,
-            (_, Item::Light(_)) => Some(self.out_of_place(
+            (_, Item::Light(_)) => Some(out_of_place(
                 at,
                 "a `light` must come before procedures and instructions",
                 "this `light` comes too late",
                 self.first_proc_or_instr.get(),
                 "the first of them",
             )),
-            (Phase::Instrs, Item::Proc(_)) => Some(self.out_of_place(
+            (Phase::Instrs, Item::Proc(_)) => Some(out_of_place(
                 at,
                 "a `proc` must come before the instructions",
                 "this `proc` comes too late",
@@ -137,7 +144,9 @@ impl<'t> ItemOrder<'t> {
                 Phase::Instrs
             }
         };
-        if matches!(item, Item::Proc(_) | Item::Instr(_)) && self.first_proc_or_instr.get().is_none() {
+        if matches!(item, Item::Proc(_) | Item::Instr(_))
+            && self.first_proc_or_instr.get().is_none()
+        {
             self.first_proc_or_instr.set(Some(at));
         }
         self.phase.set(next);
@@ -148,7 +157,9 @@ impl<'t> ItemOrder<'t> {
         let Some(file) = self.file else { return Ok(()) };
         let end = end_of_text(file.source, text);
         match self.phase.get() {
-            Phase::Start => Err(start_error(end).with_label("the file ends here").with_note(ORDER_NOTE)),
+            Phase::Start => Err(start_error(end)
+                .with_label("the file ends here")
+                .with_note(ORDER_NOTE)),
             Phase::Camera => Err(Diagnostic::error(
                 end,
                 "unexpected end of file: `ambient` must come right after the camera",
@@ -171,21 +182,20 @@ impl<'t> ItemOrder<'t> {
             _ => error,
         }
     }
+}
 
-    /// An item that should have come before `earlier`.
-    fn out_of_place(
-        &self,
-        at: Span,
-        message: &str,
-        label: &str,
-        earlier: Option<Span>,
-        earlier_name: &str,
-    ) -> Diagnostic {
-        let error = Diagnostic::error(at, message).with_label(label);
-        match earlier {
-            Some(earlier) => error.with_related(earlier, format!("{earlier_name} is here")),
-            None => error,
-        }
+/// An item that should have come before `earlier`.
+fn out_of_place(
+    at: Span,
+    message: &str,
+    label: &str,
+    earlier: Option<Span>,
+    earlier_name: &str,
+) -> Diagnostic {
+    let error = Diagnostic::error(at, message).with_label(label);
+    match earlier {
+        Some(earlier) => error.with_related(earlier, format!("{earlier_name} is here")),
+        None => error,
     }
 }
 
@@ -193,19 +203,24 @@ impl<'t> ItemOrder<'t> {
 fn start_error(at: Span) -> Diagnostic {
     Diagnostic::error(at, "a scenario file must start with `camera ... end`")
         .with_label("expected `camera` here")
-        .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`")
+        .with_help(
+            "begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`",
+        )
 }
 
 /// The error for a file whose camera is not followed by `ambient`.
 fn ambient_missing(at: Span) -> Diagnostic {
-    Diagnostic::error(at, "`ambient` must come right after the camera").with_label("expected `ambient` here")
+    Diagnostic::error(at, "`ambient` must come right after the camera")
+        .with_label("expected `ambient` here")
 }
 
 /// The span of the first word of the item spanning `span`.
 fn first_word(file: FileText<'_>, span: Span) -> Span {
     let start = span.start as usize;
     let rest = file.text.get(start..span.end as usize).unwrap_or("");
-    let len = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(rest.len());
+    let len = rest
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len());
     Span::new(file.source, start, start + len.max(1).min(rest.len()))
 }
 
