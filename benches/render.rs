@@ -220,7 +220,59 @@ fn report(name: &str, elapsed: Duration, stats: &RenderStats) {
     );
 }
 
+/// f32 against f64 node tests on the box field's primary rays (closest
+/// hit only, one thread): time and number of rays whose answer differs.
+fn f32_experiment() {
+    use rayrepl::render::bvh::{Bvh, NodesF32};
+    use rayrepl::render::intersect::ShapeClass;
+    use rayrepl::render::{PrimaryRays, Screen};
+    let scene = box_field();
+    let objects: Vec<_> = scene
+        .primitives
+        .iter()
+        .filter_map(|p| match ShapeClass::from(&p.shape) {
+            ShapeClass::Bounded(b) => Some(b),
+            ShapeClass::Plane(_) => None,
+        })
+        .collect();
+    let (bvh, _) = Bvh::build(&objects);
+    let nodes32 = NodesF32::new(&bvh);
+    let (w, h) = (1920, 1080);
+    let cameras = PrimaryRays::new(&scene.camera, w, h, Screen::Centered);
+    let rays: Vec<_> = (0..h)
+        .flat_map(|j| (0..w).map(move |i| (i, j)))
+        .map(|(i, j)| cameras.ray(i, j, glam::DVec2::splat(0.5)))
+        .collect();
+    for _ in 0..2 {
+        let start = Instant::now();
+        let a: Vec<_> = rays
+            .iter()
+            .map(|r| bvh.closest_hit(r, f64::INFINITY))
+            .collect();
+        let t64 = start.elapsed();
+        let start = Instant::now();
+        let b: Vec<_> = rays
+            .iter()
+            .map(|r| nodes32.closest_hit(&bvh, r, f64::INFINITY))
+            .collect();
+        let t32 = start.elapsed();
+        let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+        println!(
+            "closest hit, {} primary rays: f64 nodes {:.3} s ({:.1} Mrays/s), f32 nodes {:.3} s ({:.1} Mrays/s), {differ} answers differ",
+            rays.len(),
+            t64.as_secs_f64(),
+            rays.len() as f64 / t64.as_secs_f64() / 1e6,
+            t32.as_secs_f64(),
+            rays.len() as f64 / t32.as_secs_f64() / 1e6,
+        );
+    }
+}
+
 fn run_report(which: &str) {
+    if which == "f32" {
+        f32_experiment();
+        return;
+    }
     if let Some(size) = which.strip_prefix("solar-") {
         // One frame of a given size, e.g. `solar-320x180` (for callgrind).
         let (w, h) = size.split_once('x').expect("solar-WxH");
