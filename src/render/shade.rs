@@ -188,7 +188,8 @@ impl<'a> Tracer<'a> {
             let Some(hit) = self.geometry.closest_hit(&ray) else {
                 return (Tail::Black, None);
             };
-            let local = self.local_colour(&ray, &hit);
+            let origin = offset_origin(hit.point, hit.normal);
+            let local = self.local_colour(&ray, &hit, origin);
             let ks = hit.material.ks;
             let level = levels.len() as u32;
             if level >= self.lighting.depth || (ks == 0.0 && self.lighting.skips.zero_ks) {
@@ -199,7 +200,7 @@ impl<'a> Tracer<'a> {
             }
             levels.push(Level { local, ks });
             weight *= ks;
-            ray = reflected(&ray, &hit);
+            ray = reflected(&ray, &hit, origin);
             if cutoff && weight < NEGLIGIBLE_WEIGHT {
                 return (Tail::Unknown, Some(ray));
             }
@@ -209,9 +210,9 @@ impl<'a> Tracer<'a> {
 
     /// Everything in SPEC 6's formula but the reflection term: the ambient
     /// part and, for each visible light on the front side, the diffuse and
-    /// specular parts.
+    /// specular parts. Shadow rays start at `origin`, P moved off the surface.
     #[inline]
-    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit) -> DVec3 {
+    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> DVec3 {
         let Material {
             color,
             kd,
@@ -220,7 +221,6 @@ impl<'a> Tracer<'a> {
         } = hit.material;
         let n = hit.normal;
         let skips = self.lighting.skips;
-        let origin = offset_origin(hit.point, n);
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
         for (light, planes) in self
@@ -249,8 +249,12 @@ impl<'a> Tracer<'a> {
                 continue;
             }
             let h = (l - ray.dir).normalize_or_zero();
-            let n_dot_h = n.dot(h).max(0.0);
-            c += color * (ks * n_dot_h.powf(phong) * light.intensity);
+            let n_dot_h = n.dot(h);
+            // max(0, N·H)^n is exactly 0 for N·H <= 0 (n > 0, SPEC 3), and
+            // adding +0 changes nothing: no need for the power.
+            if n_dot_h > 0.0 || phong <= 0.0 {
+                c += color * (ks * n_dot_h.max(0.0).powf(phong) * light.intensity);
+            }
         }
         c
     }
@@ -278,13 +282,13 @@ fn clamp_unit(c: DVec3) -> DVec3 {
     c.max(DVec3::ZERO).min(DVec3::ONE)
 }
 
-/// The mirror ray of SPEC 6: from P (moved off the surface) along
+/// The mirror ray of SPEC 6: from `origin` (P moved off the surface) along
 /// `V - 2 (V·N) N`.
 #[inline]
-fn reflected(ray: &Ray, hit: &SurfaceHit) -> Ray {
+fn reflected(ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> Ray {
     let v = ray.dir;
     let n = hit.normal;
-    Ray::new(offset_origin(hit.point, n), v - n * (2.0 * v.dot(n)))
+    Ray::new(origin, v - n * (2.0 * v.dot(n)))
 }
 
 /// Relative size of the offset that moves secondary rays off a surface.
