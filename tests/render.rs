@@ -853,3 +853,43 @@ proptest! {
         }
     }
 }
+
+fn primitive_strategy() -> impl Strategy<Value = Primitive> {
+    let m = material([0.5, 0.5, 0.5], 0.5, 0.5, 10.0);
+    prop_oneof![
+        3 => bounded_strategy().prop_map(move |b| match b {
+            Bounded::Sphere(s) => sphere(s.center.into(), s.radius, m),
+            Bounded::Box(b) => Primitive {
+                shape: Shape::Box { center: b.center, half: b.half, axes: b.to_local.transpose() },
+                material: m,
+            },
+        }),
+        1 => ((-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64), -10.0..10.0f64)
+            .prop_filter("non-zero normal", |(n, _)| n.0 * n.0 + n.1 * n.1 + n.2 * n.2 > 1e-4)
+            .prop_map(move |(n, d)| plane([n.0, n.1, n.2], d, m)),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(100))]
+
+    /// Shadow rays (any hit, planes pre-filtered per light direction) agree
+    /// with the existence of a closest hit, with and without a tree, with
+    /// and without a timed part.
+    #[test]
+    fn any_hit_and_blocked_agree_with_closest_hit(
+        primitives in prop::collection::vec(primitive_strategy(), 0..40),
+        split in 0usize..40,
+        rays in prop::collection::vec(ray_strategy(), 1..20),
+    ) {
+        let mut s = scene(10.0, 1.0, 0.1, vec![], primitives);
+        s.timed_primitives = s.primitives.split_off(split.min(s.primitives.len()));
+        let prepared = Prepared::new(&s);
+        for ray in &rays {
+            let exists = prepared.closest_hit(ray).is_some();
+            prop_assert_eq!(prepared.any_hit(ray), exists);
+            let planes = prepared.planes_blocking(ray.dir);
+            prop_assert_eq!(prepared.blocked(ray, &planes), exists);
+        }
+    }
+}

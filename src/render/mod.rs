@@ -93,7 +93,7 @@ pub struct RenderOptions {
     pub depth: u32,
     /// Samples per pixel: 1 (default) is the pixel centre; more gives
     /// deterministic stratified anti-aliasing (see [`sample_offsets`]): the
-    /// average of the clamped sample colours, then rounded.
+    /// average of the clamped sample colours, then rounded. 0 is taken as 1.
     pub samples: u32,
     /// Where the z axis meets the screen (SPEC 5).
     pub screen: Screen,
