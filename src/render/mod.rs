@@ -10,6 +10,20 @@
 //! # }
 //! ```
 //!
+//! For an animation, build the static part once and only the timed part
+//! per frame:
+//!
+//! ```no_run
+//! # use rayrepl::render::{render, Prepared, RenderControl, RenderOptions};
+//! # fn demo(frames: &[rayrepl::scene::Scene], options: &RenderOptions) {
+//! let first = Prepared::new(&frames[0]);
+//! for scene in frames {
+//!     let prepared = Prepared::with_static(first.static_part().clone(), &scene.timed_primitives);
+//!     let (image, _) = render(scene, &prepared, options, &RenderControl::default()).expect("not cancelled");
+//! }
+//! # }
+//! ```
+//!
 //! The image is cut into bands of [`TILE`] rows, each band into tiles of
 //! [`TILE`] x [`TILE`] pixels; rayon spreads the bands over its threads.
 //! Every pixel is computed on its own, so the bytes do not depend on the
