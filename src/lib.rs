@@ -9,6 +9,7 @@ pub mod lang;
 pub mod output;
 pub mod progress;
 pub mod render;
+pub mod repl;
 pub mod scene;
 pub mod batch;
 pub mod cli;

@@ -72,7 +72,25 @@ impl Geometry {
         }
         let (bvh, order) = Bvh::build(&bounded);
         let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
-        Geometry { bvh, bounded_materials, planes, plane_materials }
+        Geometry {
+            bvh,
+            bounded_materials,
+            planes,
+            plane_materials,
+        }
+    }
+
+    /// The union of two geometries without trees (both small), `a` first:
+    /// one flat list is cheaper to query than two.
+    fn concat_flat(a: &Geometry, b: &Geometry) -> Option<Geometry> {
+        let bvh = Bvh::concat_flat(&a.bvh, &b.bvh)?;
+        let join = |x: &[Material], y: &[Material]| x.iter().chain(y).copied().collect();
+        Some(Geometry {
+            bvh,
+            bounded_materials: join(&a.bounded_materials, &b.bounded_materials),
+            planes: a.planes.iter().chain(&b.planes).copied().collect(),
+            plane_materials: join(&a.plane_materials, &b.plane_materials),
+        })
     }
 
     /// Whether there is no primitive at all.
@@ -104,7 +122,17 @@ impl Geometry {
     /// large).
     #[inline]
     fn any_hit(&self, ray: &Ray) -> bool {
-        self.planes.iter().any(|p| p.hit(ray) < f64::INFINITY) || self.bvh.any_hit(ray, f64::INFINITY)
+        self.planes.iter().any(|p| p.hit(ray) < f64::INFINITY)
+            || self.bvh.any_hit(ray, f64::INFINITY)
+    }
+
+    /// The planes that a ray along `dir` moves towards (`n·dir < 0`): the
+    /// only ones that can stop it.
+    fn planes_facing(&self, dir: DVec3) -> impl Iterator<Item = PlaneShape> + '_ {
+        self.planes
+            .iter()
+            .copied()
+            .filter(move |p| p.normal.dot(dir) < 0.0)
     }
 
     /// The surface data of a hit found by [`Geometry::closest_hit`].
@@ -114,11 +142,22 @@ impl Geometry {
         let (normal, material) = match hit.object {
             ObjectId::Bounded(k) => {
                 let object: &Bounded = &self.bvh.objects()[k as usize];
-                (object.normal(ray, hit.t), self.bounded_materials[k as usize])
+                (
+                    object.normal(ray, hit.t),
+                    self.bounded_materials[k as usize],
+                )
             }
-            ObjectId::Plane(k) => (self.planes[k as usize].normal(), self.plane_materials[k as usize]),
+            ObjectId::Plane(k) => (
+                self.planes[k as usize].normal(),
+                self.plane_materials[k as usize],
+            ),
         };
-        SurfaceHit { t: hit.t, point, normal, material }
+        SurfaceHit {
+            t: hit.t,
+            point,
+            normal,
+            material,
+        }
     }
 }
 
@@ -126,31 +165,62 @@ impl Geometry {
 /// shared across frames) and the part that depends on `time`.
 #[derive(Debug, Clone, Default)]
 pub struct Prepared {
-    /// Geometry of [`Scene::primitives`], the same for every frame.
-    pub static_part: Arc<Geometry>,
-    /// Geometry of [`Scene::timed_primitives`], rebuilt per frame.
-    pub timed: Geometry,
+    static_part: Arc<Geometry>,
+    timed: Geometry,
+    /// Both parts in one flat list, when both are small.
+    merged: Option<Geometry>,
 }
 
 impl Prepared {
     /// Prepares both parts of `scene`.
     pub fn new(scene: &Scene) -> Prepared {
-        let (static_part, timed) =
-            rayon::join(|| Geometry::build(&scene.primitives), || Geometry::build(&scene.timed_primitives));
-        Prepared { static_part: Arc::new(static_part), timed }
+        let (static_part, timed) = rayon::join(
+            || Geometry::build(&scene.primitives),
+            || Geometry::build(&scene.timed_primitives),
+        );
+        Prepared::from_parts(Arc::new(static_part), timed)
     }
 
     /// Reuses an already built static part and prepares only `timed`
     /// (the next frame of an animation).
     pub fn with_static(static_part: Arc<Geometry>, timed: &[Primitive]) -> Prepared {
-        Prepared { static_part, timed: Geometry::build(timed) }
+        Prepared::from_parts(static_part, Geometry::build(timed))
+    }
+
+    fn from_parts(static_part: Arc<Geometry>, timed: Geometry) -> Prepared {
+        let merged = if timed.is_empty() {
+            None
+        } else {
+            Geometry::concat_flat(&static_part, &timed)
+        };
+        Prepared {
+            static_part,
+            timed,
+            merged,
+        }
+    }
+
+    /// The geometry of [`Scene::primitives`], the same for every frame of an
+    /// animation: pass it to [`Prepared::with_static`] for the next frame.
+    pub fn static_part(&self) -> &Arc<Geometry> {
+        &self.static_part
+    }
+
+    /// The geometry of [`Scene::timed_primitives`].
+    pub fn timed(&self) -> &Geometry {
+        &self.timed
     }
 
     /// The nearest hit with `t > 0` (SPEC 6), with its point, facing normal
-    /// and material. On equal distances the static part wins, so the answer
-    /// does not depend on traversal order between the parts.
+    /// and material. Ties (equal distances) are broken in a fixed order, so
+    /// the answer does not depend on threads.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
+        if let Some(merged) = &self.merged {
+            return merged
+                .closest_hit(ray, f64::INFINITY)
+                .map(|h| merged.surface(ray, h));
+        }
         let static_hit = self.static_part.closest_hit(ray, f64::INFINITY);
         if self.timed.is_empty() {
             return static_hit.map(|h| self.static_part.surface(ray, h));
@@ -167,5 +237,35 @@ impl Prepared {
     #[inline]
     pub fn any_hit(&self, ray: &Ray) -> bool {
         self.static_part.any_hit(ray) || self.timed.any_hit(ray)
+    }
+
+    /// The planes, of both parts, that can block rays along `dir` (a
+    /// light's direction): those with `n·dir < 0`. Shadow rays towards that
+    /// light test only these, with [`Prepared::blocked`].
+    pub fn planes_blocking(&self, dir: DVec3) -> Vec<PlaneShape> {
+        self.static_part
+            .planes_facing(dir)
+            .chain(self.timed.planes_facing(dir))
+            .collect()
+    }
+
+    /// The same answer as [`Prepared::any_hit`] for a ray whose direction
+    /// is the one `planes` was made for by [`Prepared::planes_blocking`].
+    ///
+    /// Such a plane stops the ray exactly when its origin is on the seen
+    /// side (`n·S > d`): moving towards the plane from there, it meets it at
+    /// `t = (n·S - d) / -(n·V) > 0` (SPEC 4). One dot product per plane.
+    #[inline]
+    pub fn blocked(&self, ray: &Ray, planes: &[PlaneShape]) -> bool {
+        if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift) {
+            return true;
+        }
+        match &self.merged {
+            Some(merged) => merged.bvh.any_hit(ray, f64::INFINITY),
+            None => {
+                self.static_part.bvh.any_hit(ray, f64::INFINITY)
+                    || self.timed.bvh.any_hit(ray, f64::INFINITY)
+            }
+        }
     }
 }

@@ -33,7 +33,7 @@ use glam::DVec3;
 
 use super::Skips;
 use super::geometry::{Prepared, SurfaceHit};
-use super::intersect::Ray;
+use super::intersect::{PlaneShape, Ray};
 use crate::scene::{Light, Material};
 
 /// Paths whose accumulated weight is below this stop (half an 8-bit level).
@@ -100,6 +100,9 @@ pub struct Lighting<'a> {
     pub ambient: f64,
     /// The lights.
     pub lights: &'a [Light],
+    /// For each light, the planes that can block rays towards it
+    /// ([`Prepared::planes_blocking`]).
+    pub blocking_planes: &'a [Vec<PlaneShape>],
     /// Number of reflections followed (SPEC 6 `depth`).
     pub depth: u32,
     /// Which work-saving shortcuts are on.
@@ -122,8 +125,19 @@ impl<'a> Tracer<'a> {
     /// A tracer over `geometry` with the image constants `lighting`, for
     /// `slots` samples per pixel.
     pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a> {
-        let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
-        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths }
+        let paths = (0..slots.max(1))
+            .map(|_| Path {
+                levels: Vec::with_capacity(8),
+                paused: None,
+            })
+            .collect();
+        Tracer {
+            geometry,
+            lighting,
+            counts: RayCounts::default(),
+            resumed: 0,
+            paths,
+        }
     }
 
     /// The colour seen along a primary ray, each component in [0, 1]
@@ -133,7 +147,11 @@ impl<'a> Tracer<'a> {
         self.counts.primary += 1;
         let mut levels = std::mem::take(&mut self.paths[slot].levels);
         levels.clear();
-        let (tail, paused) = self.follow(&mut levels, *primary, self.lighting.skips.negligible_reflection);
+        let (tail, paused) = self.follow(
+            &mut levels,
+            *primary,
+            self.lighting.skips.negligible_reflection,
+        );
         let bracket = fold(&levels, tail);
         self.paths[slot] = Path { levels, paused };
         bracket
@@ -159,11 +177,19 @@ impl<'a> Tracer<'a> {
     /// Follows the path from `ray` (at level `levels.len()`), appending a
     /// level per hit. Returns what lies past the last level and, when the
     /// cutoff stopped it, the reflected ray not traced.
-    fn follow(&mut self, levels: &mut Vec<Level>, mut ray: Ray, cutoff: bool) -> (Tail, Option<Ray>) {
+    fn follow(
+        &mut self,
+        levels: &mut Vec<Level>,
+        mut ray: Ray,
+        cutoff: bool,
+    ) -> (Tail, Option<Ray>) {
         let mut weight: f64 = levels.iter().map(|l| l.ks).product();
         loop {
-            let Some(hit) = self.geometry.closest_hit(&ray) else { return (Tail::Black, None) };
-            let local = self.local_colour(&ray, &hit);
+            let Some(hit) = self.geometry.closest_hit(&ray) else {
+                return (Tail::Black, None);
+            };
+            let origin = offset_origin(hit.point, hit.normal);
+            let local = self.local_colour(&ray, &hit, origin);
             let ks = hit.material.ks;
             let level = levels.len() as u32;
             if level >= self.lighting.depth || (ks == 0.0 && self.lighting.skips.zero_ks) {
@@ -174,7 +200,7 @@ impl<'a> Tracer<'a> {
             }
             levels.push(Level { local, ks });
             weight *= ks;
-            ray = reflected(&ray, &hit);
+            ray = reflected(&ray, &hit, origin);
             if cutoff && weight < NEGLIGIBLE_WEIGHT {
                 return (Tail::Unknown, Some(ray));
             }
@@ -184,16 +210,25 @@ impl<'a> Tracer<'a> {
 
     /// Everything in SPEC 6's formula but the reflection term: the ambient
     /// part and, for each visible light on the front side, the diffuse and
-    /// specular parts.
+    /// specular parts. Shadow rays start at `origin`, P moved off the surface.
     #[inline]
-    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit) -> DVec3 {
-        let Material { color, kd, ks, phong } = hit.material;
+    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> DVec3 {
+        let Material {
+            color,
+            kd,
+            ks,
+            phong,
+        } = hit.material;
         let n = hit.normal;
         let skips = self.lighting.skips;
-        let origin = offset_origin(hit.point, n);
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
-        for light in self.lighting.lights {
+        for (light, planes) in self
+            .lighting
+            .lights
+            .iter()
+            .zip(self.lighting.blocking_planes)
+        {
             let l = light.direction;
             let n_dot_l = n.dot(l);
             // The formula sums only lights with N·L > 0: for the others the
@@ -202,7 +237,7 @@ impl<'a> Tracer<'a> {
                 continue;
             }
             self.counts.shadow += 1;
-            let visible = !self.geometry.any_hit(&Ray::new(origin, l));
+            let visible = !self.geometry.blocked(&Ray::new(origin, l), planes);
             if !visible || n_dot_l <= 0.0 {
                 continue;
             }
@@ -214,8 +249,12 @@ impl<'a> Tracer<'a> {
                 continue;
             }
             let h = (l - ray.dir).normalize_or_zero();
-            let n_dot_h = n.dot(h).max(0.0);
-            c += color * (ks * n_dot_h.powf(phong) * light.intensity);
+            let n_dot_h = n.dot(h);
+            // max(0, N·H)^n is exactly 0 for N·H <= 0 (n > 0, SPEC 3), and
+            // adding +0 changes nothing: no need for the power.
+            if n_dot_h > 0.0 || phong <= 0.0 {
+                c += color * (ks * n_dot_h.max(0.0).powf(phong) * light.intensity);
+            }
         }
         c
     }
@@ -243,13 +282,13 @@ fn clamp_unit(c: DVec3) -> DVec3 {
     c.max(DVec3::ZERO).min(DVec3::ONE)
 }
 
-/// The mirror ray of SPEC 6: from P (moved off the surface) along
+/// The mirror ray of SPEC 6: from `origin` (P moved off the surface) along
 /// `V - 2 (V·N) N`.
 #[inline]
-fn reflected(ray: &Ray, hit: &SurfaceHit) -> Ray {
+fn reflected(ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> Ray {
     let v = ray.dir;
     let n = hit.normal;
-    Ray::new(offset_origin(hit.point, n), v - n * (2.0 * v.dot(n)))
+    Ray::new(origin, v - n * (2.0 * v.dot(n)))
 }
 
 /// Relative size of the offset that moves secondary rays off a surface.
@@ -280,8 +319,14 @@ mod tests {
     fn fold_clamps_at_every_level() {
         // Level 0: local 0.5, ks 0.5; level 1: local 3.0 (clamped to 1).
         let levels = [
-            Level { local: DVec3::splat(0.5), ks: 0.5 },
-            Level { local: DVec3::splat(3.0), ks: 0.0 },
+            Level {
+                local: DVec3::splat(0.5),
+                ks: 0.5,
+            },
+            Level {
+                local: DVec3::splat(3.0),
+                ks: 0.0,
+            },
         ];
         let c = fold(&levels, Tail::Black);
         // Clamped per level: 0.5 + 0.5 * 1 = 1.0; unclamped would also be 1,
@@ -289,15 +334,24 @@ mod tests {
         // not 0.2 + 0.5*3 = 1.7 -> 1.
         assert_eq!(c.lo, DVec3::ONE);
         let levels = [
-            Level { local: DVec3::splat(0.2), ks: 0.5 },
-            Level { local: DVec3::splat(3.0), ks: 0.0 },
+            Level {
+                local: DVec3::splat(0.2),
+                ks: 0.5,
+            },
+            Level {
+                local: DVec3::splat(3.0),
+                ks: 0.0,
+            },
         ];
         assert_eq!(fold(&levels, Tail::Black).lo, DVec3::splat(0.7));
     }
 
     #[test]
     fn fold_brackets_an_unknown_tail() {
-        let levels = [Level { local: DVec3::new(0.1, 0.99, 0.5), ks: 0.001 }];
+        let levels = [Level {
+            local: DVec3::new(0.1, 0.99, 0.5),
+            ks: 0.001,
+        }];
         let b = fold(&levels, Tail::Unknown);
         assert_eq!(b.lo, DVec3::new(0.1, 0.99, 0.5));
         assert_eq!(b.hi, DVec3::new(0.1 + 0.001, 0.99 + 0.001, 0.5 + 0.001));
@@ -305,13 +359,19 @@ mod tests {
 
     #[test]
     fn offset_scales_with_coordinates() {
-        assert_eq!(offset_origin(DVec3::ZERO, DVec3::Y), DVec3::new(0.0, 1e-9, 0.0));
+        assert_eq!(
+            offset_origin(DVec3::ZERO, DVec3::Y),
+            DVec3::new(0.0, 1e-9, 0.0)
+        );
         let far = offset_origin(DVec3::new(50_000.0, 0.0, 0.0), DVec3::Y);
         assert!((far.y - 5e-5).abs() < 1e-15);
     }
 
     #[test]
     fn clamp_unit_removes_nan() {
-        assert_eq!(clamp_unit(DVec3::new(f64::NAN, -1.0, 2.0)), DVec3::new(0.0, 0.0, 1.0));
+        assert_eq!(
+            clamp_unit(DVec3::new(f64::NAN, -1.0, 2.0)),
+            DVec3::new(0.0, 0.0, 1.0)
+        );
     }
 }

@@ -1,1 +1,122 @@
 //! The interactive session (SPEC 7) and piped scripts.
+//!
+//! A [`Session`] keeps one interpreter across inputs: items typed one at a
+//! time accumulate into one global environment and one scene, and an input
+//! that fails changes nothing. Around it:
+//!
+//! - [`run_interactive`]: the line editor (history, multi-line input,
+//!   completion, colours) and previews of renders in the terminal;
+//! - [`run_script`]: the same session fed line by line from a reader, with
+//!   no prompts, colours or previews, for `cat script | rayrepl`;
+//! - [`run`]: picks one of the two, as `main` needs.
+//!
+//! Commands (`:render`, `:save`, `:time`, ...) live in `commands`, one
+//! function each; the one call into the renderer is in `rendering`.
+
+mod cancel;
+mod commands;
+mod console;
+mod describe;
+mod editor;
+mod help;
+mod interactive;
+mod preview;
+mod rendering;
+mod report;
+mod script;
+mod session;
+mod syntax;
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use crate::lang::Limits;
+
+pub use interactive::{ReplError, run_interactive};
+pub use rendering::RenderSettings;
+pub use script::run_script;
+pub use session::Session;
+
+use console::Console;
+
+/// How a session starts: what the command line asked for.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SessionOptions {
+    /// Never show renders in the terminal (`--no-preview`).
+    pub no_preview: bool,
+    /// In a script, go on after an error (`--keep-going`); the exit status is
+    /// still 1 at the end.
+    pub keep_going: bool,
+    /// A file to load before the first input (`-i scene.ray`).
+    pub initial_file: Option<PathBuf>,
+    /// Size, depth, samples, time and screen convention to start with.
+    pub settings: RenderSettings,
+    /// Limits on procedure calls and primitives (`--max-calls`, `--max-primitives`).
+    pub limits: Limits,
+}
+
+/// Runs a session the way `rayrepl` without a scene to render does:
+/// interactively when standard input is a terminal, otherwise as a script
+/// read from standard input (messages on standard output, diagnostics on
+/// standard error). Fails after an error in a script, or when the terminal
+/// cannot be used.
+pub fn run(options: &SessionOptions) -> ExitCode {
+    let code = if std::io::stdin().is_terminal() {
+        match run_interactive(options) {
+            Ok(()) => 0,
+            Err(error) => {
+                eprintln!("rayrepl: {error}");
+                1
+            }
+        }
+    } else {
+        let stdin = std::io::stdin();
+        run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
+    };
+    if code == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE }
+}
+
+/// Runs one input of program text and prints what it did, or its error.
+/// `Err(())` tells the caller it failed (the session is unchanged).
+pub(crate) fn handle_input(
+    session: &mut Session,
+    console: &mut Console,
+    name: &str,
+    text: &str,
+    line_offset: usize,
+) -> Result<(), ()> {
+    match session.submit(name, text, line_offset) {
+        Ok(accepted) => {
+            for warning in &accepted.warnings {
+                console.diagnostic(warning, session.sources());
+            }
+            for line in report::confirmations(&accepted, session) {
+                console.say(line);
+            }
+            Ok(())
+        }
+        Err(error) => {
+            console.diagnostic(&error, session.sources());
+            if let Some(command) = bare_command(text) {
+                console.note(format!("commands start with a colon: did you mean `{command}`?"));
+            }
+            Err(())
+        }
+    }
+}
+
+/// The command a learner probably meant by typing its name without the
+/// colon (`help`, `quit`), if the input is just that.
+fn bare_command(text: &str) -> Option<String> {
+    let command = match text.trim() {
+        "exit" | "q" => ":quit".to_string(),
+        word => format!(":{word}"),
+    };
+    commands::COMMANDS.iter().any(|c| c.name == command).then_some(command)
+}
+
+/// A session set up with `options`' settings and limits.
+fn new_session(options: &SessionOptions) -> Session {
+    Session::new(options.settings, options.limits)
+}

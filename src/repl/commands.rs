@@ -1,0 +1,636 @@
+//! The session's commands (`:render`, `:time`, `:save`, ...), one function each.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant};
+
+use image::RgbImage;
+
+use crate::lang::Diagnostic;
+use crate::lang::suggest::closest;
+use crate::render::Prepared;
+use crate::scene::Scene;
+
+use super::console::Console;
+use super::help;
+use super::rendering::{
+    FrameSink, ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_image,
+};
+use super::report::{self, counted, number};
+use super::session::{Session, Undone};
+
+/// Largest width or height accepted for an image.
+const MAX_IMAGE_SIDE: u32 = 16_384;
+/// Most reflections `:depth` accepts.
+const MAX_DEPTH: u32 = 100;
+/// Most rays per pixel `:samples` accepts.
+const MAX_SAMPLES: u32 = 1024;
+/// Most frames `:anim` accepts.
+const MAX_FRAMES: u32 = 10_000;
+
+/// What the session does after a command.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Flow {
+    /// Read the next input.
+    Continue,
+    /// Leave.
+    Quit,
+}
+
+/// Why a command did not do what was asked.
+#[derive(Debug)]
+pub(crate) enum CommandError {
+    /// The arguments were wrong; the command's usage follows the message.
+    Usage(String),
+    /// It could not be done, for the reason given.
+    Failed(String),
+    /// Program text failed (`:load`, `:time` re-evaluation); already located.
+    Program(Box<Diagnostic>),
+    /// Ctrl-C stopped it; the session is as it was.
+    Cancelled(String),
+}
+
+/// The result of a command.
+pub(crate) type CommandResult = Result<Flow, CommandError>;
+
+/// A command: its name, its usage line and the function that runs it.
+pub(crate) struct CommandSpec {
+    /// The name, colon included.
+    pub name: &'static str,
+    /// How to call it.
+    pub usage: &'static str,
+    run: fn(&mut Session, &[String], &mut Console) -> CommandResult,
+}
+
+/// Every command, in the order `:help` lists them.
+pub(crate) const COMMANDS: &[CommandSpec] = &[
+    CommandSpec { name: ":help", usage: ":help [NAME]", run: help_command },
+    CommandSpec { name: ":render", usage: ":render [WIDTH HEIGHT]", run: render },
+    CommandSpec { name: ":save", usage: ":save FILE [WIDTH HEIGHT]", run: save },
+    CommandSpec { name: ":anim", usage: ":anim FRAMES FILE", run: anim },
+    CommandSpec { name: ":time", usage: ":time [NUMBER]", run: time },
+    CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
+    CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },
+    CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
+    CommandSpec { name: ":load", usage: ":load FILE", run: load },
+    CommandSpec { name: ":env", usage: ":env", run: env },
+    CommandSpec { name: ":scene", usage: ":scene", run: scene },
+    CommandSpec { name: ":undo", usage: ":undo", run: undo },
+    CommandSpec { name: ":reset", usage: ":reset", run: reset },
+    CommandSpec { name: ":quit", usage: ":quit", run: quit },
+];
+
+/// Other names for commands.
+const ALIASES: &[(&str, &str)] = &[(":q", ":quit"), (":exit", ":quit"), (":h", ":help"), (":?", ":help")];
+
+/// Whether `line` is a command rather than program text.
+pub(crate) fn is_command(line: &str) -> bool {
+    line.trim_start().starts_with(':')
+}
+
+/// Runs the command on `line`, reporting any failure on the console.
+/// Returns `Err(())` if it failed, so scripts can count errors.
+pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) -> Result<Flow, ()> {
+    let result =
+        split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(session, &words, console));
+    match result {
+        Ok(flow) => Ok(flow),
+        Err(error) => {
+            report_error(error, session, console);
+            Err(())
+        }
+    }
+}
+
+fn dispatch(session: &mut Session, words: &[String], console: &mut Console) -> CommandResult {
+    let Some((name, arguments)) = words.split_first().filter(|(name, _)| name.as_str() != ":") else {
+        return Err(CommandError::Failed("type a command name after `:`, for example `:help`".to_string()));
+    };
+    let name = ALIASES.iter().find(|(alias, _)| alias == name).map_or(name.as_str(), |(_, real)| real);
+    let Some(command) = COMMANDS.iter().find(|command| command.name == name) else {
+        return Err(unknown_command(name));
+    };
+    (command.run)(session, arguments, console).map_err(|error| match error {
+        CommandError::Usage(problem) => CommandError::Usage(format!("{problem}\nusage: {}", command.usage)),
+        other => other,
+    })
+}
+
+fn unknown_command(name: &str) -> CommandError {
+    let names = COMMANDS.iter().map(|c| c.name).chain(ALIASES.iter().map(|(alias, _)| *alias));
+    let mut message = format!("there is no command `{name}`");
+    if let Some(close) = closest(name, names) {
+        message.push_str(&format!("; did you mean `{close}`?"));
+    }
+    message.push_str("\n`:help` lists the commands");
+    CommandError::Failed(message)
+}
+
+fn report_error(error: CommandError, session: &Session, console: &mut Console) {
+    match error {
+        CommandError::Usage(message) | CommandError::Failed(message) => console.error(message),
+        CommandError::Program(diagnostic) => console.diagnostic(&diagnostic, session.sources()),
+        CommandError::Cancelled(message) => console.say(message),
+    }
+}
+
+/// Splits a command line into words. Double quotes keep spaces in a word,
+/// and (except on Windows, where it separates folders) a backslash keeps the
+/// next character as it is, as file name completion writes `my\ scene.ray`.
+pub(crate) fn split_arguments(line: &str) -> Result<Vec<String>, String> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut quoted = false;
+    let mut chars = line.trim().chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' => {
+                quoted = !quoted;
+                word.get_or_insert_with(String::new);
+            }
+            '\\' if cfg!(not(windows)) && !quoted => {
+                let escaped = chars.next().unwrap_or('\\');
+                word.get_or_insert_with(String::new).push(escaped);
+            }
+            c if c.is_whitespace() && !quoted => words.extend(word.take()),
+            c => word.get_or_insert_with(String::new).push(c),
+        }
+    }
+    if quoted {
+        return Err("a `\"` is not closed".to_string());
+    }
+    words.extend(word);
+    Ok(words)
+}
+
+// ---------------------------------------------------------------- arguments
+
+fn no_arguments(arguments: &[String]) -> Result<(), CommandError> {
+    match arguments {
+        [] => Ok(()),
+        _ => Err(CommandError::Usage("this command takes no arguments".to_string())),
+    }
+}
+
+fn parse_count(text: &str, what: &str, range: std::ops::RangeInclusive<u32>) -> Result<u32, CommandError> {
+    let (low, high) = (*range.start(), *range.end());
+    match text.parse::<u32>() {
+        Ok(value) if range.contains(&value) => Ok(value),
+        _ => Err(CommandError::Usage(format!("{what} must be a whole number from {low} to {high}, not `{text}`"))),
+    }
+}
+
+fn parse_size(width: &str, height: &str) -> Result<Size, CommandError> {
+    Ok(Size {
+        width: parse_count(width, "the width", 1..=MAX_IMAGE_SIDE)?,
+        height: parse_count(height, "the height", 1..=MAX_IMAGE_SIDE)?,
+    })
+}
+
+fn parse_number(text: &str) -> Result<f64, CommandError> {
+    match text.parse::<f64>() {
+        Ok(value) if value.is_finite() => Ok(value),
+        _ => Err(CommandError::Usage(format!("`{text}` is not a number"))),
+    }
+}
+
+/// The image format for `path`, checked before any work is done.
+fn output_format(path: &Path) -> Result<ImageFormat, CommandError> {
+    ImageFormat::of(path).ok_or_else(|| {
+        CommandError::Usage(format!(
+            "cannot tell the format of `{}`: end the name in .png, .ppm or .gif",
+            path.display()
+        ))
+    })
+}
+
+// ---------------------------------------------------------------- commands
+
+fn help_command(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    match arguments {
+        [] => console.say(help::overview()),
+        [name] => match help::find(name) {
+            Some(topic) => console.say(topic.text),
+            None => {
+                let hint = help::suggestion(name).map(|s| format!("; did you mean `{s}`?")).unwrap_or_default();
+                return Err(CommandError::Failed(format!(
+                    "no help about `{name}`{hint}\n`:help` lists what it explains"
+                )));
+            }
+        },
+        _ => {
+            return Err(CommandError::Usage("ask about one name at a time".to_string()));
+        }
+    }
+    Ok(Flow::Continue)
+}
+
+fn render(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let configured = Size { width: session.settings().width, height: session.settings().height };
+    let size = match arguments {
+        [] => console.preview.map_or(configured, |preview| preview.render_size(configured)),
+        [width, height] => parse_size(width, height)?,
+        _ => {
+            return Err(CommandError::Usage("give both a width and a height, or neither".to_string()));
+        }
+    };
+    explain_defaults(session, console);
+    let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
+    match console.preview {
+        Some(preview) => {
+            preview.show(&image).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
+            console.say(format!("{size} in {}", duration(took)));
+        }
+        None => console.say(format!("rendered {size} in {} (previews are off)", duration(took))),
+    }
+    Ok(Flow::Continue)
+}
+
+fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let (file, size) = match arguments {
+        [file] => (file, Size { width: session.settings().width, height: session.settings().height }),
+        [file, width, height] => (file, parse_size(width, height)?),
+        [] => {
+            return Err(CommandError::Usage("give the name of the file to write".to_string()));
+        }
+        _ => {
+            return Err(CommandError::Usage("give a file name, then optionally a width and a height".to_string()));
+        }
+    };
+    let path = PathBuf::from(file);
+    output_format(&path)?;
+    explain_defaults(session, console);
+    let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
+    write_image(&path, &image).map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
+    console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
+    Ok(Flow::Continue)
+}
+
+fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let [frames, file] = arguments else {
+        return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
+    };
+    let frames = parse_count(frames, "the number of frames", 1..=MAX_FRAMES)?;
+    let path = PathBuf::from(file);
+    output_format(&path)?;
+    explain_defaults(session, console);
+    let size = Size { width: session.settings().width, height: session.settings().height };
+    let started = Instant::now();
+    let mut sink = FrameSink::new(&path, frames as usize);
+    let cannot_write = |e: String| CommandError::Failed(format!("cannot write {}: {e}", path.display()));
+    render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write))?;
+    let written = sink.finish().map_err(cannot_write)?;
+    let names = match written.as_slice() {
+        [only] => only.display().to_string(),
+        [first, .., last] => format!("{} ... {}", first.display(), last.display()),
+        [] => String::new(),
+    };
+    console.say(format!(
+        "wrote {names} ({} of {size}, {})",
+        counted(frames as usize, "frame"),
+        duration(started.elapsed())
+    ));
+    Ok(Flow::Continue)
+}
+
+fn time(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let [value] = arguments else {
+        if arguments.is_empty() {
+            console.say(format!("time = {}", number(session.settings().time)));
+            return Ok(Flow::Continue);
+        }
+        return Err(CommandError::Usage("give one number".to_string()));
+    };
+    let value = parse_number(value)?;
+    let previous = session.settings().time;
+    match session.set_time(value) {
+        Ok(false) => console.say(format!("time = {}", number(value))),
+        Ok(true) => console.say(format!("time = {} (the scene was computed again)", number(value))),
+        Err(diagnostic) => {
+            console.diagnostic(&diagnostic, session.sources());
+            return Err(CommandError::Failed(format!(
+                "at time {} an earlier input fails, so time stays {}",
+                number(value),
+                number(previous)
+            )));
+        }
+    }
+    Ok(Flow::Continue)
+}
+
+fn size(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    match arguments {
+        [] => {}
+        [width, height] => {
+            let size = parse_size(width, height)?;
+            session.set_size(size.width, size.height);
+        }
+        _ => {
+            return Err(CommandError::Usage("give a width and a height in pixels".to_string()));
+        }
+    }
+    let settings = session.settings();
+    console.say(format!("size = {}", Size { width: settings.width, height: settings.height }));
+    Ok(Flow::Continue)
+}
+
+fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    match arguments {
+        [] => {}
+        [value] => session.set_depth(parse_count(value, "the depth", 0..=MAX_DEPTH)?),
+        _ => return Err(CommandError::Usage("give one whole number".to_string())),
+    }
+    console.say(format!("depth = {}", session.settings().depth));
+    Ok(Flow::Continue)
+}
+
+fn samples(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    match arguments {
+        [] => {}
+        [value] => session.set_samples(parse_count(value, "the number of samples", 1..=MAX_SAMPLES)?),
+        _ => return Err(CommandError::Usage("give one whole number".to_string())),
+    }
+    console.say(format!("samples = {}", session.settings().samples));
+    Ok(Flow::Continue)
+}
+
+fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let [file] = arguments else {
+        let problem = if arguments.is_empty() {
+            "give the file to load"
+        } else {
+            "give one file (put quotes around a name with spaces)"
+        };
+        return Err(CommandError::Usage(problem.to_string()));
+    };
+    load_file(session, Path::new(file), console)
+}
+
+/// Runs the file at `path` into the session, reporting any failure on the
+/// console; `Err(())` if it failed (the session is then unchanged).
+pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
+    load_file(session, path, console).map(|_| ()).map_err(|error| report_error(error, session, console))
+}
+
+/// Runs the file at `path` into the session, as one input.
+fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), plain_io_error(&e))))?;
+    let accepted = session.load(&path.display().to_string(), &text).map_err(|d| CommandError::Program(Box::new(d)))?;
+    for warning in &accepted.warnings {
+        console.diagnostic(warning, session.sources());
+    }
+    console.say(format!("loaded {}", path.display()));
+    for line in report::confirmations(&accepted, session) {
+        console.say(line);
+    }
+    Ok(Flow::Continue)
+}
+
+fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    let numbers: Vec<String> =
+        session.numbers().iter().map(|(name, value)| format!("{name} = {}", number(*value))).collect();
+    let objects: Vec<String> = session.objects().iter().map(|(name, what)| format!("{name} ({what})")).collect();
+    let procedures: Vec<String> =
+        session.procedures().iter().map(|(name, params)| format!("{name}({})", params.join(", "))).collect();
+    console.say(format!("numbers:    {}", numbers.join(", ")));
+    let no_objects = "none yet: `object ball = sphere ... end` names one";
+    console.say(format!("objects:    {}", or_none(&objects, no_objects)));
+    let no_procedures = "none yet: see `:help proc`";
+    console.say(format!("procedures: {}", or_none(&procedures, no_procedures)));
+    Ok(Flow::Continue)
+}
+
+fn or_none(items: &[String], none: &str) -> String {
+    if items.is_empty() { none.to_string() } else { items.join(", ") }
+}
+
+fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    let scene = session.scene();
+    let default = |given: bool| {
+        if given { "" } else { " (default: none given yet)" }
+    };
+    console.say(format!(
+        "camera:   distance {}, angle {}{}",
+        number(scene.camera.distance),
+        number(scene.camera.angle),
+        default(session.has_camera())
+    ));
+    console.say(format!("ambient:  {}{}", number(scene.ambient), default(session.has_ambient())));
+    console.say(format!("lights:   {}", scene.lights.len()));
+    for (index, light) in scene.lights.iter().enumerate() {
+        let d = light.direction;
+        console.say(format!(
+            "  {}. towards ({}, {}, {}), intensity {}",
+            index + 1,
+            number(d.x),
+            number(d.y),
+            number(d.z),
+            number(light.intensity)
+        ));
+    }
+    let counts = scene.counts();
+    let mut objects = format!(
+        "objects:  {} ({}, {}, {})",
+        report::objects(&counts),
+        counted(counts.spheres, "sphere"),
+        counted(counts.planes, "plane"),
+        counted(counts.boxes, "box")
+    );
+    if !scene.timed_primitives.is_empty() {
+        objects.push_str(&format!(", {} depending on time", scene.timed_primitives.len()));
+    }
+    console.say(objects);
+    let s = session.settings();
+    console.say(format!(
+        "settings: time {}, size {}, depth {}, samples {}",
+        number(s.time),
+        Size { width: s.width, height: s.height },
+        s.depth,
+        s.samples
+    ));
+    Ok(Flow::Continue)
+}
+
+fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
+        Undone::Nothing => console.say("nothing to undo"),
+        Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
+        Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
+    }
+    console.say(format!("{} in the scene", counted(report::objects(&session.scene().counts()), "object")));
+    Ok(Flow::Continue)
+}
+
+fn reset(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    session.reset();
+    console.say("the session is empty again (`:undo` brings it all back)");
+    Ok(Flow::Continue)
+}
+
+fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    Ok(Flow::Quit)
+}
+
+// ---------------------------------------------------------------- rendering
+
+/// Prints one note about the defaults a render falls back on, and about
+/// an empty or unlit scene.
+fn explain_defaults(session: &Session, console: &mut Console) {
+    let scene = session.scene();
+    let camera = format!("camera (distance {}, angle {})", number(scene.camera.distance), number(scene.camera.angle));
+    let ambient = format!("ambient light ({})", number(scene.ambient));
+    let set_camera = "set yours with `camera distance 12 angle 0.8 end`";
+    match (session.has_camera(), session.has_ambient()) {
+        (false, false) => console.note(format!("default {camera} and {ambient}; {set_camera}")),
+        (false, true) => console.note(format!("default {camera}; {set_camera}")),
+        (true, false) => console.note(format!("default {ambient}; set yours with `ambient 0.3`")),
+        (true, true) => {}
+    }
+    if scene.all_primitives().next().is_none() {
+        console.note("nothing has been put yet, so the picture is black (see `:help put`)");
+    } else if scene.lights.is_empty() {
+        console.note("no light yet, only the ambient light shows (see `:help light`)");
+    }
+}
+
+/// Renders `scene` with the session's settings, with progress and Ctrl-C.
+fn render_scene(
+    scene: &Scene,
+    size: Size,
+    settings: &RenderSettings,
+    console: &Console,
+) -> Result<(RgbImage, Duration), CommandError> {
+    let started = Instant::now();
+    let total = size.width as usize * size.height as usize;
+    let progress = Progress { visible: console.progress, label: "rendering", total };
+    let armed = console.cancel.map(|switch| switch.arm());
+    let never = AtomicBool::new(false);
+    let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
+    let image = progress
+        .run(|pixels| {
+            let prepared = Prepared::new(scene);
+            render_image(scene, &prepared, size, settings, cancel, pixels)
+        })
+        .map_err(render_failure)?;
+    Ok((image, started.elapsed()))
+}
+
+/// Renders frames 1..=`frames` of the animation, frame k with `time` = k,
+/// and hands each to `sink` with its number. The geometry that does not
+/// depend on `time` is built once, from frame 1.
+fn render_frames(
+    session: &Session,
+    frames: u32,
+    size: Size,
+    console: &Console,
+    sink: &mut dyn FnMut(usize, RgbImage) -> Result<(), CommandError>,
+) -> Result<(), CommandError> {
+    let settings = *session.settings();
+    let timed = session.depends_on_time();
+    let rendered_frames = if timed { frames as usize } else { 1 };
+    let total = rendered_frames * size.width as usize * size.height as usize;
+    let progress = Progress { visible: console.progress, label: "animating", total };
+    let armed = console.cancel.map(|switch| switch.arm());
+    let never = AtomicBool::new(false);
+    let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
+    progress.run(|pixels| {
+        let render = |scene: &Scene, prepared: &Prepared| {
+            render_image(scene, prepared, size, &settings, cancel, pixels).map_err(render_failure)
+        };
+        if !timed {
+            // Nothing reads `time`: every frame is the same picture.
+            let scene = session.scene();
+            let image = render(scene, &Prepared::new(scene))?;
+            for frame in 1..=frames as usize {
+                sink(frame, image.clone())?;
+            }
+            return Ok(());
+        }
+        let first = session.replay_at(1.0, false).map_err(|d| frame_failure(d, 1))?.into_scene();
+        let first_prepared = Prepared::new(&first);
+        sink(1, render(&first, &first_prepared)?)?;
+        for frame in 2..=frames {
+            let scene = session.replay_at(f64::from(frame), true).map_err(|d| frame_failure(d, frame))?.into_scene();
+            let static_part = Arc::clone(first_prepared.static_part());
+            let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
+            sink(frame as usize, render(&scene, &prepared)?)?;
+        }
+        Ok(())
+    })
+}
+
+fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {
+    let note = format!("while computing frame {frame}, with time = {frame}");
+    CommandError::Program(Box::new(diagnostic.with_note(note)))
+}
+
+fn render_failure(error: RenderError) -> CommandError {
+    match error {
+        RenderError::Cancelled => CommandError::Cancelled("render cancelled; the session is as it was".to_string()),
+    }
+}
+
+/// "12 ms" or "1.3 s".
+fn duration(took: Duration) -> String {
+    if took < Duration::from_secs(1) {
+        format!("{} ms", took.as_millis())
+    } else {
+        format!("{:.1} s", took.as_secs_f64())
+    }
+}
+
+fn first_line(text: &str) -> String {
+    let mut lines = text.lines().filter(|line| !line.trim().is_empty());
+    let first = lines.next().unwrap_or("").trim().to_string();
+    if lines.next().is_some() { format!("{first} ...") } else { first }
+}
+
+/// An I/O error in plain words, without the OS error number.
+fn plain_io_error(error: &std::io::Error) -> String {
+    match error.kind() {
+        std::io::ErrorKind::NotFound => "no such file".to_string(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
+        _ => error.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arguments_split_on_spaces_and_keep_quoted_ones() {
+        assert_eq!(split_arguments(" :save  a.png 10 20 ").unwrap(), vec![":save", "a.png", "10", "20"]);
+        assert_eq!(split_arguments(":load \"my scene.ray\"").unwrap(), vec![":load", "my scene.ray"]);
+        assert_eq!(split_arguments(":load \"\"").unwrap(), vec![":load", ""]);
+        assert!(split_arguments(":load \"oops").is_err());
+        if cfg!(not(windows)) {
+            assert_eq!(split_arguments(r":load my\ scene.ray").unwrap(), vec![":load", "my scene.ray"]);
+        }
+    }
+
+    #[test]
+    fn counts_and_sizes_are_checked() {
+        assert_eq!(parse_count("5", "depth", 0..=10).ok(), Some(5));
+        assert!(parse_count("-1", "depth", 0..=10).is_err());
+        assert!(parse_count("11", "depth", 0..=10).is_err());
+        assert!(parse_count("x", "depth", 0..=10).is_err());
+        assert!(parse_size("0", "10").is_err());
+        assert!(parse_number("inf").is_err());
+        assert_eq!(parse_number("-2.5").ok(), Some(-2.5));
+    }
+
+    #[test]
+    fn durations_read_plainly() {
+        assert_eq!(duration(Duration::from_millis(12)), "12 ms");
+        assert_eq!(duration(Duration::from_millis(1340)), "1.3 s");
+        assert_eq!(first_line("\nput sphere\n  center"), "put sphere ...");
+    }
+}

@@ -1,0 +1,244 @@
+//! The line editor's helper: when an input goes on to the next line,
+//! completion, and colours.
+//!
+//! rustyline has no continuation prompt, so the session reads an unfinished
+//! input one line at a time, each with a prompt naming what is still open
+//! (`...sphere> `). The validator handles the other case: a buffer that
+//! already holds several lines (recalled from history, or pasted) stays in
+//! the editor, and Enter adds a line, until it is complete.
+
+use std::borrow::Cow;
+
+use rustyline::completion::{Completer, FilenameCompleter, Pair};
+use rustyline::highlight::{CmdKind, Highlighter};
+use rustyline::hint::Hinter;
+use rustyline::validate::{ValidationContext, ValidationResult, Validator};
+use rustyline::{Context, Helper};
+
+use crate::lang::is_incomplete;
+
+use super::commands::{COMMANDS, is_command};
+use super::help;
+use super::session::Vocabulary;
+use super::syntax::{KEYWORDS, TokenKind, is_word_char, tokens};
+
+/// Commands whose arguments are file names.
+const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim"];
+
+/// Keywords that are functions: they complete up to their parenthesis.
+const FUNCTIONS: &[&str] = &["sin", "cos", "sqrt"];
+
+/// The rustyline helper of the session.
+pub(crate) struct RayHelper {
+    color: bool,
+    /// The lines of the current input entered so far (empty at the first line).
+    pending: String,
+    /// Names defined by the session, as completion candidates.
+    names: Vec<Pair>,
+    files: FilenameCompleter,
+}
+
+impl RayHelper {
+    /// A helper; `color` turns syntax colouring on.
+    pub(crate) fn new(color: bool) -> RayHelper {
+        RayHelper { color, pending: String::new(), names: Vec::new(), files: FilenameCompleter::new() }
+    }
+
+    /// Tells the helper the lines of the current input entered so far.
+    pub(crate) fn set_pending(&mut self, pending: &str) {
+        pending.clone_into(&mut self.pending);
+    }
+
+    /// Refreshes the names offered by completion.
+    pub(crate) fn set_names(&mut self, vocabulary: &Vocabulary) {
+        self.names = name_candidates(vocabulary);
+    }
+
+    fn complete_command(&self, line: &str, pos: usize, ctx: &Context<'_>) -> rustyline::Result<(usize, Vec<Pair>)> {
+        let before = &line[..pos];
+        let start = before.len() - before.trim_start().len();
+        let command_end = before[start..].find(char::is_whitespace).map(|i| start + i);
+        let Some(command_end) = command_end else {
+            let typed = &before[start..];
+            let names = COMMANDS.iter().map(|c| c.name).filter(|name| name.starts_with(typed));
+            return Ok((start, names.map(|name| plain(name, &format!("{name} "))).collect()));
+        };
+        let command = &before[start..command_end];
+        if FILE_COMMANDS.contains(&command) {
+            return self.files.complete(line, pos, ctx);
+        }
+        if command == ":help" {
+            let word_start = word_start(before);
+            let typed = &before[word_start..];
+            let mut topics: Vec<&str> = help::all_names().filter(|name| name.starts_with(typed)).collect();
+            topics.sort_unstable();
+            topics.dedup();
+            return Ok((word_start, topics.into_iter().map(|name| plain(name, name)).collect()));
+        }
+        Ok((pos, Vec::new()))
+    }
+
+    fn complete_word(&self, line: &str, pos: usize) -> (usize, Vec<Pair>) {
+        let start = word_start(&line[..pos]);
+        let typed = &line[start..pos];
+        if typed.is_empty() {
+            return (pos, Vec::new());
+        }
+        let keywords = KEYWORDS.iter().map(|k| keyword_candidate(k));
+        let mut candidates: Vec<Pair> =
+            keywords.chain(self.names.iter().cloned()).filter(|pair| pair.replacement.starts_with(typed)).collect();
+        candidates.sort_by(|a, b| a.display.cmp(&b.display));
+        candidates.dedup_by(|a, b| a.display == b.display);
+        (start, candidates)
+    }
+}
+
+/// Completion candidates for the session's names: procedures show their
+/// parameters and complete up to the opening parenthesis.
+pub(crate) fn name_candidates(vocabulary: &Vocabulary) -> Vec<Pair> {
+    let variables = vocabulary.variables.iter().map(|name| plain(name, name));
+    let procedures = vocabulary.procedures.iter().map(|(name, params)| Pair {
+        display: format!("{name}({})", params.join(", ")),
+        replacement: format!("{name}("),
+    });
+    variables.chain(procedures).collect()
+}
+
+/// A keyword followed by a space, or a function with its parenthesis.
+fn keyword_candidate(keyword: &str) -> Pair {
+    if FUNCTIONS.contains(&keyword) {
+        Pair { display: format!("{keyword}(x)"), replacement: format!("{keyword}(") }
+    } else {
+        plain(keyword, &format!("{keyword} "))
+    }
+}
+
+fn plain(display: &str, replacement: &str) -> Pair {
+    Pair { display: display.to_string(), replacement: replacement.to_string() }
+}
+
+/// Where the name that ends at the end of `before` starts.
+fn word_start(before: &str) -> usize {
+    before.char_indices().rev().take_while(|(_, c)| is_word_char(*c)).last().map_or(before.len(), |(i, _)| i)
+}
+
+impl Completer for RayHelper {
+    type Candidate = Pair;
+
+    fn complete(&self, line: &str, pos: usize, ctx: &Context<'_>) -> rustyline::Result<(usize, Vec<Pair>)> {
+        if is_command(line) {
+            return self.complete_command(line, pos, ctx);
+        }
+        Ok(self.complete_word(line, pos))
+    }
+}
+
+impl Hinter for RayHelper {
+    type Hint = String;
+}
+
+impl Validator for RayHelper {
+    fn validate(&self, ctx: &mut ValidationContext<'_>) -> rustyline::Result<ValidationResult> {
+        let input = ctx.input();
+        let several_lines = input.trim_end().contains('\n');
+        if !several_lines || is_command(input) {
+            return Ok(ValidationResult::Valid(None));
+        }
+        let whole = if self.pending.is_empty() { input.to_string() } else { format!("{}\n{input}", self.pending) };
+        Ok(if is_incomplete(&whole) { ValidationResult::Incomplete } else { ValidationResult::Valid(None) })
+    }
+}
+
+impl Highlighter for RayHelper {
+    fn highlight<'l>(&self, line: &'l str, _pos: usize) -> Cow<'l, str> {
+        if !self.color {
+            return Cow::Borrowed(line);
+        }
+        Cow::Owned(colorize(line))
+    }
+
+    fn highlight_prompt<'b, 's: 'b, 'p: 'b>(&'s self, prompt: &'p str, _default: bool) -> Cow<'b, str> {
+        if !self.color {
+            return Cow::Borrowed(prompt);
+        }
+        // A continuation prompt (`...sphere> `) in yellow, the first one in green.
+        let code = if self.pending.is_empty() { "1;32" } else { "33" };
+        Cow::Owned(format!("\x1b[{code}m{prompt}\x1b[0m"))
+    }
+
+    fn highlight_char(&self, _line: &str, _pos: usize, _kind: CmdKind) -> bool {
+        self.color
+    }
+}
+
+impl Helper for RayHelper {}
+
+/// `line` with ANSI colours: keywords, built-ins, numbers, comments and
+/// commands.
+pub(crate) fn colorize(line: &str) -> String {
+    let mut out = String::with_capacity(line.len() * 2);
+    for token in tokens(line) {
+        let text = &line[token.start..token.end];
+        let code = match token.kind {
+            TokenKind::Keyword => Some("1;34"),
+            TokenKind::Builtin => Some("36"),
+            TokenKind::Number => Some("33"),
+            TokenKind::Comment => Some("2;37"),
+            TokenKind::Command => Some("1;32"),
+            TokenKind::Ident | TokenKind::Other => None,
+        };
+        match code {
+            Some(code) => out.push_str(&format!("\x1b[{code}m{text}\x1b[0m")),
+            None => out.push_str(text),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rustyline::history::DefaultHistory;
+
+    fn complete(helper: &RayHelper, line: &str) -> (usize, Vec<String>) {
+        let history = DefaultHistory::new();
+        let ctx = Context::new(&history);
+        let (start, pairs) = helper.complete(line, line.len(), &ctx).expect("completion does not fail");
+        (start, pairs.into_iter().map(|p| p.display).collect())
+    }
+
+    #[test]
+    fn commands_complete_after_a_colon() {
+        let helper = RayHelper::new(false);
+        assert_eq!(complete(&helper, ":re"), (0, vec![":render".to_string(), ":reset".to_string()]));
+        assert_eq!(complete(&helper, ":help sph"), (6, vec!["sphere".to_string()]));
+    }
+
+    #[test]
+    fn keywords_and_defined_names_complete_in_program_text() {
+        let mut helper = RayHelper::new(false);
+        let (start, found) = complete(&helper, "put sph");
+        assert_eq!((start, found), (4, vec!["sphere".to_string()]));
+        helper.set_names(&Vocabulary {
+            variables: vec!["spin".to_string(), "time".to_string()],
+            procedures: vec![("spiral".to_string(), vec!["n".to_string(), "r".to_string()])],
+        });
+        let found = complete(&helper, "let a = sp").1;
+        assert_eq!(found, ["sphere", "spin", "spiral(n, r)"].map(String::from));
+        let found = complete(&helper, "let a = s").1;
+        let expected = ["scale", "shift", "sin(x)", "sphere", "spin", "spiral(n, r)", "sqrt(x)"];
+        assert_eq!(found, expected.map(String::from));
+        assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
+        assert_eq!(complete(&helper, "spir").1, vec!["spiral(n, r)".to_string()]);
+    }
+
+    #[test]
+    fn colours_keep_the_text() {
+        let line = "put sphere # ball";
+        let painted = colorize(line);
+        assert!(painted.contains("\x1b[1;34mput\x1b[0m"));
+        let stripped: String =
+            painted.split('\x1b').map(|part| part.split_once('m').map_or(part, |(_, rest)| rest)).collect();
+        assert_eq!(stripped, line);
+    }
+}

@@ -1,0 +1,122 @@
+//! Showing renders in the terminal with viuer: the terminal's graphics
+//! protocol where it has one (kitty, iTerm, sixel), coloured half-blocks
+//! otherwise (which is also what works inside tmux).
+
+use std::io::IsTerminal;
+
+use image::{DynamicImage, RgbImage};
+
+use super::rendering::Size;
+
+/// Rows kept free under a preview: one for the message after it, one for the prompt.
+const ROWS_KEPT_FREE: u32 = 2;
+/// Pixels rendered per terminal column when the terminal shows real images:
+/// a cell is about 8 pixels wide and 16 high.
+const PIXELS_PER_CELL_WITH_GRAPHICS: u32 = 8;
+
+/// How the terminal can show images.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Method {
+    /// Kitty, iTerm or sixel images.
+    Graphics,
+    /// `▀` characters with a foreground and a background colour: two pixels per cell.
+    HalfBlocks,
+}
+
+/// Previews images in the terminal on standard output.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Preview {
+    /// Inside tmux, which does not pass kitty or iTerm images through.
+    in_tmux: bool,
+}
+
+impl Preview {
+    /// A previewer, or `None` when previews are off: asked for with
+    /// `--no-preview`, or standard output is not a terminal.
+    pub(crate) fn new(no_preview: bool) -> Option<Preview> {
+        let dumb = std::env::var("TERM").is_ok_and(|term| term == "dumb");
+        if no_preview || dumb || !std::io::stdout().is_terminal() {
+            return None;
+        }
+        Some(Preview { in_tmux: std::env::var_os("TMUX").is_some() })
+    }
+
+    /// How this terminal shows images. The first call asks the terminal, so it
+    /// must not happen while the line editor is reading keys.
+    pub(crate) fn method(&self) -> Method {
+        let kitty = !self.in_tmux && viuer::get_kitty_support() != viuer::KittySupport::None;
+        let iterm = !self.in_tmux && viuer::is_iterm_supported();
+        if kitty || iterm || viuer::is_sixel_supported() { Method::Graphics } else { Method::HalfBlocks }
+    }
+
+    /// The terminal's size in cells (columns, rows) available for a preview.
+    fn cells(&self) -> Size {
+        let (columns, rows) = viuer::terminal_size();
+        Size { width: u32::from(columns).max(1), height: u32::from(rows).saturating_sub(ROWS_KEPT_FREE).max(1) }
+    }
+
+    /// The image size worth rendering for a preview of an image shaped like
+    /// `shape`: as large as the terminal shows it, never larger than `shape`.
+    pub(crate) fn render_size(&self, shape: Size) -> Size {
+        let cells = self.cells();
+        let scale = match self.method() {
+            Method::Graphics => PIXELS_PER_CELL_WITH_GRAPHICS,
+            Method::HalfBlocks => 1,
+        };
+        let fitted = fit_in_cells(shape, cells);
+        let size = Size { width: fitted.width * scale, height: fitted.height * 2 * scale };
+        let size = fit(shape, size);
+        Size { width: size.width.min(shape.width).max(1), height: size.height.min(shape.height).max(1) }
+    }
+
+    /// Prints `image` scaled to fit the terminal.
+    pub(crate) fn show(&self, image: &RgbImage) -> Result<(), String> {
+        let cells = fit_in_cells(Size { width: image.width(), height: image.height() }, self.cells());
+        let config = viuer::Config {
+            absolute_offset: false,
+            width: Some(cells.width),
+            height: Some(cells.height),
+            use_kitty: !self.in_tmux,
+            use_iterm: !self.in_tmux,
+            ..viuer::Config::default()
+        };
+        viuer::print(&DynamicImage::ImageRgb8(image.clone()), &config).map(|_| ()).map_err(|e| e.to_string())
+    }
+}
+
+/// The largest size with the proportions of `shape` that fits in `bounds`.
+pub(crate) fn fit(shape: Size, bounds: Size) -> Size {
+    let (w, h) = (u64::from(shape.width.max(1)), u64::from(shape.height.max(1)));
+    let (bw, bh) = (u64::from(bounds.width.max(1)), u64::from(bounds.height.max(1)));
+    // Width-limited when w/h >= bw/bh, that is w*bh >= bw*h.
+    let (width, height) = if w * bh >= bw * h { (bw, (bw * h / w).max(1)) } else { ((bh * w / h).max(1), bh) };
+    Size { width: width as u32, height: height as u32 }
+}
+
+/// The cells (columns, rows) an image shaped like `shape` takes when fitted
+/// in `cells`, a cell being twice as high as it is wide.
+pub(crate) fn fit_in_cells(shape: Size, cells: Size) -> Size {
+    let pixels = fit(shape, Size { width: cells.width, height: cells.height * 2 });
+    Size { width: pixels.width, height: pixels.height.div_ceil(2).max(1) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_keeps_proportions_and_bounds() {
+        let bounds = Size { width: 80, height: 44 };
+        assert_eq!(fit(Size { width: 640, height: 480 }, bounds), Size { width: 58, height: 44 });
+        assert_eq!(fit(Size { width: 800, height: 200 }, bounds), Size { width: 80, height: 20 });
+        assert_eq!(fit(Size { width: 1, height: 10000 }, bounds), Size { width: 1, height: 44 });
+    }
+
+    #[test]
+    fn cells_are_twice_as_high_as_wide() {
+        let cells = fit_in_cells(Size { width: 640, height: 480 }, Size { width: 80, height: 22 });
+        assert_eq!(cells, Size { width: 58, height: 22 });
+        let cells = fit_in_cells(Size { width: 100, height: 100 }, Size { width: 200, height: 100 });
+        assert_eq!(cells, Size { width: 200, height: 100 });
+    }
+}

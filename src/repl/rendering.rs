@@ -1,0 +1,290 @@
+//! Turning the session's scene into images: the one call into the renderer,
+//! progress and cancellation around it, and writing image files.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::thread;
+use std::time::{Duration, Instant};
+
+use image::RgbImage;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::output::{frame_path, write_gif};
+use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, Screen, render};
+use crate::scene::Scene;
+
+/// How the session renders: image size, reflections, antialiasing and time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels for `:save` and `:anim`.
+    pub width: u32,
+    /// Image height in pixels for `:save` and `:anim`.
+    pub height: u32,
+    /// Number of reflections followed (SPEC 6).
+    pub depth: u32,
+    /// Rays per pixel (1 samples each pixel at its centre).
+    pub samples: u32,
+    /// The value of `time` for evaluation and renders (SPEC 3).
+    pub time: f64,
+    /// Where the z axis meets the screen (SPEC 5).
+    pub screen: Screen,
+}
+
+impl Default for RenderSettings {
+    fn default() -> RenderSettings {
+        RenderSettings { width: 640, height: 480, depth: 5, samples: 1, time: 0.0, screen: Screen::Centered }
+    }
+}
+
+/// Width and height of an image in pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Size {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+impl std::fmt::Display for Size {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}×{}", self.width, self.height)
+    }
+}
+
+/// Why a render gave no image.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum RenderError {
+    /// Ctrl-C was pressed.
+    Cancelled,
+}
+
+/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth
+/// and samples of `settings`.
+///
+/// This is the only place that calls the renderer. It stops when `cancel`
+/// is raised and counts finished pixels in `pixels_done`, for the progress bar.
+pub(crate) fn render_image(
+    scene: &Scene,
+    prepared: &Prepared,
+    size: Size,
+    settings: &RenderSettings,
+    cancel: &AtomicBool,
+    pixels_done: &AtomicUsize,
+) -> Result<RgbImage, RenderError> {
+    let options = RenderOptions {
+        width: size.width,
+        height: size.height,
+        depth: settings.depth,
+        samples: settings.samples,
+        screen: settings.screen,
+        ..RenderOptions::default()
+    };
+    let count = |pixels: u64| {
+        pixels_done.fetch_add(pixels as usize, Ordering::Relaxed);
+    };
+    let control = RenderControl { progress: Some(&count), cancel: Some(cancel) };
+    match render(scene, prepared, &options, &control) {
+        Ok((image, _stats)) => Ok(image),
+        Err(Cancelled) => Err(RenderError::Cancelled),
+    }
+}
+
+/// Progress reporting for a long job: after half a second a bar appears on
+/// standard error, fed from a counter the job increments.
+pub(crate) struct Progress<'a> {
+    /// Whether to show a bar at all (interactive sessions only).
+    pub visible: bool,
+    /// What the bar says ("rendering", "animating").
+    pub label: &'a str,
+    /// The count at which the job is done.
+    pub total: usize,
+}
+
+/// How long a job runs before its progress bar appears.
+const PROGRESS_DELAY: Duration = Duration::from_millis(500);
+/// How often the bar is refreshed.
+const PROGRESS_TICK: Duration = Duration::from_millis(50);
+
+impl Progress<'_> {
+    /// Runs `job`, which counts its progress in the counter it is given, and
+    /// shows a bar if it lasts longer than half a second.
+    pub(crate) fn run<R>(&self, job: impl FnOnce(&AtomicUsize) -> R) -> R {
+        let counter = AtomicUsize::new(0);
+        let finished = AtomicBool::new(false);
+        thread::scope(|scope| {
+            let watcher = self.visible.then(|| scope.spawn(|| self.watch(&counter, &finished)));
+            let result = job(&counter);
+            finished.store(true, Ordering::SeqCst);
+            // Wake the watcher now rather than at its next tick: a fast
+            // render must not wait for it.
+            if let Some(watcher) = watcher {
+                watcher.thread().unpark();
+            }
+            result
+        })
+    }
+
+    fn watch(&self, counter: &AtomicUsize, finished: &AtomicBool) {
+        let started = Instant::now();
+        let mut bar: Option<ProgressBar> = None;
+        while !finished.load(Ordering::SeqCst) {
+            thread::park_timeout(PROGRESS_TICK);
+            if finished.load(Ordering::SeqCst) {
+                break;
+            }
+            if bar.is_none() && started.elapsed() >= PROGRESS_DELAY {
+                bar = Some(self.new_bar());
+            }
+            if let Some(bar) = &bar {
+                bar.set_position(counter.load(Ordering::Relaxed) as u64);
+            }
+        }
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
+    }
+
+    fn new_bar(&self) -> ProgressBar {
+        let bar = ProgressBar::with_draw_target(Some(self.total as u64), ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:30}] {percent}% ({elapsed}, Ctrl-C cancels)") {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_message(self.label.to_string());
+        bar
+    }
+}
+
+/// The image formats the session writes, chosen by file extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ImageFormat {
+    /// `.png`
+    Png,
+    /// `.ppm` (binary P6)
+    Ppm,
+    /// `.gif`
+    Gif,
+}
+
+impl ImageFormat {
+    /// The format named by `path`'s extension, if it is one the session writes.
+    pub(crate) fn of(path: &Path) -> Option<ImageFormat> {
+        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+        match extension.as_str() {
+            "png" => Some(ImageFormat::Png),
+            "ppm" => Some(ImageFormat::Ppm),
+            "gif" => Some(ImageFormat::Gif),
+            _ => None,
+        }
+    }
+}
+
+/// Delay between the frames of an animated GIF: 25 frames a second, as for
+/// `rayrepl --anim`.
+const GIF_FRAME_DELAY_MS: u32 = 40;
+
+/// Writes one image to `path`, in the format its extension names.
+pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
+    let written = match ImageFormat::of(path) {
+        Some(ImageFormat::Gif) => write_gif(path, std::slice::from_ref(image), GIF_FRAME_DELAY_MS),
+        _ => crate::output::write_image(path, image),
+    };
+    written.map_err(|e| e.to_string())
+}
+
+/// Where the frames of an animation go as they are rendered: kept for one
+/// animated GIF if the file name ends in `.gif`, otherwise written at once as
+/// numbered images (`spin.png` gives `spin0001.png`, ...), so that a long
+/// animation does not have to fit in memory.
+pub(crate) struct FrameSink {
+    path: PathBuf,
+    count: usize,
+    gif_frames: Option<Vec<RgbImage>>,
+    written: Vec<PathBuf>,
+}
+
+impl FrameSink {
+    /// A sink for `count` frames named after `path`.
+    pub(crate) fn new(path: &Path, count: usize) -> FrameSink {
+        let gif = ImageFormat::of(path) == Some(ImageFormat::Gif);
+        FrameSink {
+            path: path.to_path_buf(),
+            count,
+            gif_frames: gif.then(|| Vec::with_capacity(count)),
+            written: Vec::new(),
+        }
+    }
+
+    /// Takes frame number `frame` (from 1).
+    pub(crate) fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), String> {
+        if let Some(frames) = &mut self.gif_frames {
+            frames.push(image);
+            return Ok(());
+        }
+        let path = frame_path(&self.path, frame, self.count);
+        crate::output::write_image(&path, &image).map_err(|e| e.to_string())?;
+        self.written.push(path);
+        Ok(())
+    }
+
+    /// Writes what is left to write; returns the files written.
+    pub(crate) fn finish(mut self) -> Result<Vec<PathBuf>, String> {
+        if let Some(frames) = self.gif_frames.take() {
+            write_gif(&self.path, &frames, GIF_FRAME_DELAY_MS).map_err(|e| e.to_string())?;
+            self.written.push(self.path);
+        }
+        Ok(self.written)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_follow_the_extension() {
+        assert_eq!(ImageFormat::of(Path::new("a.PNG")), Some(ImageFormat::Png));
+        assert_eq!(ImageFormat::of(Path::new("dir/a.ppm")), Some(ImageFormat::Ppm));
+        assert_eq!(ImageFormat::of(Path::new("a.gif")), Some(ImageFormat::Gif));
+        assert_eq!(ImageFormat::of(Path::new("a.jpg")), None);
+        assert_eq!(ImageFormat::of(Path::new("a")), None);
+    }
+
+    fn empty_scene() -> Scene {
+        crate::lang::Interpreter::new(0.0, crate::lang::Limits::default()).into_scene()
+    }
+
+    #[test]
+    fn a_raised_cancel_flag_stops_the_render() {
+        let scene = empty_scene();
+        let size = Size { width: 64, height: 64 };
+        let settings = RenderSettings::default();
+        let cancel = AtomicBool::new(true);
+        let pixels = AtomicUsize::new(0);
+        let result = render_image(&scene, &Prepared::new(&scene), size, &settings, &cancel, &pixels);
+        assert_eq!(result, Err(RenderError::Cancelled));
+    }
+
+    #[test]
+    fn a_render_counts_every_pixel() {
+        let scene = empty_scene();
+        let size = Size { width: 40, height: 20 };
+        let (cancel, pixels) = (AtomicBool::new(false), AtomicUsize::new(0));
+        let image = render_image(&scene, &Prepared::new(&scene), size, &RenderSettings::default(), &cancel, &pixels);
+        assert_eq!(image.map(|i| i.dimensions()), Ok((40, 20)));
+        assert_eq!(pixels.load(Ordering::Relaxed), 800);
+    }
+
+    #[test]
+    fn a_visible_progress_does_not_delay_a_fast_job() {
+        let progress = Progress { visible: true, label: "test", total: 1 };
+        let started = Instant::now();
+        progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed));
+        assert!(started.elapsed() < PROGRESS_TICK, "took {:?}", started.elapsed());
+    }
+
+    #[test]
+    fn progress_runs_the_job_and_returns_its_result() {
+        let progress = Progress { visible: false, label: "test", total: 1 };
+        assert_eq!(progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed) + 41), 41);
+    }
+}

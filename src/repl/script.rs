@@ -1,0 +1,110 @@
+//! Scripts on standard input: `cat script | rayrepl` runs items and commands
+//! line by line, without prompts, colours or previews. Lines accumulate while
+//! an input is unfinished; diagnostics carry the script's own line numbers.
+
+use std::io::{BufRead, Write};
+
+use crate::lang::is_incomplete;
+
+use super::commands::{self, Flow, is_command};
+use super::console::Console;
+use super::session::Session;
+use super::{SessionOptions, handle_input, new_session};
+
+/// The name scripts' diagnostics show.
+const SCRIPT_NAME: &str = "<stdin>";
+
+/// Runs the script read from `input`, writing messages to `out` and
+/// diagnostics to `err`. The first error stops the script unless
+/// `options.keep_going`; `options.initial_file` is loaded first. Returns the
+/// exit status: 0 if everything succeeded, 1 otherwise.
+pub fn run_script(input: impl BufRead, out: &mut dyn Write, err: &mut dyn Write, options: &SessionOptions) -> i32 {
+    let mut session = new_session(options);
+    let mut console = Console::plain(out, err);
+    let mut script = Script { session: &mut session, console: &mut console, keep_going: options.keep_going, errors: 0 };
+    if let Some(path) = &options.initial_file {
+        let loaded = commands::load_reporting(script.session, path, script.console);
+        if script.after(loaded.is_ok()) == Step::Stop {
+            return 1;
+        }
+    }
+    script.run(input);
+    if script.errors > 0 { 1 } else { 0 }
+}
+
+/// Whether the script goes on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Step {
+    Next,
+    Stop,
+}
+
+/// A script being run.
+struct Script<'s, 'c> {
+    session: &'s mut Session,
+    console: &'s mut Console<'c>,
+    keep_going: bool,
+    errors: usize,
+}
+
+impl Script<'_, '_> {
+    fn run(&mut self, input: impl BufRead) {
+        let mut pending = String::new();
+        let mut first_line = 0;
+        for (index, line) in input.lines().enumerate() {
+            let number = index + 1;
+            let Ok(line) = line else {
+                self.console.error(format!("line {number} of the script cannot be read as text"));
+                self.errors += 1;
+                return;
+            };
+            let line = line.strip_suffix('\r').unwrap_or(&line);
+            if pending.is_empty() {
+                if is_command(line) {
+                    if self.command(line) == Step::Stop {
+                        return;
+                    }
+                    continue;
+                }
+                first_line = number;
+            } else {
+                pending.push('\n');
+            }
+            pending.push_str(line);
+            if is_incomplete(&pending) {
+                continue;
+            }
+            if self.input(&std::mem::take(&mut pending), first_line) == Step::Stop {
+                return;
+            }
+        }
+        if !pending.trim().is_empty() {
+            // Unfinished at the end: the parser says what is missing.
+            self.input(&pending, first_line);
+        }
+    }
+
+    fn input(&mut self, text: &str, first_line: usize) -> Step {
+        if text.trim().is_empty() {
+            return Step::Next;
+        }
+        let result = handle_input(self.session, self.console, SCRIPT_NAME, text, first_line.saturating_sub(1));
+        self.after(result.is_ok())
+    }
+
+    fn command(&mut self, line: &str) -> Step {
+        match commands::execute(self.session, line, self.console) {
+            Ok(Flow::Quit) => Step::Stop,
+            Ok(Flow::Continue) => self.after(true),
+            Err(()) => self.after(false),
+        }
+    }
+
+    fn after(&mut self, succeeded: bool) -> Step {
+        if succeeded {
+            return Step::Next;
+        }
+        self.errors += 1;
+        if self.keep_going { Step::Next } else { Step::Stop }
+    }
+}

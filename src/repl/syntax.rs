@@ -1,0 +1,237 @@
+//! A forgiving word scanner for the editor: it colours, completes and finds
+//! open constructs in text that is still being typed.
+//!
+//! The language's own lexer reports errors; this one never fails, because the
+//! line being edited is usually not a valid program yet.
+
+/// The reserved words of SPEC 1.
+pub(crate) const KEYWORDS: &[&str] = &[
+    "ambient",
+    "angle",
+    "box",
+    "by",
+    "camera",
+    "center",
+    "color",
+    "cos",
+    "distance",
+    "else",
+    "end",
+    "group",
+    "if",
+    "intensity",
+    "kd",
+    "ks",
+    "length",
+    "let",
+    "light",
+    "object",
+    "phong",
+    "pi",
+    "plane",
+    "proc",
+    "put",
+    "radius",
+    "rotate",
+    "rotation",
+    "scale",
+    "shift",
+    "sin",
+    "sphere",
+    "sqrt",
+    "then",
+    "translate",
+    "vector",
+];
+
+/// Keywords that open a construct closed by `end`.
+const OPENERS: &[&str] =
+    &["camera", "light", "proc", "sphere", "plane", "box", "translate", "rotate", "scale", "group", "if"];
+
+/// Names the language gives a meaning to without reserving them as keywords
+/// (plus the built-in functions and `pi`, coloured alike).
+const BUILTINS: &[&str] = &["time", "sin", "cos", "sqrt", "pi"];
+
+/// What a piece of text is, for colouring.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum TokenKind {
+    /// A reserved word such as `sphere` or `end`.
+    Keyword,
+    /// `time`, `sin`, `cos`, `sqrt`, `pi`.
+    Builtin,
+    /// A name chosen by the user.
+    Ident,
+    /// A numeric literal.
+    Number,
+    /// `#` to the end of the line.
+    Comment,
+    /// A session command such as `:render` (first word of a line only).
+    Command,
+    /// Anything else: operators, punctuation, spaces, stray characters.
+    Other,
+}
+
+/// One piece of the scanned text: `text[start..end]` is of kind `kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Token {
+    /// Its kind.
+    pub kind: TokenKind,
+    /// First byte.
+    pub start: usize,
+    /// One past the last byte.
+    pub end: usize,
+}
+
+/// Splits `text` into tokens covering every byte, in order.
+pub(crate) fn tokens(text: &str) -> Vec<Token> {
+    let mut tokens = Vec::new();
+    let mut rest = text.char_indices().peekable();
+    let mut at_line_start = true;
+    while let Some(&(start, c)) = rest.peek() {
+        let kind = if c == '#' {
+            take_while(&mut rest, |c| c != '\n');
+            TokenKind::Comment
+        } else if c == ':' && at_line_start {
+            rest.next();
+            take_while(&mut rest, is_word_char);
+            TokenKind::Command
+        } else if c.is_ascii_digit() || (c == '.' && next_is_digit(text, start)) {
+            take_while(&mut rest, |c| c.is_ascii_digit() || c == '.');
+            TokenKind::Number
+        } else if c.is_ascii_alphabetic() || c == '_' {
+            take_while(&mut rest, is_word_char);
+            TokenKind::Ident
+        } else {
+            rest.next();
+            TokenKind::Other
+        };
+        let end = rest.peek().map_or(text.len(), |&(i, _)| i);
+        let kind = if kind == TokenKind::Ident { classify_word(&text[start..end]) } else { kind };
+        at_line_start = match kind {
+            TokenKind::Other => c == '\n' || (at_line_start && c.is_whitespace()),
+            _ => false,
+        };
+        tokens.push(Token { kind, start, end });
+    }
+    tokens
+}
+
+/// Whether `c` can be part of a name.
+pub(crate) fn is_word_char(c: char) -> bool {
+    c.is_ascii_alphanumeric() || c == '_'
+}
+
+/// The constructs opened in `text` and not yet closed by `end`, outermost
+/// first: for `proc p() put sphere` it is `["proc", "sphere"]`.
+pub(crate) fn open_constructs(text: &str) -> Vec<&'static str> {
+    let mut open = Vec::new();
+    for token in tokens(text) {
+        if token.kind != TokenKind::Keyword {
+            continue;
+        }
+        let word = &text[token.start..token.end];
+        if word == "end" {
+            open.pop();
+        } else if let Some(opener) = OPENERS.iter().find(|o| **o == word) {
+            open.push(*opener);
+        }
+    }
+    open
+}
+
+/// The prompt shown while an input continues on a new line: `...sphere> `
+/// names the innermost construct still open, `...> ` when none is (a line
+/// that ended with an operator or a comma).
+pub(crate) fn continuation_prompt(pending: &str) -> String {
+    match open_constructs(pending).last() {
+        Some(open) => format!("...{open}> "),
+        None => "...> ".to_string(),
+    }
+}
+
+fn classify_word(word: &str) -> TokenKind {
+    if BUILTINS.contains(&word) {
+        TokenKind::Builtin
+    } else if KEYWORDS.contains(&word) {
+        TokenKind::Keyword
+    } else {
+        TokenKind::Ident
+    }
+}
+
+fn next_is_digit(text: &str, at: usize) -> bool {
+    text[at..].chars().nth(1).is_some_and(|c| c.is_ascii_digit())
+}
+
+fn take_while(chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>, keep: impl Fn(char) -> bool) {
+    while chars.peek().is_some_and(|&(_, c)| keep(c)) {
+        chars.next();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kinds(text: &str) -> Vec<(TokenKind, &str)> {
+        tokens(text)
+            .into_iter()
+            .filter(|t| !text[t.start..t.end].trim().is_empty())
+            .map(|t| (t.kind, &text[t.start..t.end]))
+            .collect()
+    }
+
+    #[test]
+    fn tokens_cover_every_byte_in_order() {
+        let text = "put sphere center 1.5,0,-2 # a ball\n  radius r*2 é end";
+        let tokens = tokens(text);
+        let mut at = 0;
+        for token in &tokens {
+            assert_eq!(token.start, at);
+            at = token.end;
+        }
+        assert_eq!(at, text.len());
+    }
+
+    #[test]
+    fn words_numbers_comments_and_commands_are_told_apart() {
+        use TokenKind::*;
+        assert_eq!(
+            kinds("let r = sqrt(2) * time # half"),
+            vec![
+                (Keyword, "let"),
+                (Ident, "r"),
+                (Other, "="),
+                (Builtin, "sqrt"),
+                (Other, "("),
+                (Number, "2"),
+                (Other, ")"),
+                (Other, "*"),
+                (Builtin, "time"),
+                (Comment, "# half"),
+            ]
+        );
+        assert_eq!(kinds("  :render 80 40"), vec![(Command, ":render"), (Number, "80"), (Number, "40")]);
+        assert_eq!(
+            kinds("let a = b :c"),
+            vec![(Keyword, "let"), (Ident, "a"), (Other, "="), (Ident, "b"), (Other, ":"), (Ident, "c")]
+        );
+    }
+
+    #[test]
+    fn open_constructs_follow_end() {
+        assert_eq!(open_constructs("proc p(n)\n put sphere center 0,0,0"), vec!["proc", "sphere"]);
+        assert_eq!(
+            open_constructs("put sphere center 0,0,0 radius 1 kd 1 ks 0 phong 1 color 1,1,1 end"),
+            Vec::<&str>::new()
+        );
+        assert_eq!(open_constructs("if x < 1 then # sphere end\n"), vec!["if"]);
+        assert_eq!(open_constructs("put group translate"), vec!["group", "translate"]);
+    }
+
+    #[test]
+    fn continuation_prompt_names_the_innermost_open_construct() {
+        assert_eq!(continuation_prompt("put group sphere"), "...sphere> ");
+        assert_eq!(continuation_prompt("let x = 1 +"), "...> ");
+    }
+}

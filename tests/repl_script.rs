@@ -1,0 +1,617 @@
+//! Scripts run through the session's library entry point `run_script`, with
+//! in-memory input and output: every command, every error path, the exit
+//! status and the files written.
+
+use std::path::Path;
+
+use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
+use rayrepl::render::{Prepared, RenderControl, RenderOptions, render};
+use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
+
+/// A texture that raises no warning.
+const TEX: &str = "kd 0.7 ks 0.3 phong 20 color 255, 80, 40";
+
+/// A small complete scene, as session items.
+const SCENE: &str = "\
+camera distance 10 angle 0.8 end
+ambient 0.2
+light vector 0.5, 0, -0.5 intensity 0.8 end
+put sphere center 0, 0, 0 radius 2 $T end
+put plane rotation 0, 0, 0 shift -2 kd 0.8 ks 0 phong 1 color 200, 200, 200 end
+";
+
+/// What a script run printed, and its exit status.
+struct Run {
+    code: i32,
+    out: String,
+    err: String,
+}
+
+/// Runs `script` (with `$T` replaced by [`TEX`]) with `options`.
+fn run_with(script: &str, options: &SessionOptions) -> Run {
+    let script = script.replace("$T", TEX);
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let code = run_script(script.as_bytes(), &mut out, &mut err, options);
+    Run {
+        code,
+        out: String::from_utf8(out).expect("output is text"),
+        err: String::from_utf8(err).expect("errors are text"),
+    }
+}
+
+/// Runs `script` with default options.
+fn run(script: &str) -> Run {
+    run_with(script, &SessionOptions::default())
+}
+
+/// Runs `script` and goes on after errors.
+fn run_keep_going(script: &str) -> Run {
+    run_with(script, &SessionOptions { keep_going: true, ..SessionOptions::default() })
+}
+
+fn small_size() -> SessionOptions {
+    SessionOptions {
+        settings: RenderSettings { width: 32, height: 24, ..RenderSettings::default() },
+        ..SessionOptions::default()
+    }
+}
+
+// ------------------------------------------------------------ items
+
+#[test]
+fn items_accumulate_and_are_confirmed() {
+    let run = run(&format!("{SCENE}let r = 2 * 3\nobject ball = sphere center 0, 0, 0 radius 1 $T end\n"));
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert_eq!(run.err, "");
+    let expected = "\
+camera: distance 10, angle 0.8
+ambient light: 0.2
+1 light added (1 light in the scene)
+put 1 sphere (1 object in the scene)
+put 1 plane (2 objects in the scene)
+r = 6
+object ball = sphere
+";
+    assert_eq!(run.out, expected);
+}
+
+#[test]
+fn procedures_are_confirmed_with_their_parameters_and_calls_with_what_they_put() {
+    let run = run("\
+proc pair(x, y)
+  put sphere center x, 0, 0 radius 1 $T end
+  put box center y, 0, 0 length 1, 1, 1 $T end
+end
+pair(1, 2)
+proc pair(x, y) end
+pair(1, 2)
+");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert_eq!(
+        run.out,
+        "defined proc pair(x, y)\nput 1 sphere and 1 box (2 objects in the scene)\n\
+         redefined proc pair(x, y)\nnothing was put\n"
+    );
+}
+
+#[test]
+fn a_new_camera_or_ambient_replaces_the_old_one_and_lights_add_up() {
+    let run = run("\
+camera distance 10 angle 0.8 end
+camera distance 20 angle 0.5 end
+ambient 0.1
+ambient 0.3
+light vector 0, 0, 0 intensity 0.5 end
+light vector 0, 0, 0 intensity 0.5 end
+:scene
+");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("camera:   distance 20, angle 0.5\n"), "{}", run.out);
+    assert!(run.out.contains("ambient:  0.3\n"), "{}", run.out);
+    assert!(run.out.contains("lights:   2\n"), "{}", run.out);
+}
+
+#[test]
+fn inputs_continue_over_lines_while_a_construct_is_open() {
+    let run = run("\
+put sphere
+  center 0, 0, 0
+  radius 1
+  $T
+end
+let x = 1 +
+  2
+");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert_eq!(run.out, "put 1 sphere (1 object in the scene)\nx = 3\n");
+}
+
+#[test]
+fn every_kind_of_failing_input_leaves_the_session_as_it_was() {
+    let setup = format!(
+        "{SCENE}let r = 1\nobject ball = sphere center 0, 0, 0 radius 1 $T end\n\
+         proc two(x)\n  put sphere center 0, 0, 0 radius 1 $T end\n  put sphere center 0, 0, 0 radius x $T end\nend\n"
+    );
+    let failing = [
+        "put sphere center 0, 0, 0 radius 1 $T", // syntax: no end (at end of script)
+        "let r = )",                             // syntax error
+        "let r = nowhere",                       // unknown name
+        "let r = 1 / 0",                         // non-finite number
+        "camera distance 1 / 0 angle 1 end",     // camera
+        "ambient 1 / 0",                         // ambient
+        "light vector 0, 0, 0 intensity sqrt(0 - 1) end", // light
+        "proc broken(x) let = 1 end",            // proc with a syntax error
+        "object ball = sphere center 0, 0, 0 radius 0 $T end", // object
+        "put sphere center 0, 0, 0 radius 0 - 1 $T end", // put
+        "two(0)",                                // call failing after one put
+        "two(1, 2)",                             // arity
+        "nothing(1)",                            // unknown procedure
+        "if r = 1 then put ball let r = 2 put scale ball by 0 end end", // if failing halfway
+        "let r = 5 put ball put sphere center 0, 0, 0 radius r - 5 $T end", // several items, the last fails
+    ];
+    for bad in failing {
+        let script = format!("{setup}:scene\n:env\n:depth\n{bad}\n:scene\n:env\n:depth\n",);
+        let run = run_keep_going(&script);
+        assert_eq!(run.code, 1, "`{bad}` should fail:\n{}", run.out);
+        assert!(!run.err.is_empty(), "`{bad}` printed no error");
+        let lines: Vec<&str> = run.out.lines().collect();
+        let first = lines.iter().position(|l| l.starts_with("camera:   ")).expect(":scene output");
+        let depth = lines.iter().position(|l| l.starts_with("depth = ")).expect(":depth output");
+        let before = &lines[first..=depth];
+        let after_start = lines[depth + 1..].iter().position(|l| l.starts_with("camera:   ")).map(|i| i + depth + 1);
+        let Some(after_start) = after_start else {
+            // Unfinished input swallows the rest of the script: checked below.
+            assert_eq!(bad, failing[0]);
+            continue;
+        };
+        let after = &lines[after_start..after_start + before.len()];
+        assert_eq!(before, after, "`{bad}` changed the session");
+    }
+}
+
+#[test]
+fn errors_point_at_the_script_line() {
+    let run = run("let a = 1\n\n# comment\nput sphere center 0, 0, 0\n  radius nowhere $T end\n");
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("<stdin>:5:"), "{}", run.err);
+    assert!(run.err.contains("nowhere"), "{}", run.err);
+}
+
+#[test]
+fn the_first_error_stops_the_script() {
+    let run = run("let a = 1\nlet b = oops\nlet c = 3\n");
+    assert_eq!(run.code, 1);
+    assert_eq!(run.out, "a = 1\n");
+    assert!(run.err.contains("<stdin>:2:"), "{}", run.err);
+}
+
+#[test]
+fn keep_going_runs_everything_and_still_fails() {
+    let run = run_keep_going("let a = 1\nlet b = oops\nlet c = 3\n:nonsense\nlet d = 4\n");
+    assert_eq!(run.code, 1);
+    assert_eq!(run.out, "a = 1\nc = 3\nd = 4\n");
+}
+
+#[test]
+fn an_unfinished_input_at_the_end_is_an_error() {
+    let run = run("put sphere center 0, 0, 0 radius 1\n");
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("<stdin>:1"), "{}", run.err);
+}
+
+#[test]
+fn warnings_are_shown_and_do_not_fail() {
+    let run = run("put sphere center 0, 0, 0 radius 1 kd 2 ks 0 phong 1 color 300, 0, 0 end\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.err.contains("warning"), "{}", run.err);
+    assert!(run.out.contains("put 1 sphere"), "{}", run.out);
+}
+
+#[test]
+fn a_command_typed_without_colon_gets_a_hint() {
+    let run = run("help\n");
+    assert_eq!(run.code, 1);
+    assert!(run.out.contains("did you mean `:help`?"), "{}", run.out);
+}
+
+// ------------------------------------------------------------ commands
+
+#[test]
+fn help_lists_topics_and_explains_each() {
+    let run = run(":help\n:help sphere\n:help :save\n:help kd\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("camera distance 10 angle 0.8 end"), "{}", run.out);
+    assert!(run.out.contains("sphere center X, Y, Z radius R TEXTURE end"), "{}", run.out);
+    assert!(run.out.contains(":save FILE W H"), "{}", run.out);
+    assert!(run.out.contains("phong  how small the highlight is"), "{}", run.out);
+}
+
+#[test]
+fn help_on_an_unknown_word_suggests_a_close_one() {
+    let run = run(":help spehre\n");
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("no help about `spehre`; did you mean `sphere`?"), "{}", run.err);
+}
+
+#[test]
+fn unknown_commands_get_a_did_you_mean() {
+    let run = run(":rendr\n");
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("there is no command `:rendr`; did you mean `:render`?"), "{}", run.err);
+    let run = run_keep_going(":\n:xyzzy\n");
+    assert!(run.err.contains("type a command name after `:`"), "{}", run.err);
+    assert!(run.err.contains("there is no command `:xyzzy`\n`:help` lists the commands"), "{}", run.err);
+}
+
+#[test]
+fn bad_arguments_get_usage_messages() {
+    let cases = [
+        (":size 10", "usage: :size [WIDTH HEIGHT]"),
+        (":size 0 10", "the width must be a whole number from 1 to 16384, not `0`"),
+        (":size a 10", "not `a`"),
+        (":depth -1", "the depth must be a whole number from 0 to 100, not `-1`"),
+        (":depth 1 2", "usage: :depth [REFLECTIONS]"),
+        (":samples 0", "the number of samples must be a whole number from 1 to 1024"),
+        (":time x", "`x` is not a number"),
+        (":time 1 2", "usage: :time [NUMBER]"),
+        (":render 10", "give both a width and a height, or neither"),
+        (":save", "give the name of the file to write"),
+        (":save x.jpg", "cannot tell the format of `x.jpg`: end the name in .png, .ppm or .gif"),
+        (":save x.png 10", "usage: :save FILE [WIDTH HEIGHT]"),
+        (":anim 0 x.gif", "the number of frames must be a whole number from 1 to 10000"),
+        (":anim 3", "usage: :anim FRAMES FILE"),
+        (":load", "give the file to load"),
+        (":load \"unclosed", "a `\"` is not closed"),
+        (":env now", "this command takes no arguments"),
+        (":help a b", "ask about one name at a time"),
+    ];
+    for (line, message) in cases {
+        let run = run(&format!("{line}\n"));
+        assert_eq!(run.code, 1, "`{line}` should fail");
+        assert!(run.err.contains(message), "`{line}`: expected `{message}` in\n{}", run.err);
+    }
+}
+
+#[test]
+fn settings_are_shown_and_changed() {
+    let run = run(":size\n:size 320 200\n:depth\n:depth 2\n:samples 4\n:time\n:scene\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    for expected in [
+        "size = 640×480",
+        "size = 320×200",
+        "depth = 5",
+        "depth = 2",
+        "samples = 4",
+        "time = 0",
+        "settings: time 0, size 320×200, depth 2, samples 4",
+    ] {
+        assert!(run.out.contains(expected), "`{expected}` missing from\n{}", run.out);
+    }
+}
+
+#[test]
+fn env_lists_numbers_objects_and_procedures() {
+    let run = run(
+        "let r = 2\nobject g = group sphere center 0,0,0 radius 1 $T end box center 0,0,0 length 1,1,1 $T end end\nproc p(a, b) end\n:env\n",
+    );
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("numbers:    r = 2, time = 0\n"), "{}", run.out);
+    assert!(run.out.contains("objects:    g (group of 2 objects)\n"), "{}", run.out);
+    assert!(run.out.contains("procedures: p(a, b)\n"), "{}", run.out);
+}
+
+#[test]
+fn scene_counts_what_was_put() {
+    let run = run(&format!("{SCENE}put box center 0, 0, 0 length 1, 1, 1 $T end\n:scene\n"));
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("objects:  3 (1 sphere, 1 plane, 1 box)"), "{}", run.out);
+    let run = run_keep_going(":scene\n");
+    assert!(run.out.contains("(default: none given yet)"), "{}", run.out);
+}
+
+#[test]
+fn undo_takes_back_inputs_loads_and_resets() {
+    let run = run("\
+:undo
+put sphere center 0, 0, 0 radius 1 $T end
+put sphere center 0, 0, 0 radius 2 $T end
+:undo
+:reset
+:env
+:undo
+:env
+");
+    assert_eq!(run.code, 0, "{}", run.err);
+    let expected = "\
+nothing to undo
+0 objects in the scene
+put 1 sphere (1 object in the scene)
+put 1 sphere (2 objects in the scene)
+took back: put sphere center 0, 0, 0 radius 2 kd 0.7 ks 0.3 phong 20 color 255, 80, 40 end
+1 object in the scene
+the session is empty again (`:undo` brings it all back)
+";
+    assert!(run.out.starts_with(expected), "{}", run.out);
+    assert!(run.out.contains("took back the :reset (1 input back)\n1 object in the scene\n"), "{}", run.out);
+}
+
+#[test]
+fn undo_restores_definitions_too() {
+    let run = run("let a = 1\nlet a = 2\n:undo\n:env\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("numbers:    a = 1, time = 0"), "{}", run.out);
+}
+
+#[test]
+fn load_runs_a_file_as_one_input() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("scene.ray");
+    std::fs::write(&file, SCENE.replace("$T", TEX)).expect("write the scene");
+    let bad = dir.path().join("bad.ray");
+    std::fs::write(&bad, "let a = 1\nlet b = nowhere\n").expect("write the bad scene");
+    let script = format!(
+        ":load {}\n:load {}\n:env\n:undo\n:scene\n:load {}\n",
+        file.display(),
+        bad.display(),
+        dir.path().join("missing.ray").display()
+    );
+    let run = run_keep_going(&script);
+    assert_eq!(run.code, 1);
+    assert!(run.out.contains(&format!("loaded {}\n", file.display())), "{}", run.out);
+    assert!(run.out.contains("put 1 sphere and 1 plane (2 objects in the scene)"), "{}", run.out);
+    assert!(run.err.contains("bad.ray:2:"), "{}", run.err);
+    assert!(run.out.contains("numbers:    time = 0\n"), "the failed load left `a`: {}", run.out);
+    assert!(run.out.contains("took back: :load"), "{}", run.out);
+    assert!(run.out.contains("objects:  0 "), "{}", run.out);
+    assert!(run.err.contains("missing.ray: no such file"), "{}", run.err);
+}
+
+#[test]
+fn an_initial_file_is_loaded_first() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("start.ray");
+    std::fs::write(&file, "let r = 4\n").expect("write the scene");
+    let options = SessionOptions { initial_file: Some(file.clone()), ..SessionOptions::default() };
+    let run = run_with("let s = r * 2\n", &options);
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.ends_with("r = 4\ns = 8\n"), "{}", run.out);
+    let options = SessionOptions { initial_file: Some(dir.path().join("none.ray")), ..SessionOptions::default() };
+    let run = run_with("let s = 1\n", &options);
+    assert_eq!(run.code, 1);
+    assert_eq!(run.out, "");
+}
+
+#[test]
+fn quit_stops_the_script() {
+    let run = run("let a = 1\n:quit\nlet b = oops\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert_eq!(run.out, "a = 1\n");
+}
+
+// ------------------------------------------------------------ time
+
+#[test]
+fn time_changes_reevaluate_what_reads_it() {
+    let run = run("let t = time * 2\n:time 3\n:env\n:time 0.5\n:env\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("time = 3 (the scene was computed again)"), "{}", run.out);
+    assert!(run.out.contains("numbers:    t = 6, time = 3"), "{}", run.out);
+    assert!(run.out.contains("numbers:    t = 1, time = 0.5"), "{}", run.out);
+}
+
+#[test]
+fn a_time_change_without_readers_applies_to_later_inputs() {
+    let run = run("\
+let a = 1
+proc p()
+  if time = 4 then put sphere center 0, 0, 0 radius 1 $T end end
+end
+:time 4
+:env
+let b = time
+p()
+");
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("time = 4\n"), "no replay expected: {}", run.out);
+    assert!(run.out.contains("numbers:    a = 1, time = 4\n"), "{}", run.out);
+    assert!(run.out.contains("b = 4\n"), "{}", run.out);
+    assert!(run.out.contains("put 1 sphere"), "the procedure saw the old time: {}", run.out);
+}
+
+#[test]
+fn a_time_at_which_an_input_fails_is_refused() {
+    let run = run_keep_going("let x = 1 / (time - 2)\n:time 2\n:time\n:env\n");
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("at time 2 an earlier input fails, so time stays 0"), "{}", run.err);
+    assert!(run.out.contains("time = 0\n"), "{}", run.out);
+    assert!(run.out.contains("x = -0.5"), "{}", run.out);
+}
+
+// ------------------------------------------------------------ images
+
+/// Renders `file_text` the way the renderer does for a file.
+fn render_file(file_text: &str, width: u32, height: u32, depth: u32, samples: u32) -> image::RgbImage {
+    let mut sources = SourceMap::new();
+    let id = sources.add("scene.ray", file_text, 0);
+    let program = parse_file(id, file_text).expect("the file parses");
+    let mut interpreter = Interpreter::new(0.0, Limits::default());
+    interpreter.run(&program).expect("the file runs");
+    let scene = interpreter.into_scene();
+    let options = RenderOptions { width, height, depth, samples, ..RenderOptions::default() };
+    render(&scene, &Prepared::new(&scene), &options, &RenderControl::default()).expect("not cancelled").0
+}
+
+fn read_rgb(path: &Path) -> image::RgbImage {
+    image::open(path).expect("the image can be read").to_rgb8()
+}
+
+#[test]
+fn save_writes_the_same_image_as_rendering_the_file() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let png = dir.path().join("a.png");
+    let ppm = dir.path().join("b.ppm");
+    let big = dir.path().join("c.png");
+    let script = format!(
+        "{SCENE}:size 40 30\n:depth 2\n:samples 4\n:save {}\n:save {}\n:save {} 64 48\n",
+        png.display(),
+        ppm.display(),
+        big.display()
+    );
+    let run = run(&script);
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains(&format!("saved {} (40×30, ", png.display())), "{}", run.out);
+    let file = SCENE.replace("$T", TEX);
+    let expected = render_file(&file, 40, 30, 2, 4);
+    assert_eq!(read_rgb(&png), expected);
+    assert_eq!(read_rgb(&ppm), expected);
+    assert_eq!(read_rgb(&big), render_file(&file, 64, 48, 2, 4));
+}
+
+#[test]
+fn save_writes_a_gif_too() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let gif = dir.path().join("a.gif");
+    let run = run_with(&format!("{SCENE}:save {}\n", gif.display()), &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert_eq!(read_rgb(&gif).dimensions(), (32, 24));
+}
+
+#[test]
+fn save_explains_the_defaults_it_used() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let png = dir.path().join("a.png");
+    let run = run_with(&format!(":save {}\n", png.display()), &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(
+        run.out.contains("note: default camera (distance 10, angle 1) and ambient light (0.2); set yours with `camera distance 12 angle 0.8 end`"),
+        "{}",
+        run.out
+    );
+    assert!(run.out.contains("nothing has been put yet"), "{}", run.out);
+    assert!(png.exists());
+}
+
+#[test]
+fn save_reports_a_file_it_cannot_write() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let target = dir.path().join("no/such/dir/a.png");
+    let run = run_with(&format!(":save {}\n", target.display()), &small_size());
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("cannot write"), "{}", run.err);
+}
+
+#[test]
+fn render_without_a_terminal_renders_and_says_so() {
+    let run = run_with(&format!("{SCENE}:render\n:render 16 8\n"), &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains("rendered 32×24 in "), "{}", run.out);
+    assert!(run.out.contains("rendered 16×8 in "), "{}", run.out);
+}
+
+#[test]
+fn anim_writes_a_gif_or_numbered_frames_following_time() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let gif = dir.path().join("rise.gif");
+    let png = dir.path().join("rise.png");
+    let script = format!(
+        "{SCENE}put sphere center 0, time - 2, 2 radius 0.5 $T end\n:anim 3 {}\n:anim 3 {}\n:time\n",
+        gif.display(),
+        png.display()
+    );
+    let run = run_with(&script, &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(gif.exists());
+    assert!(run.out.contains("(3 frames of 32×24, "), "{}", run.out);
+    assert!(run.out.ends_with("time = 0\n"), "the session's time changed: {}", run.out);
+    let frames: Vec<_> = (1..=3).map(|k| read_rgb(&dir.path().join(format!("rise000{k}.png")))).collect();
+    assert_ne!(frames[0], frames[1]);
+    assert_ne!(frames[1], frames[2]);
+    // Frame 2 is the scene at time 2.
+    let at_two = run_with(
+        &format!(
+            "{SCENE}:time 2\nput sphere center 0, time - 2, 2 radius 0.5 $T end\n:save {}\n",
+            dir.path().join("two.png").display()
+        ),
+        &small_size(),
+    );
+    assert_eq!(at_two.code, 0, "{}", at_two.err);
+    assert_eq!(read_rgb(&dir.path().join("two.png")), frames[1]);
+}
+
+#[test]
+fn anim_of_a_scene_without_time_repeats_one_picture() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let png = dir.path().join("still.ppm");
+    let run = run_with(&format!("{SCENE}:anim 2 {}\n", png.display()), &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    let first = read_rgb(&dir.path().join("still0001.ppm"));
+    assert_eq!(first, read_rgb(&dir.path().join("still0002.ppm")));
+}
+
+#[test]
+fn anim_reports_the_frame_that_fails() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let gif = dir.path().join("bad.gif");
+    let run = run_with(&format!("let x = 1 / (time - 2)\n:anim 3 {}\n", gif.display()), &small_size());
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("while computing frame 2, with time = 2"), "{}", run.err);
+    assert!(!gif.exists());
+}
+
+// ------------------------------------------------------------ the binary
+
+/// Scripts piped into the `rayrepl` binary. Ignored until `main` hands a
+/// session without a scene to `rayrepl::repl::run`; run them against any
+/// binary that does with `RAYREPL_TEST_BIN=... cargo test -- --ignored`.
+mod binary {
+    use assert_cmd::Command;
+    use predicates::prelude::PredicateBooleanExt;
+    use predicates::str::contains;
+
+    fn rayrepl() -> Command {
+        match std::env::var_os("RAYREPL_TEST_BIN") {
+            Some(path) => Command::new(path),
+            None => Command::new(env!("CARGO_BIN_EXE_rayrepl")),
+        }
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn a_piped_script_runs_without_prompts_or_colours() {
+        let script = "let r = 2\nput sphere center 0, 0, 0\n  radius r kd 1 ks 0 phong 1 color 255, 0, 0 end\n:scene\n";
+        rayrepl()
+            .write_stdin(script)
+            .assert()
+            .success()
+            .stdout(contains("r = 2\nput 1 sphere (1 object in the scene)\n"))
+            .stdout(contains("objects:  1 (1 sphere, 0 planes, 0 boxes)"))
+            .stdout(contains("ray>").not())
+            .stdout(contains("\x1b[").not());
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn the_first_error_stops_a_piped_script_with_status_1() {
+        rayrepl()
+            .write_stdin("let a = 1\nlet b = oops\nlet c = 3\n")
+            .assert()
+            .code(1)
+            .stdout("a = 1\n")
+            .stderr(contains("<stdin>:2:"));
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn keep_going_runs_the_whole_script_and_fails_at_the_end() {
+        rayrepl().arg("--keep-going").write_stdin("let b = oops\nlet c = 3\n").assert().code(1).stdout("c = 3\n");
+    }
+
+    #[test]
+    #[ignore = "needs main.rs to start the session"]
+    fn a_file_given_with_i_is_loaded_before_the_script() {
+        let dir = tempfile::tempdir().expect("temporary directory");
+        let file = dir.path().join("start.ray");
+        std::fs::write(&file, "let r = 4\n").expect("write the scene");
+        rayrepl().arg("-i").arg(&file).write_stdin("let s = r * 2\n").assert().success().stdout(contains("s = 8\n"));
+    }
+}
