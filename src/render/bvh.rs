@@ -141,47 +141,10 @@ impl Bvh {
     /// order)`, or `(t_max, u32::MAX)` for none.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
-        let mut best = (t_max, u32::MAX);
-        if self.nodes.is_empty() {
-            test_range(&self.objects, 0, ray, &mut best);
-            return best;
-        }
         let inv_dir = ray.dir.recip();
-        let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &self.nodes[current];
-            if node.bounds.hit(ray, inv_dir, best.0) {
-                if node.count > 0 {
-                    let start = node.index as usize;
-                    test_range(
-                        &self.objects[start..start + node.count as usize],
-                        start,
-                        ray,
-                        &mut best,
-                    );
-                } else {
-                    // Visit the child on the ray's side of the split first, so
-                    // `best` shrinks early and prunes the other.
-                    let (first, second) = if dir_negative[node.axis as usize] {
-                        (node.index as usize, current + 1)
-                    } else {
-                        (current + 1, node.index as usize)
-                    };
-                    stack[top] = second as u32;
-                    top += 1;
-                    current = first;
-                    continue;
-                }
-            }
-            if top == 0 {
-                return best;
-            }
-            top -= 1;
-            current = stack[top] as usize;
-        }
+        closest_in(&self.nodes, &self.objects, ray, t_max, |node, t| {
+            node.bounds.hit(ray, inv_dir, t)
+        })
     }
 
     /// Whether some object is hit at `0 < t < t_max`; stops at the first hit
@@ -283,53 +246,25 @@ impl NodesF32 {
     /// [`Bvh::closest_hit`] with the node tests in f32 (objects still in
     /// f64).
     pub fn closest_hit(&self, bvh: &Bvh, ray: &Ray, t_max: f64) -> (f64, u32) {
-        let mut best = (t_max, u32::MAX);
-        if self.nodes.is_empty() {
-            test_range(&bvh.objects, 0, ray, &mut best);
-            return best;
-        }
         let origin = ray.origin.as_vec3();
         let inv_dir = ray.dir.as_vec3().recip();
-        let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         // 1 + 2γ₃ with γₙ = nε/(1 - nε), ε = 2⁻²⁴ (Ize, "Robust BVH ray
         // traversal", 2013), rounded up.
         let widen = 1.0 + 4.0 * f32::EPSILON;
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &self.nodes[current];
+        closest_in(&self.nodes, &bvh.objects, ray, t_max, |node, t| {
             let t1 = (node.min - origin) * inv_dir;
             let t2 = (node.max - origin) * inv_dir;
             let t_near = t1.min(t2).max_element().max(0.0);
             let t_far = t1.max(t2).min_element() * widen;
-            if t_near <= t_far && f64::from(t_near) <= best.0 {
-                if node.count > 0 {
-                    let start = node.index as usize;
-                    test_range(
-                        &bvh.objects[start..start + node.count as usize],
-                        start,
-                        ray,
-                        &mut best,
-                    );
-                } else {
-                    let (first, second) = if dir_negative[node.axis as usize] {
-                        (node.index as usize, current + 1)
-                    } else {
-                        (current + 1, node.index as usize)
-                    };
-                    stack[top] = second as u32;
-                    top += 1;
-                    current = first;
-                    continue;
-                }
-            }
-            if top == 0 {
-                return best;
-            }
-            top -= 1;
-            current = stack[top] as usize;
-        }
+            t_near <= t_far && f64::from(t_near) <= t
+        })
+    }
+}
+
+impl Linked for NodeF32 {
+    #[inline(always)]
+    fn links(&self) -> (u32, u16, u16) {
+        (self.index, self.count, self.axis)
     }
 }
 
@@ -337,6 +272,73 @@ impl NodesF32 {
 fn round_down(x: f64) -> f32 {
     let y = x as f32;
     if f64::from(y) > x { y.next_down() } else { y }
+}
+
+/// How a tree's nodes link to their children and objects (see [`Node`]).
+trait Linked {
+    /// `(index, count, axis)`.
+    fn links(&self) -> (u32, u16, u16);
+}
+
+impl Linked for Node {
+    #[inline(always)]
+    fn links(&self) -> (u32, u16, u16) {
+        (self.index, self.count, self.axis)
+    }
+}
+
+/// The closest-hit traversal of a flattened tree, whatever the node bounds'
+/// precision: `node_hit(node, t)` says whether the ray meets the node's box
+/// before `t`. An empty `nodes` means a flat list.
+#[inline(always)]
+fn closest_in<N: Linked>(
+    nodes: &[N],
+    objects: &[Bounded],
+    ray: &Ray,
+    t_max: f64,
+    node_hit: impl Fn(&N, f64) -> bool,
+) -> (f64, u32) {
+    let mut best = (t_max, u32::MAX);
+    if nodes.is_empty() {
+        test_range(objects, 0, ray, &mut best);
+        return best;
+    }
+    let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
+    let mut stack = [0u32; STACK_SIZE];
+    let mut top = 0usize;
+    let mut current = 0usize;
+    loop {
+        let node = &nodes[current];
+        if node_hit(node, best.0) {
+            let (index, count, axis) = node.links();
+            if count > 0 {
+                let start = index as usize;
+                test_range(
+                    &objects[start..start + count as usize],
+                    start,
+                    ray,
+                    &mut best,
+                );
+            } else {
+                // Visit the child on the ray's side of the split first, so
+                // `best` shrinks early and prunes the other.
+                let (first, second) = if dir_negative[axis as usize] {
+                    (index as usize, current + 1)
+                } else {
+                    (current + 1, index as usize)
+                };
+                stack[top] = second as u32;
+                top += 1;
+                current = first;
+                continue;
+            }
+        }
+        if top == 0 {
+            return best;
+        }
+        top -= 1;
+        current = stack[top] as usize;
+    }
 }
 
 /// Tests `objects` (whose first one has index `first`), keeping the nearest
