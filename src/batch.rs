@@ -9,28 +9,61 @@ use std::time::Instant;
 
 use image::RgbImage;
 
-use crate::cli::{Cli, ScreenArg};
+use crate::cli::Cli;
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_file};
 use crate::output::{self, ImageFormat};
 use crate::progress::Progress;
-use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats, Screen};
+use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
+use crate::repl::{self, RenderSettings, SessionOptions};
 use crate::scene::Scene;
 
 /// How long each frame of an animated GIF is shown (25 frames per second).
 const GIF_FRAME_MS: u32 = 40;
 
 /// Runs what the command line asks for and returns the process's exit code.
+///
+/// With no scene, or with `-i`, that is a session (interactive on a
+/// terminal, a script otherwise); with a scene, a check or a render.
 pub fn run(cli: Cli) -> ExitCode {
-    let Some(path) = cli.scene.clone() else {
-        eprintln!("rayrepl: the interactive session is not built yet; give a scene file");
-        return ExitCode::FAILURE;
+    let pool = match rayon::ThreadPoolBuilder::new().num_threads(cli.threads.unwrap_or(0) as usize).build() {
+        Ok(pool) => pool,
+        Err(e) => {
+            eprintln!("rayrepl: cannot start worker threads: {e}");
+            return ExitCode::FAILURE;
+        }
     };
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(cli.threads.unwrap_or(0) as usize).build();
-    let result = match pool {
-        Ok(pool) => pool.install(|| run_file(&cli, &path)),
-        Err(e) => Err(format!("rayrepl: cannot start worker threads: {e}")),
-    };
+    match cli.scene.clone() {
+        Some(path) if !cli.interactive => pool.install(|| exit_code(run_file(&cli, &path))),
+        _ => pool.install(|| repl::run(&session_options(&cli))),
+    }
+}
+
+/// The session's options from the command line.
+fn session_options(cli: &Cli) -> SessionOptions {
+    SessionOptions {
+        no_preview: cli.no_preview,
+        keep_going: cli.keep_going,
+        initial_file: cli.scene.clone(),
+        settings: RenderSettings {
+            width: cli.width,
+            height: cli.height,
+            depth: cli.depth,
+            samples: cli.samples,
+            time: cli.time,
+            screen: cli.screen.screen(),
+        },
+        limits: limits(cli),
+    }
+}
+
+/// The evaluator's limits from the command line.
+fn limits(cli: &Cli) -> Limits {
+    Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives }
+}
+
+/// Prints a batch error, if any, and gives the exit code.
+fn exit_code(result: Result<(), String>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
@@ -68,8 +101,7 @@ impl Frontend {
     /// Parses the file `id` of `sources`.
     fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<Frontend, String> {
         let program = parse_file(id, &sources.get(id).text).map_err(|d| show(&sources, &d))?;
-        let limits = Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives };
-        Ok(Frontend { sources, program, limits })
+        Ok(Frontend { sources, program, limits: limits(cli) })
     }
 
     /// Evaluates the program at `time`, printing warnings on stderr. With
@@ -180,10 +212,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
         height: cli.height,
         depth: cli.depth,
         samples: cli.samples,
-        screen: match cli.screen {
-            ScreenArg::Centered => Screen::Centered,
-            ScreenArg::Bottom => Screen::Bottom,
-        },
+        screen: cli.screen.screen(),
         ..RenderOptions::default()
     }
 }
@@ -246,7 +275,7 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     let progress = Progress::new(per_frame * u64::from(frames.end() - frames.start() + 1), "animating");
     let first = frontend.evaluate(f64::from(*frames.start()), false)?;
     let first_prepared = Prepared::new(&first);
-    let static_part = Arc::clone(&first_prepared.static_part);
+    let static_part = Arc::clone(first_prepared.static_part());
     let mut frame_writer = FrameWriter::new(output, count as usize);
     let mut total = RenderStats::default();
     let mut still_image: Option<RgbImage> = None;

@@ -6,6 +6,8 @@ use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
 
+use crate::render::Screen;
+
 /// rayrepl: an interpreter and ray tracer for the `.ray` scene language.
 ///
 /// With a scene file, renders it (or checks it with --check). With no file
@@ -93,6 +95,16 @@ pub enum ScreenArg {
     Centered,
     /// The z axis goes through the middle of the screen's bottom edge.
     Bottom,
+}
+
+impl ScreenArg {
+    /// The renderer's name for this convention.
+    pub fn screen(self) -> Screen {
+        match self {
+            ScreenArg::Centered => Screen::Centered,
+            ScreenArg::Bottom => Screen::Bottom,
+        }
+    }
 }
 
 const AFTER_HELP: &str = "\

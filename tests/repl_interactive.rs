@@ -55,7 +55,6 @@ fn leave(mut session: expectrl::session::OsSession) -> i32 {
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn an_input_continues_while_a_construct_is_open() {
     let (mut session, _home) = plain();
     session.send_line("proc row(n)").unwrap();
@@ -72,21 +71,23 @@ fn an_input_continues_while_a_construct_is_open() {
     session.expect("...proc> ").unwrap();
     session.send_line("end").unwrap();
     session.expect("defined proc row(n)").unwrap();
+    session.expect("ray> ").unwrap();
     session.send_line("let x = 1 +").unwrap();
     session.expect("...> ").unwrap();
     session.send_line("2").unwrap();
     session.expect("x = 3").unwrap();
+    session.expect("ray> ").unwrap();
     session.send_line("row(1)").unwrap();
     session.expect("put 1 sphere (1 object in the scene)").unwrap();
     assert_eq!(leave(session), 0);
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn an_error_leaves_the_session_running_and_unchanged() {
     let (mut session, _home) = plain();
     session.send_line("let a = 1").unwrap();
     session.expect("a = 1").unwrap();
+    session.expect("ray> ").unwrap();
     session.send_line("let a = nowhere").unwrap();
     session.expect("nowhere").unwrap();
     session.expect("ray> ").unwrap();
@@ -96,7 +97,6 @@ fn an_error_leaves_the_session_running_and_unchanged() {
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn ctrl_c_drops_the_input_being_typed_and_stays() {
     let (mut session, _home) = plain();
     session.send_line("put sphere center 0, 0, 0").unwrap();
@@ -109,25 +109,29 @@ fn ctrl_c_drops_the_input_being_typed_and_stays() {
     session.expect("ray> ").unwrap();
     session.send_line(":scene").unwrap();
     session.expect("objects:  0 ").unwrap();
+    session.expect("ray> ").unwrap();
     session.send_line(":quit").unwrap();
     session.expect(Eof).unwrap();
     assert!(matches!(session.get_process().wait().unwrap(), WaitStatus::Exited(_, 0)));
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn tab_completes_names_procedures_and_commands() {
     let (mut session, _home) = plain();
     session.send_line("let spin = 2").unwrap();
     session.expect("spin = 2").unwrap();
+    session.expect("ray> ").unwrap();
     session.send("let x = spi\t").unwrap();
     session.send_line(" * 3").unwrap();
     session.expect("x = 6").unwrap();
+    session.expect("ray> ").unwrap();
     session.send_line("proc spiral(size) end").unwrap();
     session.expect("defined proc spiral(size)").unwrap();
+    session.expect("ray> ").unwrap();
     session.send("spir\t").unwrap();
     session.send_line("1)").unwrap();
     session.expect("nothing was put").unwrap();
+    session.expect("ray> ").unwrap();
     session.send(":sce\t").unwrap();
     session.send_line("").unwrap();
     session.expect("settings: time 0").unwrap();
@@ -135,7 +139,6 @@ fn tab_completes_names_procedures_and_commands() {
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn keywords_are_coloured_on_a_terminal() {
     let data_home = tempfile::tempdir().expect("temporary directory");
     let mut session = spawn(&["--no-preview"], data_home.path(), true);
@@ -146,7 +149,6 @@ fn keywords_are_coloured_on_a_terminal() {
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn history_is_kept_between_sessions() {
     let data_home = tempfile::tempdir().expect("temporary directory");
     let mut session = spawn(&["--no-preview"], data_home.path(), false);
@@ -163,7 +165,6 @@ fn history_is_kept_between_sessions() {
 }
 
 #[test]
-#[ignore = "needs main.rs to start the session (see the module docs)"]
 fn a_file_given_with_i_is_loaded_first() {
     let data_home = tempfile::tempdir().expect("temporary directory");
     let scene = data_home.path().join("start.ray");

@@ -576,7 +576,6 @@ mod binary {
     }
 
     #[test]
-    #[ignore = "needs main.rs to start the session"]
     fn a_piped_script_runs_without_prompts_or_colours() {
         let script = "let r = 2\nput sphere center 0, 0, 0\n  radius r kd 1 ks 0 phong 1 color 255, 0, 0 end\n:scene\n";
         rayrepl()
@@ -590,7 +589,6 @@ mod binary {
     }
 
     #[test]
-    #[ignore = "needs main.rs to start the session"]
     fn the_first_error_stops_a_piped_script_with_status_1() {
         rayrepl()
             .write_stdin("let a = 1\nlet b = oops\nlet c = 3\n")
@@ -601,13 +599,11 @@ mod binary {
     }
 
     #[test]
-    #[ignore = "needs main.rs to start the session"]
     fn keep_going_runs_the_whole_script_and_fails_at_the_end() {
         rayrepl().arg("--keep-going").write_stdin("let b = oops\nlet c = 3\n").assert().code(1).stdout("c = 3\n");
     }
 
     #[test]
-    #[ignore = "needs main.rs to start the session"]
     fn a_file_given_with_i_is_loaded_before_the_script() {
         let dir = tempfile::tempdir().expect("temporary directory");
         let file = dir.path().join("start.ray");
