@@ -29,9 +29,7 @@ fn parsing(c: &mut Criterion) {
     group.bench_function("100k procedures with objects (700k lines)", |b| {
         b.iter(|| parse_items(SourceId(0), black_box(&scene)).map(|p| p.items.len()))
     });
-    group.bench_function("is_incomplete on 1M lines", |b| {
-        b.iter(|| is_incomplete(black_box(&million)))
-    });
+    group.bench_function("is_incomplete on 1M lines", |b| b.iter(|| is_incomplete(black_box(&million))));
     group.finish();
 }
 

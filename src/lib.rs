@@ -5,11 +5,11 @@
 //! primitives ([`scene`]) → BVH ([`render::bvh`]) → rays and shading
 //! ([`render`]) → image file ([`output`]) or terminal preview ([`repl`]).
 
+pub mod batch;
+pub mod cli;
 pub mod lang;
 pub mod output;
 pub mod progress;
 pub mod render;
 pub mod repl;
 pub mod scene;
-pub mod batch;
-pub mod cli;

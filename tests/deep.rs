@@ -24,17 +24,10 @@ fn deeply_nested_parentheses() {
     with_big_stack(|| {
         let text = format!("let x = {}1{}", "(".repeat(DEPTH), ")".repeat(DEPTH));
         let program = parse_items(SourceId(0), &text).expect("parses");
-        let Item::Instr(instr) = &program.items[0] else {
-            panic!("expected an instruction")
-        };
-        let InstrKind::Let(_, e) = &instr.kind else {
-            panic!("expected a let")
-        };
+        let Item::Instr(instr) = &program.items[0] else { panic!("expected an instruction") };
+        let InstrKind::Let(_, e) = &instr.kind else { panic!("expected a let") };
         assert_eq!(e.kind, ExprKind::Number(1.0));
-        assert_eq!(
-            (e.span.start as usize, e.span.end as usize),
-            (8, text.len())
-        );
+        assert_eq!((e.span.start as usize, e.span.end as usize), (8, text.len()));
     });
 }
 
@@ -62,11 +55,7 @@ fn deeply_nested_negations_and_conditions() {
         assert!(parse_items(SourceId(0), &text).is_ok());
         let text = format!("if {}a < 1 then end", "!".repeat(DEPTH));
         assert!(parse_items(SourceId(0), &text).is_ok());
-        let text = format!(
-            "if {}a < 1{} then end",
-            "(".repeat(DEPTH),
-            ")".repeat(DEPTH)
-        );
+        let text = format!("if {}a < 1{} then end", "(".repeat(DEPTH), ")".repeat(DEPTH));
         assert!(parse_items(SourceId(0), &text).is_ok());
     });
 }
@@ -76,17 +65,9 @@ fn deeply_nested_objects_and_ifs() {
     with_big_stack(|| {
         let text = format!("put {}s{}", "group ".repeat(DEPTH), " end".repeat(DEPTH));
         assert!(parse_items(SourceId(0), &text).is_ok());
-        let text = format!(
-            "put {}s{}",
-            "scale ".repeat(DEPTH),
-            " by 2 end".repeat(DEPTH)
-        );
+        let text = format!("put {}s{}", "scale ".repeat(DEPTH), " by 2 end".repeat(DEPTH));
         assert!(parse_items(SourceId(0), &text).is_ok());
-        let text = format!(
-            "{}put s{}",
-            "if a < 1 then ".repeat(DEPTH),
-            " end".repeat(DEPTH)
-        );
+        let text = format!("{}put s{}", "if a < 1 then ".repeat(DEPTH), " end".repeat(DEPTH));
         assert!(parse_items(SourceId(0), &text).is_ok());
     });
 }
@@ -96,18 +77,11 @@ fn deep_unclosed_nesting_is_a_clear_error() {
     with_big_stack(|| {
         let text = format!("let x = {}1", "(".repeat(DEPTH));
         let error = parse_items(SourceId(0), &text).expect_err("unclosed");
-        assert!(
-            error.message.starts_with("unexpected end of file"),
-            "{}",
-            error.message
-        );
+        assert!(error.message.starts_with("unexpected end of file"), "{}", error.message);
         assert!(is_incomplete(&text));
         let text = format!("put {}s", "group ".repeat(DEPTH));
         let error = parse_items(SourceId(0), &text).expect_err("unclosed");
-        assert_eq!(
-            error.message,
-            "unexpected end of file: the `group` opened at line 1 is not closed with `end`"
-        );
+        assert_eq!(error.message, "unexpected end of file: the `group` opened at line 1 is not closed with `end`");
         let text = format!("let x = {}1{}", "(".repeat(DEPTH), ")".repeat(DEPTH + 1));
         assert!(parse_items(SourceId(0), &text).is_err());
     });

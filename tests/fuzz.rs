@@ -155,11 +155,7 @@ fn print_expr(e: &E, min: u8) -> String {
         E::Call(f, arg) => format!("{f}({})", print_expr(arg, 0)),
         E::Paren(inner) => format!("({})", print_expr(inner, 0)),
     };
-    if strength(e) < min {
-        format!("({text})")
-    } else {
-        text
-    }
+    if strength(e) < min { format!("({text})") } else { text }
 }
 
 /// The S-expression the parser should produce for `e`.
@@ -211,16 +207,9 @@ fn expr_tree() -> impl Strategy<Value = E> {
     leaf.prop_recursive(5, 40, 2, |inner| {
         prop_oneof![
             inner.clone().prop_map(|e| E::Neg(Box::new(e))),
-            (
-                prop::sample::select(&['+', '-', '*', '/'][..]),
-                inner.clone(),
-                inner.clone()
-            )
+            (prop::sample::select(&['+', '-', '*', '/'][..]), inner.clone(), inner.clone())
                 .prop_map(|(op, a, b)| E::Bin(op, Box::new(a), Box::new(b))),
-            (
-                prop::sample::select(&["sin", "cos", "sqrt"][..]),
-                inner.clone()
-            )
+            (prop::sample::select(&["sin", "cos", "sqrt"][..]), inner.clone())
                 .prop_map(|(f, e)| E::Call(f, Box::new(e))),
             inner.prop_map(|e| E::Paren(Box::new(e))),
         ]
@@ -255,11 +244,7 @@ fn print_cond(c: &C, min: u8) -> String {
         C::Cmp(op, a, b) => format!("{} {op} {}", print_expr(a, 0), print_expr(b, 0)),
         C::Paren(inner) => format!("({})", print_cond(inner, 0)),
     };
-    if cond_strength(c) < min {
-        format!("({text})")
-    } else {
-        text
-    }
+    if cond_strength(c) < min { format!("({text})") } else { text }
 }
 
 fn expected_cond(c: &C) -> String {
@@ -292,11 +277,7 @@ fn cond_sexpr(c: &Cond) -> String {
 }
 
 fn cond_tree() -> impl Strategy<Value = C> {
-    let comparison = (
-        prop::sample::select(&["=", "!=", "<", "<=", ">", ">="][..]),
-        expr_tree(),
-        expr_tree(),
-    )
+    let comparison = (prop::sample::select(&["=", "!=", "<", "<=", ">", ">="][..]), expr_tree(), expr_tree())
         .prop_map(|(op, a, b)| C::Cmp(op, a, b));
     comparison.prop_recursive(4, 24, 2, |inner| {
         prop_oneof![
@@ -338,8 +319,7 @@ fn obj_text() -> impl Strategy<Value = String> {
             (inner.clone(), triple_text()).prop_map(|(o, v)| format!("translate {o} by {v} end")),
             (inner.clone(), triple_text()).prop_map(|(o, r)| format!("rotate {o} by {r} end")),
             (inner.clone(), expr_text()).prop_map(|(o, k)| format!("scale {o} by {k} end")),
-            prop::collection::vec(inner, 0..3)
-                .prop_map(|members| format!("group {} end", members.join(" "))),
+            prop::collection::vec(inner, 0..3).prop_map(|members| format!("group {} end", members.join(" "))),
         ]
     })
 }
@@ -353,40 +333,21 @@ fn instr_text() -> impl Strategy<Value = String> {
         obj_text().prop_map(|o| format!("put {o}")),
     ];
     simple.prop_recursive(3, 12, 3, |inner| {
-        (
-            cond_tree(),
-            prop::collection::vec(inner.clone(), 0..3),
-            prop::option::of(prop::collection::vec(inner, 0..3)),
-        )
+        (cond_tree(), prop::collection::vec(inner.clone(), 0..3), prop::option::of(prop::collection::vec(inner, 0..3)))
             .prop_map(|(c, then, otherwise)| {
-                let otherwise = otherwise
-                    .map(|o| format!(" else {}", o.join("\n")))
-                    .unwrap_or_default();
-                format!(
-                    "if {} then {}{otherwise} end",
-                    print_cond(&c, 0),
-                    then.join("\n")
-                )
+                let otherwise = otherwise.map(|o| format!(" else {}", o.join("\n"))).unwrap_or_default();
+                format!("if {} then {}{otherwise} end", print_cond(&c, 0), then.join("\n"))
             })
     })
 }
 
 fn proc_text() -> impl Strategy<Value = String> {
-    (
-        prop::collection::vec(prop::sample::select(&["a", "b", "c"][..]), 0..3),
-        prop::collection::vec(instr_text(), 0..3),
-    )
-        .prop_map(|(params, body)| {
-            format!("proc q({})\n{}\nend", params.join(", "), body.join("\n"))
-        })
+    (prop::collection::vec(prop::sample::select(&["a", "b", "c"][..]), 0..3), prop::collection::vec(instr_text(), 0..3))
+        .prop_map(|(params, body)| format!("proc q({})\n{}\nend", params.join(", "), body.join("\n")))
 }
 
 fn light_text() -> impl Strategy<Value = String> {
-    (
-        prop::sample::select(&["vector", "rotation"][..]),
-        triple_text(),
-        expr_text(),
-    )
+    (prop::sample::select(&["vector", "rotation"][..]), triple_text(), expr_text())
         .prop_map(|(spelling, r, i)| format!("light {spelling} {r} intensity {i} end"))
 }
 

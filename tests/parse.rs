@@ -3,8 +3,7 @@
 //! syntax errors with their line and column.
 
 use rayrepl::lang::ast::{
-    BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func, Instr, InstrKind, Item, Obj, ObjKind,
-    Program, Texture, Triple,
+    BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func, Instr, InstrKind, Item, Obj, ObjKind, Program, Texture, Triple,
 };
 use rayrepl::lang::{Diagnostic, SourceId, SourceMap, parse_file, parse_items};
 
@@ -56,56 +55,23 @@ fn cond(c: &Cond) -> String {
 }
 
 fn triple(t: &Triple) -> String {
-    format!(
-        "[{} {} {}]",
-        expr(&t.parts[0]),
-        expr(&t.parts[1]),
-        expr(&t.parts[2])
-    )
+    format!("[{} {} {}]", expr(&t.parts[0]), expr(&t.parts[1]), expr(&t.parts[2]))
 }
 
 fn texture(t: &Texture) -> String {
-    format!(
-        "(texture {} {} {} {})",
-        expr(&t.kd),
-        expr(&t.ks),
-        expr(&t.phong),
-        triple(&t.color)
-    )
+    format!("(texture {} {} {} {})", expr(&t.kd), expr(&t.ks), expr(&t.phong), triple(&t.color))
 }
 
 fn obj(o: &Obj) -> String {
     match &o.kind {
         ObjKind::Var(name) => name.to_string(),
-        ObjKind::Sphere {
-            center,
-            radius,
-            texture: t,
-        } => {
-            format!(
-                "(sphere {} {} {})",
-                triple(center),
-                expr(radius),
-                texture(t)
-            )
+        ObjKind::Sphere { center, radius, texture: t } => {
+            format!("(sphere {} {} {})", triple(center), expr(radius), texture(t))
         }
-        ObjKind::Plane {
-            rotation,
-            shift,
-            texture: t,
-        } => {
-            format!(
-                "(plane {} {} {})",
-                triple(rotation),
-                expr(shift),
-                texture(t)
-            )
+        ObjKind::Plane { rotation, shift, texture: t } => {
+            format!("(plane {} {} {})", triple(rotation), expr(shift), texture(t))
         }
-        ObjKind::Box {
-            center,
-            length,
-            texture: t,
-        } => {
+        ObjKind::Box { center, length, texture: t } => {
             format!("(box {} {} {})", triple(center), triple(length), texture(t))
         }
         ObjKind::Translate(o, v) => format!("(translate {} {})", obj(o), triple(v)),
@@ -113,10 +79,7 @@ fn obj(o: &Obj) -> String {
         ObjKind::Scale(o, k) => format!("(scale {} {})", obj(o), expr(k)),
         ObjKind::Group(members) => {
             let members: Vec<String> = members.iter().map(obj).collect();
-            format!(
-                "(group{})",
-                members.iter().map(|m| format!(" {m}")).collect::<String>()
-            )
+            format!("(group{})", members.iter().map(|m| format!(" {m}")).collect::<String>())
         }
     }
 }
@@ -130,22 +93,11 @@ fn instr(i: &Instr) -> String {
         InstrKind::Let(name, e) => format!("(let {} {})", name.name, expr(e)),
         InstrKind::Object(name, o) => format!("(object {} {})", name.name, obj(o)),
         InstrKind::Call(name, args) => {
-            format!(
-                "(call {}{})",
-                name.name,
-                args.iter()
-                    .map(|a| format!(" {}", expr(a)))
-                    .collect::<String>()
-            )
+            format!("(call {}{})", name.name, args.iter().map(|a| format!(" {}", expr(a))).collect::<String>())
         }
         InstrKind::Put(o) => format!("(put {})", obj(o)),
         InstrKind::If(c, then, otherwise) => match otherwise {
-            Some(otherwise) => format!(
-                "(if {} (then{}) (else{}))",
-                cond(c),
-                block(then),
-                block(otherwise)
-            ),
+            Some(otherwise) => format!("(if {} (then{}) (else{}))", cond(c), block(then), block(otherwise)),
             None => format!("(if {} (then{}))", cond(c), block(then)),
         },
     }
@@ -158,12 +110,7 @@ fn item(item: &Item) -> String {
         Item::Light(l) => format!("(light {} {})", triple(&l.rotation), expr(&l.intensity)),
         Item::Proc(p) => {
             let params: Vec<&str> = p.params.iter().map(|p| &*p.name).collect();
-            format!(
-                "(proc {} ({}){})",
-                p.name.name,
-                params.join(" "),
-                block(&p.body)
-            )
+            format!("(proc {} ({}){})", p.name.name, params.join(" "), block(&p.body))
         }
         Item::Instr(i) => instr(i),
     }
@@ -185,12 +132,7 @@ fn session(text: &str) -> Vec<String> {
 fn parse_expr(text: &str) -> String {
     let program = parse_items(SourceId(0), &format!("let x = {text}")).expect("a valid expression");
     match &program.items[..] {
-        [
-            Item::Instr(Instr {
-                kind: InstrKind::Let(_, e),
-                ..
-            }),
-        ] => expr(e),
+        [Item::Instr(Instr { kind: InstrKind::Let(_, e), .. })] => expr(e),
         other => panic!("unexpected items {other:?}"),
     }
 }
@@ -202,12 +144,7 @@ fn parse_cond(text: &str) -> String {
         Err(error) => panic!("{text:?} should parse, got: {}", error.message),
     };
     match &program.items[..] {
-        [
-            Item::Instr(Instr {
-                kind: InstrKind::If(c, _, _),
-                ..
-            }),
-        ] => cond(c),
+        [Item::Instr(Instr { kind: InstrKind::If(c, _, _), .. })] => cond(c),
         other => panic!("unexpected items {other:?}"),
     }
 }
@@ -227,11 +164,7 @@ fn locate(text: &str, result: Result<Program, Diagnostic>) -> Located {
     let mut map = SourceMap::new();
     let id = map.add("test.ray", text, 0);
     let (line, column) = map.get(id).line_col(diagnostic.span.start as usize);
-    Located {
-        diagnostic,
-        line,
-        column,
-    }
+    Located { diagnostic, line, column }
 }
 
 fn session_error(text: &str) -> Located {
@@ -244,11 +177,7 @@ fn file_error(text: &str) -> Located {
 
 fn assert_error(located: &Located, message: &str, line: usize, column: usize) {
     assert_eq!(located.diagnostic.message, message);
-    assert_eq!(
-        (located.line, located.column),
-        (line, column),
-        "position of {message:?}"
-    );
+    assert_eq!((located.line, located.column), (line, column), "position of {message:?}");
 }
 
 const HEADER: &str = "camera distance 10 angle 1 end\nambient 0.2\n";
@@ -288,10 +217,7 @@ fn parentheses_group_without_a_node() {
 
 #[test]
 fn atoms_and_functions() {
-    assert_eq!(
-        parse_expr("sin(x) + cos(pi) * sqrt(2)"),
-        "(+ (sin x) (* (cos pi) (sqrt 2)))"
-    );
+    assert_eq!(parse_expr("sin(x) + cos(pi) * sqrt(2)"), "(+ (sin x) (* (cos pi) (sqrt 2)))");
     assert_eq!(parse_expr("time"), "time");
     assert_eq!(parse_expr("0.75"), "0.75");
     assert_eq!(parse_expr(".5"), "0.5");
@@ -302,25 +228,15 @@ fn atoms_and_functions() {
 #[test]
 fn spans_cover_the_whole_expression_and_its_parentheses() {
     let program = parse_items(SourceId(3), "let x = (1 + 2) * y").expect("valid");
-    let Item::Instr(Instr {
-        kind: InstrKind::Let(name, e),
-        span,
-    }) = &program.items[0]
-    else {
+    let Item::Instr(Instr { kind: InstrKind::Let(name, e), span }) = &program.items[0] else {
         panic!("expected a let");
     };
     assert_eq!((span.start, span.end), (0, 19));
     assert_eq!(span.source, SourceId(3));
     assert_eq!((name.span.start, name.span.end), (4, 5));
     assert_eq!((e.span.start, e.span.end), (8, 19));
-    let ExprKind::Binary(_, left, right) = &e.kind else {
-        panic!("expected a product")
-    };
-    assert_eq!(
-        (left.span.start, left.span.end),
-        (8, 15),
-        "the parentheses are in the span"
-    );
+    let ExprKind::Binary(_, left, right) = &e.kind else { panic!("expected a product") };
+    assert_eq!((left.span.start, left.span.end), (8, 15), "the parentheses are in the span");
     assert_eq!((right.span.start, right.span.end), (18, 19));
 }
 
@@ -328,14 +244,8 @@ fn spans_cover_the_whole_expression_and_its_parentheses() {
 
 #[test]
 fn or_is_loosest_then_and_then_not() {
-    assert_eq!(
-        parse_cond("a<1 | b<2 & c<3"),
-        "(or (< a 1) (and (< b 2) (< c 3)))"
-    );
-    assert_eq!(
-        parse_cond("a<1 & b<2 | c<3"),
-        "(or (and (< a 1) (< b 2)) (< c 3))"
-    );
+    assert_eq!(parse_cond("a<1 | b<2 & c<3"), "(or (< a 1) (and (< b 2) (< c 3)))");
+    assert_eq!(parse_cond("a<1 & b<2 | c<3"), "(or (and (< a 1) (< b 2)) (< c 3))");
     assert_eq!(parse_cond("!a=1|b<2"), "(or (not (= a 1)) (< b 2))");
     assert_eq!(parse_cond("!a=1&b<2"), "(and (not (= a 1)) (< b 2))");
     assert_eq!(parse_cond("!!a<1"), "(not (not (< a 1)))");
@@ -343,14 +253,8 @@ fn or_is_loosest_then_and_then_not() {
 
 #[test]
 fn and_and_or_are_left_associative() {
-    assert_eq!(
-        parse_cond("a<1 & b<2 & c<3"),
-        "(and (and (< a 1) (< b 2)) (< c 3))"
-    );
-    assert_eq!(
-        parse_cond("a<1 | b<2 | c<3"),
-        "(or (or (< a 1) (< b 2)) (< c 3))"
-    );
+    assert_eq!(parse_cond("a<1 & b<2 & c<3"), "(and (and (< a 1) (< b 2)) (< c 3))");
+    assert_eq!(parse_cond("a<1 | b<2 | c<3"), "(or (or (< a 1) (< b 2)) (< c 3))");
 }
 
 #[test]
@@ -372,10 +276,7 @@ fn a_parenthesis_may_open_a_condition_or_an_expression() {
     assert_eq!(parse_cond("!(a = 1) | b < 2"), "(or (not (= a 1)) (< b 2))");
     assert_eq!(parse_cond("(a) < (b)"), "(< a b)");
     assert_eq!(parse_cond("((a + 1)) < b"), "(< (+ a 1) b)");
-    assert_eq!(
-        parse_cond("(((a < b) | c < d) & e = f)"),
-        "(and (or (< a b) (< c d)) (= e f))"
-    );
+    assert_eq!(parse_cond("(((a < b) | c < d) & e = f)"), "(and (or (< a b) (< c d)) (= e f))");
     assert_eq!(parse_cond("b < (a + 1) * 2"), "(< b (* (+ a 1) 2))");
     assert_eq!(parse_cond("(-(a) < 1)"), "(< (neg a) 1)");
 }
@@ -383,13 +284,7 @@ fn a_parenthesis_may_open_a_condition_or_an_expression() {
 #[test]
 fn a_condition_span_includes_its_parentheses() {
     let program = parse_items(SourceId(0), "if ((a < b)) then end").expect("valid");
-    let Item::Instr(Instr {
-        kind: InstrKind::If(c, _, _),
-        ..
-    }) = &program.items[0]
-    else {
-        panic!("expected if")
-    };
+    let Item::Instr(Instr { kind: InstrKind::If(c, _, _), .. }) = &program.items[0] else { panic!("expected if") };
     assert_eq!((c.span.start, c.span.end), (3, 12));
 }
 
@@ -402,14 +297,7 @@ fn comparisons_do_not_chain() {
 #[test]
 fn a_parenthesised_name_alone_is_not_a_condition() {
     let error = session_error("if (a) then end");
-    assert!(
-        error
-            .diagnostic
-            .message
-            .starts_with("expected a comparison"),
-        "{}",
-        error.diagnostic.message
-    );
+    assert!(error.diagnostic.message.starts_with("expected a comparison"), "{}", error.diagnostic.message);
 }
 
 // ---- Items, instructions, objects -----------------------------------------
@@ -421,12 +309,7 @@ fn camera_ambient_and_both_light_spellings() {
             "camera distance 10 angle pi / 3 end ambient 0.2 light vector 0, 0, 1 intensity 0.5 end \
              light rotation 1, 2, 3 intensity 1 end"
         ),
-        vec![
-            "(camera 10 (/ pi 3))",
-            "(ambient 0.2)",
-            "(light [0 0 1] 0.5)",
-            "(light [1 2 3] 1)",
-        ]
+        vec!["(camera 10 (/ pi 3))", "(ambient 0.2)", "(light [0 0 1] 0.5)", "(light [1 2 3] 1)",]
     );
 }
 
@@ -434,20 +317,14 @@ fn camera_ambient_and_both_light_spellings() {
 fn procedures_with_zero_one_and_many_parameters() {
     assert_eq!(
         session("proc a() end proc b(x) put x end proc c(x, y, z) a() b(1) c(x, y + 1, -z) end"),
-        vec![
-            "(proc a ())",
-            "(proc b (x) (put x))",
-            "(proc c (x y z) (call a) (call b 1) (call c x (+ y 1) (neg z)))"
-        ]
+        vec!["(proc a ())", "(proc b (x) (put x))", "(proc c (x y z) (call a) (call b 1) (call c x (+ y 1) (neg z)))"]
     );
 }
 
 #[test]
 fn every_instruction() {
     assert_eq!(
-        session(
-            "let x = 1 object o = s put o p() p(1, 2) if x < 1 then put o end if x = 1 then else let y = 2 end"
-        ),
+        session("let x = 1 object o = s put o p() p(1, 2) if x < 1 then put o end if x = 1 then else let y = 2 end"),
         vec![
             "(let x 1)",
             "(object o s)",
@@ -499,9 +376,7 @@ fn every_object() {
 #[test]
 fn objects_nest_inside_transformations() {
     assert_eq!(
-        session(
-            "object o = scale rotate translate group a b end by 1, 2, 3 end by 0, 0, 1 end by 0.5 end"
-        ),
+        session("object o = scale rotate translate group a b end by 1, 2, 3 end by 0, 0, 1 end by 0.5 end"),
         vec!["(object o (scale (rotate (translate (group a b) [1 2 3]) [0 0 1]) 0.5))"]
     );
 }
@@ -515,25 +390,15 @@ fn a_session_input_may_be_empty_or_only_comments() {
 #[test]
 fn a_session_input_takes_items_in_any_order() {
     assert_eq!(
-        session(
-            "put s light vector 0, 0, 0 intensity 1 end camera distance 1 angle 1 end proc p() end ambient 1"
-        ),
-        vec![
-            "(put s)",
-            "(light [0 0 0] 1)",
-            "(camera 1 1)",
-            "(proc p ())",
-            "(ambient 1)"
-        ]
+        session("put s light vector 0, 0, 0 intensity 1 end camera distance 1 angle 1 end proc p() end ambient 1"),
+        vec!["(put s)", "(light [0 0 0] 1)", "(camera 1 1)", "(proc p ())", "(ambient 1)"]
     );
 }
 
 #[test]
 fn item_spans_and_ids() {
     let program = parse_items(SourceId(7), "proc p(a)\n  put a\nend").expect("valid");
-    let Item::Proc(proc) = &program.items[0] else {
-        panic!("expected a proc")
-    };
+    let Item::Proc(proc) = &program.items[0] else { panic!("expected a proc") };
     assert_eq!((proc.span.start, proc.span.end), (0, 21));
     assert_eq!(proc.span.source, SourceId(7));
     assert_eq!((proc.params[0].span.start, proc.params[0].span.end), (7, 8));
@@ -555,97 +420,40 @@ fn a_file_in_the_order_of_spec_2() {
 
 #[test]
 fn a_minimal_file_has_camera_and_ambient() {
-    assert_eq!(
-        parse_file(SourceId(0), HEADER).expect("valid").items.len(),
-        2
-    );
+    assert_eq!(parse_file(SourceId(0), HEADER).expect("valid").items.len(), 2);
 }
 
 #[test]
 fn a_file_must_start_with_the_camera() {
-    assert_error(
-        &file_error("put s\n"),
-        "a scenario file must start with `camera ... end`",
-        1,
-        1,
-    );
-    assert_error(
-        &file_error("\n  ambient 1\n"),
-        "a scenario file must start with `camera ... end`",
-        2,
-        3,
-    );
-    assert_error(
-        &file_error("  sphere"),
-        "a scenario file must start with `camera ... end`",
-        1,
-        3,
-    );
-    assert_error(
-        &file_error("# only a comment\n"),
-        "a scenario file must start with `camera ... end`",
-        1,
-        16,
-    );
-    assert_error(
-        &file_error(""),
-        "a scenario file must start with `camera ... end`",
-        1,
-        1,
-    );
+    assert_error(&file_error("put s\n"), "a scenario file must start with `camera ... end`", 1, 1);
+    assert_error(&file_error("\n  ambient 1\n"), "a scenario file must start with `camera ... end`", 2, 3);
+    assert_error(&file_error("  sphere"), "a scenario file must start with `camera ... end`", 1, 3);
+    assert_error(&file_error("# only a comment\n"), "a scenario file must start with `camera ... end`", 1, 16);
+    assert_error(&file_error(""), "a scenario file must start with `camera ... end`", 1, 1);
 }
 
 #[test]
 fn ambient_comes_right_after_the_camera() {
     let text = "camera distance 1 angle 1 end\nlight vector 0, 0, 0 intensity 1 end\n";
-    assert_error(
-        &file_error(text),
-        "`ambient` must come right after the camera",
-        2,
-        1,
-    );
+    assert_error(&file_error(text), "`ambient` must come right after the camera", 2, 1);
     let text = "camera distance 1 angle 1 end\n";
-    assert_error(
-        &file_error(text),
-        "unexpected end of file: `ambient` must come right after the camera",
-        1,
-        29,
-    );
+    assert_error(&file_error(text), "unexpected end of file: `ambient` must come right after the camera", 1, 29);
 }
 
 #[test]
 fn lights_come_before_procedures_and_instructions() {
     let text = format!("{HEADER}put s\nlight vector 0, 0, 0 intensity 1 end\n");
     let error = file_error(&text);
-    assert_error(
-        &error,
-        "a `light` must come before procedures and instructions",
-        4,
-        1,
-    );
-    assert_eq!(
-        error.diagnostic.related.len(),
-        1,
-        "points at the first instruction"
-    );
+    assert_error(&error, "a `light` must come before procedures and instructions", 4, 1);
+    assert_eq!(error.diagnostic.related.len(), 1, "points at the first instruction");
     let text = format!("{HEADER}proc p() end\nlight rotation 0, 0, 0 intensity 1 end\n");
-    assert_error(
-        &file_error(&text),
-        "a `light` must come before procedures and instructions",
-        4,
-        1,
-    );
+    assert_error(&file_error(&text), "a `light` must come before procedures and instructions", 4, 1);
 }
 
 #[test]
 fn procedures_come_before_instructions() {
     let text = format!("{HEADER}let x = 1\nproc p() end\n");
-    assert_error(
-        &file_error(&text),
-        "a `proc` must come before the instructions",
-        4,
-        1,
-    );
+    assert_error(&file_error(&text), "a `proc` must come before the instructions", 4, 1);
 }
 
 #[test]
@@ -662,18 +470,9 @@ fn a_file_has_one_camera_and_one_ambient() {
 fn missing_end_names_the_open_construct() {
     let text = format!("let a = 1\nput sphere center 0, 0, 0 radius 1 {TEXTURE}\nput s\n");
     let error = session_error(&text);
-    assert_error(
-        &error,
-        "expected `end` to close the `sphere` opened at line 2",
-        3,
-        1,
-    );
+    assert_error(&error, "expected `end` to close the `sphere` opened at line 2", 3, 1);
     let (span, _) = &error.diagnostic.related[0];
-    assert_eq!(
-        (span.start, span.end),
-        (14, 20),
-        "related points at `sphere`"
-    );
+    assert_eq!((span.start, span.end), (14, 20), "related points at `sphere`");
 }
 
 #[test]
@@ -691,58 +490,23 @@ fn missing_end_of_a_group() {
 fn missing_expression() {
     let text = format!("put sphere center 0, 0, 0 radius {TEXTURE} end");
     let error = session_error(&text);
-    assert_error(
-        &error,
-        "expected an expression (a number, a name, `(`...) after `radius`",
-        1,
-        34,
-    );
+    assert_error(&error, "expected an expression (a number, a name, `(`...) after `radius`", 1, 34);
     let error = session_error("let x = 1 +\nput s");
-    assert_error(
-        &error,
-        "expected an expression (a number, a name, `(`...) after `+`",
-        2,
-        1,
-    );
+    assert_error(&error, "expected an expression (a number, a name, `(`...) after `+`", 2, 1);
 }
 
 #[test]
 fn missing_comma_in_a_triple() {
     let text = format!("put sphere center 0, 0 0 radius 1 {TEXTURE} end");
-    assert_error(
-        &session_error(&text),
-        "expected `,` between the parts of the centre",
-        1,
-        24,
-    );
+    assert_error(&session_error(&text), "expected `,` between the parts of the centre", 1, 24);
     let text = "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1 2, 3 end";
-    assert_error(
-        &session_error(text),
-        "expected `,` between the parts of the colour",
-        1,
-        62,
-    );
+    assert_error(&session_error(text), "expected `,` between the parts of the colour", 1, 62);
     let text = "light vector 1, 2 3 intensity 1 end";
-    assert_error(
-        &session_error(text),
-        "expected `,` between the parts of the rotation",
-        1,
-        19,
-    );
+    assert_error(&session_error(text), "expected `,` between the parts of the rotation", 1, 19);
     let text = "put translate s by 1 2, 3 end";
-    assert_error(
-        &session_error(text),
-        "expected `,` between the parts of the vector",
-        1,
-        22,
-    );
+    assert_error(&session_error(text), "expected `,` between the parts of the vector", 1, 22);
     let text = "put box center 0, 0, 0 length 1, 2 3 kd 1 ks 1 phong 1 color 1, 2, 3 end";
-    assert_error(
-        &session_error(text),
-        "expected `,` between the parts of the lengths",
-        1,
-        36,
-    );
+    assert_error(&session_error(text), "expected `,` between the parts of the lengths", 1, 36);
 }
 
 #[test]
@@ -763,81 +527,41 @@ fn texture_out_of_order() {
 #[test]
 fn missing_texture() {
     let error = session_error("put sphere center 0, 0, 0 radius 1 end");
-    assert_error(
-        &error,
-        "expected the texture `kd ... ks ... phong ... color r, g, b` after `1`",
-        1,
-        36,
-    );
+    assert_error(&error, "expected the texture `kd ... ks ... phong ... color r, g, b` after `1`", 1, 36);
 }
 
 #[test]
 fn unexpected_end() {
-    assert_error(
-        &session_error("put s\nend"),
-        "unexpected `end`: nothing is open here",
-        2,
-        1,
-    );
-    assert_error(
-        &session_error("proc p() end end"),
-        "unexpected `end`: nothing is open here",
-        1,
-        14,
-    );
+    assert_error(&session_error("put s\nend"), "unexpected `end`: nothing is open here", 2, 1);
+    assert_error(&session_error("proc p() end end"), "unexpected `end`: nothing is open here", 1, 14);
 }
 
 #[test]
 fn unexpected_end_of_file_names_the_open_construct() {
     let error = session_error("let x = 1\n\nproc p(a)\n  put a\n");
-    assert_error(
-        &error,
-        "unexpected end of file: the `proc` opened at line 3 is not closed with `end`",
-        4,
-        7,
-    );
+    assert_error(&error, "unexpected end of file: the `proc` opened at line 3 is not closed with `end`", 4, 7);
     let error = file_error(&format!("{HEADER}if x < 1 then\n  put s"));
-    assert_error(
-        &error,
-        "unexpected end of file: the `if` opened at line 3 is not closed with `end`",
-        4,
-        7,
-    );
+    assert_error(&error, "unexpected end of file: the `if` opened at line 3 is not closed with `end`", 4, 7);
 }
 
 #[test]
 fn unexpected_end_of_file_in_an_expression() {
     let error = session_error("let x =");
-    assert_error(
-        &error,
-        "unexpected end of file: expected an expression (a number, a name, `(`...) after `=`",
-        1,
-        7,
-    );
+    assert_error(&error, "unexpected end of file: expected an expression (a number, a name, `(`...) after `=`", 1, 7);
 }
 
 #[test]
 fn misspelt_keywords_get_a_suggestion() {
     for (text, keyword) in [
-        (
-            "put spher center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1, 2, 3 end",
-            "sphere",
-        ),
+        ("put spher center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1, 2, 3 end", "sphere"),
         ("cemera distance 10 angle 1 end", "camera"),
         ("put rotaet s by 1, 2, 3 end", "rotate"),
-        (
-            "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 collor 1, 2, 3 end",
-            "color",
-        ),
+        ("put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 collor 1, 2, 3 end", "color"),
         ("light vectr 0, 0, 0 intensity 1 end", "vector"),
         ("if a < 1 thn put s end", "then"),
     ] {
         let error = session_error(text);
-        assert_eq!(
-            error.diagnostic.help,
-            Some(format!("did you mean `{keyword}`?")),
-            "{text}"
-        );
+        assert_eq!(error.diagnostic.help, Some(format!("did you mean `{keyword}`?")), "{text}");
     }
 }
 
@@ -851,12 +575,7 @@ fn a_misspelt_keyword_where_a_keyword_is_expected_is_the_error_spot() {
 #[test]
 fn an_object_where_an_instruction_is_expected() {
     let error = session_error("sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1, 2, 3 end");
-    assert_error(
-        &error,
-        "expected an instruction, found the object `sphere`",
-        1,
-        1,
-    );
+    assert_error(&error, "expected an instruction, found the object `sphere`", 1, 1);
     assert!(error.diagnostic.help.is_some());
 }
 
@@ -876,35 +595,15 @@ fn lexing_errors_are_reported_at_the_character() {
 
 #[test]
 fn stray_else() {
-    assert!(
-        session_error("else")
-            .diagnostic
-            .message
-            .starts_with("unexpected `else`")
-    );
-    assert!(
-        session_error("proc p() else end")
-            .diagnostic
-            .message
-            .starts_with("unexpected `else`")
-    );
+    assert!(session_error("else").diagnostic.message.starts_with("unexpected `else`"));
+    assert!(session_error("proc p() else end").diagnostic.message.starts_with("unexpected `else`"));
 }
 
 #[test]
 fn missing_name_or_equals() {
-    assert_error(
-        &session_error("let = 3"),
-        "expected a name after `let`",
-        1,
-        5,
-    );
+    assert_error(&session_error("let = 3"), "expected a name after `let`", 1, 5);
     assert_error(&session_error("let x 3"), "expected `=` after `x`", 1, 7);
-    assert_error(
-        &session_error("object o sphere"),
-        "expected `=` after `o`",
-        1,
-        10,
-    );
+    assert_error(&session_error("object o sphere"), "expected `=` after `o`", 1, 10);
 }
 
 #[test]
@@ -942,42 +641,23 @@ fn error_messages_never_list_raw_token_names() {
 #[test]
 fn messages_count_lines_from_the_line_offset() {
     let text = "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1, 2, 3\nput s";
-    let error = rayrepl::lang::parser::parse_items_with_line_offset(SourceId(0), text, 16)
-        .expect_err("missing end");
-    assert_eq!(
-        error.message,
-        "expected `end` to close the `sphere` opened at line 17"
-    );
+    let error = rayrepl::lang::parser::parse_items_with_line_offset(SourceId(0), text, 16).expect_err("missing end");
+    assert_eq!(error.message, "expected `end` to close the `sphere` opened at line 17");
 }
 
 #[test]
 fn hints_for_common_mistakes() {
     let help = |text: &str| session_error(text).diagnostic.help.unwrap_or_default();
-    assert_eq!(
-        help("if x == 1 then end"),
-        "a comparison is written with a single `=`"
-    );
-    assert_eq!(
-        help("let x = 2(3)"),
-        "to multiply, write `*`, like `2 * (x + 1)`"
-    );
-    assert_eq!(
-        help("ambient = 0.5"),
-        "write the value right after `ambient`, without `=`"
-    );
+    assert_eq!(help("if x == 1 then end"), "a comparison is written with a single `=`");
+    assert_eq!(help("let x = 2(3)"), "to multiply, write `*`, like `2 * (x + 1)`");
+    assert_eq!(help("ambient = 0.5"), "write the value right after `ambient`, without `=`");
     assert_eq!(help("let x = sqrt(2, 3)"), "`sqrt` takes a single number");
     assert_eq!(
         help("light vector (0, 0, 1) intensity 1 end"),
         "write the three parts without parentheses, like `0, 0, 1`"
     );
-    assert_eq!(
-        help("let pi = 3"),
-        "`pi` is a reserved word of the language; choose another name"
-    );
-    assert_eq!(
-        help("proc p(a, end) end"),
-        "`end` is a reserved word of the language; choose another name"
-    );
+    assert_eq!(help("let pi = 3"), "`pi` is a reserved word of the language; choose another name");
+    assert_eq!(help("proc p(a, end) end"), "`end` is a reserved word of the language; choose another name");
     assert_eq!(help("end"), "", "no hint where none applies");
     assert!(help("let x = 1;").contains("`;`"));
     assert!(help("let café = 1").contains("without accents"));

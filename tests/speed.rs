@@ -15,16 +15,10 @@ fn a_million_lines_parse_in_under_a_second() {
     assert_eq!(program.items.len(), 1_000_000);
     drop(program);
     let total = start.elapsed();
-    println!(
-        "parsed 1M lines in {parsed:?} wall, {parsed_cpu:?} CPU ({total:?} wall with dropping the AST)"
-    );
+    println!("parsed 1M lines in {parsed:?} wall, {parsed_cpu:?} CPU ({total:?} wall with dropping the AST)");
     // On a busy machine the wall time mostly measures the other processes;
     // the CPU time, where Linux gives it, is the fair measure.
-    let measured = if parsed_cpu > Duration::ZERO {
-        parsed_cpu
-    } else {
-        parsed
-    };
+    let measured = if parsed_cpu > Duration::ZERO { parsed_cpu } else { parsed };
     if !cfg!(debug_assertions) {
         assert!(measured.as_secs_f64() < 1.0, "parsing took {measured:?}");
     }
@@ -35,11 +29,7 @@ fn a_million_lines_parse_in_under_a_second() {
 fn cpu_time() -> Duration {
     // The first field of schedstat is the time spent on the CPU, in nanoseconds.
     let schedstat = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap_or_default();
-    let nanos = schedstat
-        .split_whitespace()
-        .next()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(0);
+    let nanos = schedstat.split_whitespace().next().and_then(|n| n.parse().ok()).unwrap_or(0);
     Duration::from_nanos(nanos)
 }
 

@@ -52,10 +52,7 @@ impl Diagnostic {
 
     /// A warning at `span`.
     pub fn warning(span: Span, message: impl Into<String>) -> Diagnostic {
-        Diagnostic {
-            severity: Severity::Warning,
-            ..Diagnostic::error(span, message)
-        }
+        Diagnostic { severity: Severity::Warning, ..Diagnostic::error(span, message) }
     }
 
     /// Adds the text shown next to the caret.
@@ -115,11 +112,7 @@ impl Diagnostic {
 
 /// `text` in `color` when colours are on, as is otherwise.
 fn paint(text: &str, color: Color, enabled: bool) -> String {
-    if enabled {
-        text.fg(color).to_string()
-    } else {
-        text.to_string()
-    }
+    if enabled { text.fg(color).to_string() } else { text.to_string() }
 }
 
 /// The source snippet drawn by ariadne, with the location line in rustc's style.
@@ -147,8 +140,7 @@ mod render {
         /// The texts of every source that `diagnostic` points into.
         fn of(diagnostic: &Diagnostic, sources: &SourceMap) -> Texts {
             let mut files = HashMap::new();
-            let spans =
-                std::iter::once(diagnostic.span).chain(diagnostic.related.iter().map(|(s, _)| *s));
+            let spans = std::iter::once(diagnostic.span).chain(diagnostic.related.iter().map(|(s, _)| *s));
             for span in spans {
                 files.entry(span.source).or_insert_with(|| {
                     let file = sources.get(span.source);
@@ -166,11 +158,7 @@ mod render {
     fn printable(text: &str) -> String {
         text.chars()
             .flat_map(|c| {
-                let shown = if c.is_control() && !matches!(c, '\n' | '\t' | '\r') {
-                    None
-                } else {
-                    Some(c)
-                };
+                let shown = if c.is_control() && !matches!(c, '\n' | '\t' | '\r') { None } else { Some(c) };
                 let count = if shown.is_some() { 1 } else { c.len_utf8() };
                 std::iter::repeat_n(shown.unwrap_or('?'), count)
             })
@@ -181,10 +169,7 @@ mod render {
         type Storage = String;
 
         fn fetch(&mut self, id: &SourceId) -> Result<&Source<String>, impl fmt::Debug> {
-            self.files
-                .get(id)
-                .map(|(_, source)| source)
-                .ok_or("unknown source")
+            self.files.get(id).map(|(_, source)| source).ok_or("unknown source")
         }
 
         fn display<'a>(&self, id: &'a SourceId) -> Option<impl fmt::Display + 'a> {
@@ -196,8 +181,7 @@ mod render {
     /// location, the source lines with their labels, and the closing line.
     pub(super) fn snippet(diagnostic: &Diagnostic, sources: &SourceMap, color: bool) -> String {
         let file = sources.get(diagnostic.span.source);
-        let (line, column) =
-            file.line_col(floor_boundary(&file.text, diagnostic.span.start as usize));
+        let (line, column) = file.line_col(floor_boundary(&file.text, diagnostic.span.start as usize));
         let location = format!("{}:{line}:{column}", file.name);
         let Some(primary) = label_range(sources, diagnostic.span) else {
             return format!(" --> {location}\n");
@@ -217,32 +201,22 @@ mod render {
     }
 
     /// Runs ariadne over the diagnostic's labels.
-    fn draw(
-        diagnostic: &Diagnostic,
-        sources: &SourceMap,
-        color: bool,
-        primary: Range<usize>,
-    ) -> String {
+    fn draw(diagnostic: &Diagnostic, sources: &SourceMap, color: bool, primary: Range<usize>) -> String {
         let (primary_color, secondary_color) = match diagnostic.severity {
             Severity::Error => (Color::Red, Color::Blue),
             Severity::Warning => (Color::Yellow, Color::Blue),
         };
         let config = Config::new()
             .with_color(color)
-            .with_char_set(if color {
-                CharSet::Unicode
-            } else {
-                CharSet::Ascii
-            })
+            .with_char_set(if color { CharSet::Unicode } else { CharSet::Ascii })
             .with_index_type(IndexType::Byte);
         let source = diagnostic.span.source;
         let mut primary_label = Label::new((source, primary.clone())).with_color(primary_color);
         primary_label = primary_label.with_order(label_order(sources, diagnostic.span, source));
         // ariadne draws no underline for a label without a message.
         primary_label = primary_label.with_message(diagnostic.label.as_deref().unwrap_or("here"));
-        let mut report = Report::build(ReportKind::Error, (source, primary))
-            .with_config(config)
-            .with_label(primary_label);
+        let mut report =
+            Report::build(ReportKind::Error, (source, primary)).with_config(config).with_label(primary_label);
         for (span, text) in &diagnostic.related {
             if let Some(range) = label_range(sources, *span) {
                 let label = Label::new((span.source, range))
@@ -253,9 +227,7 @@ mod render {
             }
         }
         let mut bytes = Vec::new();
-        let written = report
-            .finish()
-            .write(Texts::of(diagnostic, sources), &mut bytes);
+        let written = report.finish().write(Texts::of(diagnostic, sources), &mut bytes);
         match written {
             Ok(()) => String::from_utf8_lossy(&bytes).into_owned(),
             Err(_) => String::new(),
@@ -267,14 +239,8 @@ mod render {
     fn label_order(sources: &SourceMap, span: Span, primary_source: SourceId) -> i32 {
         let file = sources.get(span.source);
         let (line, _) = file.line_col(floor_boundary(&file.text, span.start as usize));
-        let line = i32::try_from(line)
-            .unwrap_or(i32::MAX / 4)
-            .min(i32::MAX / 4);
-        if span.source == primary_source {
-            line
-        } else {
-            i32::MAX / 2 + line / 2
-        }
+        let line = i32::try_from(line).unwrap_or(i32::MAX / 4).min(i32::MAX / 4);
+        if span.source == primary_source { line } else { i32::MAX / 2 + line / 2 }
     }
 
     /// The byte range of `span` in the padded text: clamped to the text, on
@@ -368,13 +334,10 @@ error: unexpected character `$`
         let mut map = SourceMap::new();
         let definition = map.add("scene.ray", "proc p(a)\nend\n", 0);
         let call = map.add("<input>", "p(1, 2)", 0);
-        let diagnostic = Diagnostic::error(
-            Span::new(call, 0, 7),
-            "`p` takes 1 argument, but 2 are given",
-        )
-        .with_label("2 arguments")
-        .with_related(Span::new(definition, 0, 9), "`p` is defined here")
-        .with_note("called from the top level");
+        let diagnostic = Diagnostic::error(Span::new(call, 0, 7), "`p` takes 1 argument, but 2 are given")
+            .with_label("2 arguments")
+            .with_related(Span::new(definition, 0, 9), "`p` is defined here")
+            .with_note("called from the top level");
         let expected = "\
 error: `p` takes 1 argument, but 2 are given
   --> <input>:1:1
@@ -397,19 +360,14 @@ note: called from the top level
     #[test]
     fn warnings_say_so() {
         let (map, id) = map_with("a.ray", "color 300, 0, 0", 0);
-        let rendered =
-            Diagnostic::warning(Span::new(id, 6, 9), "clamped to 255").render(&map, false);
-        assert!(
-            rendered.starts_with("warning: clamped to 255\n  --> a.ray:1:7\n"),
-            "{rendered}"
-        );
+        let rendered = Diagnostic::warning(Span::new(id, 6, 9), "clamped to 255").render(&map, false);
+        assert!(rendered.starts_with("warning: clamped to 255\n  --> a.ray:1:7\n"), "{rendered}");
     }
 
     #[test]
     fn colours_only_when_asked() {
         let (map, id) = map_with("a.ray", "let x = $", 0);
-        let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `$`")
-            .with_help("remove it");
+        let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `$`").with_help("remove it");
         assert!(!diagnostic.render(&map, false).contains('\u{1b}'));
         assert!(diagnostic.render(&map, false).is_ascii());
         let coloured = diagnostic.render(&map, true);
@@ -423,16 +381,14 @@ note: called from the top level
         let rendered = Diagnostic::error(Span::new(id, 0, 0), "empty").render(&map, false);
         assert_eq!(rendered, "error: empty\n --> empty.ray:1:1\n");
         let (map, id) = map_with("a.ray", "é", 0);
-        let rendered =
-            Diagnostic::error(Span::new(id, 1, 40), "inside a character").render(&map, false);
+        let rendered = Diagnostic::error(Span::new(id, 1, 40), "inside a character").render(&map, false);
         assert!(rendered.contains("a.ray:1:"), "{rendered}");
     }
 
     #[test]
     fn control_characters_are_not_sent_to_the_terminal() {
         let (map, id) = map_with("a.ray", "let x = \u{1b}[31m", 0);
-        let rendered =
-            Diagnostic::error(Span::new(id, 8, 9), "unexpected character").render(&map, false);
+        let rendered = Diagnostic::error(Span::new(id, 8, 9), "unexpected character").render(&map, false);
         assert!(!rendered.contains('\u{1b}'));
         assert!(rendered.contains("let x = ?[31m"), "{rendered}");
     }

@@ -176,14 +176,12 @@ impl Interpreter {
     }
 
     /// Runs every item of `program`; on error the interpreter is unchanged.
-    #[allow(clippy::result_large_err)] // `Diagnostic` by value is the shared interface
     pub fn run(&mut self, program: &Program) -> Result<(), Diagnostic> {
         self.run_inner(program, None)
     }
 
     /// Like [`Interpreter::run`], but a recursion error's call chain names the
     /// line of each call, read from `sources`.
-    #[allow(clippy::result_large_err)] // `Diagnostic` by value is the shared interface
     pub fn run_with_sources(&mut self, program: &Program, sources: &SourceMap) -> Result<(), Diagnostic> {
         self.run_inner(program, Some(sources))
     }
@@ -256,7 +254,6 @@ impl Interpreter {
     }
 
     /// Runs the items; on error, restores the snapshot and explains the error.
-    #[allow(clippy::result_large_err)] // `Diagnostic` by value is the shared interface
     fn run_inner(&mut self, program: &Program, sources: Option<&SourceMap>) -> Result<(), Diagnostic> {
         let snapshot = self.snapshot();
         self.created = self.live_primitives();

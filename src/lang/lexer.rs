@@ -240,10 +240,7 @@ impl Token {
             Token::Or => "|",
             Token::Bang => "!",
             keyword => {
-                return KEYWORDS
-                    .iter()
-                    .find(|(_, token)| token == keyword)
-                    .map(|(name, _)| *name);
+                return KEYWORDS.iter().find(|(_, token)| token == keyword).map(|(name, _)| *name);
             }
         };
         Some(symbol)
@@ -307,13 +304,7 @@ impl Hasher for NameHasher {
 impl<'a> Lexer<'a> {
     /// A lexer over `text`, whose spans in diagnostics name `source`.
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
-        Lexer {
-            text,
-            pos: 0,
-            source,
-            names: HashMap::default(),
-            failed: false,
-        }
+        Lexer { text, pos: 0, source, names: HashMap::default(), failed: false }
     }
 
     /// Moves past blanks and comments.
@@ -380,22 +371,14 @@ impl<'a> Lexer<'a> {
 
     /// The shared copy of `name`, made the first time it is seen.
     fn intern(&mut self, name: &'a str) -> Rc<str> {
-        self.names
-            .entry(name)
-            .or_insert_with(|| Rc::from(name))
-            .clone()
+        self.names.entry(name).or_insert_with(|| Rc::from(name)).clone()
     }
 
     /// Reads `[0-9]*(\.[0-9]+)?([eE][+-]?[0-9]+)?` (at least one digit).
     fn number(&mut self) -> Result<Spanned, Box<Diagnostic>> {
         let bytes = self.text.as_bytes();
         let start = self.pos;
-        let digits = |from: usize| {
-            bytes[from..]
-                .iter()
-                .take_while(|b| b.is_ascii_digit())
-                .count()
-        };
+        let digits = |from: usize| bytes[from..].iter().take_while(|b| b.is_ascii_digit()).count();
         let mut end = start + digits(start);
         if bytes.get(end) == Some(&b'.') && bytes.get(end + 1).is_some_and(u8::is_ascii_digit) {
             end += 1 + digits(end + 1);
@@ -415,11 +398,8 @@ impl<'a> Lexer<'a> {
         match literal.parse::<f64>() {
             Ok(value) if value.is_finite() => Ok((start, Token::Number(value), end)),
             _ => Err(Box::new(
-                Diagnostic::error(
-                    Span::new(self.source, start, end),
-                    format!("the number `{literal}` is too large"),
-                )
-                .with_label("too large for a number"),
+                Diagnostic::error(Span::new(self.source, start, end), format!("the number `{literal}` is too large"))
+                    .with_label("too large for a number"),
             )),
         }
     }
@@ -453,9 +433,7 @@ fn small_integer(literal: &str) -> Option<f64> {
     if bytes.len() > 15 || !bytes.iter().all(u8::is_ascii_digit) {
         return None;
     }
-    let value = bytes
-        .iter()
-        .fold(0u64, |value, digit| value * 10 + u64::from(digit - b'0'));
+    let value = bytes.iter().fold(0u64, |value, digit| value * 10 + u64::from(digit - b'0'));
     // At most 15 digits: below 2^53, so the conversion is exact.
     Some(value as f64)
 }
@@ -469,9 +447,7 @@ fn character_help(character: char) -> Option<&'static str> {
         '.' => Some("write decimals with digits on both sides of the point, like `0.5`"),
         '^' => Some("there is no power operator: multiply, like `x * x`"),
         '[' | ']' => Some("use `(` and `)` for grouping"),
-        c if c.is_alphabetic() => {
-            Some("names use only the letters a to z without accents, digits and `_`")
-        }
+        c if c.is_alphabetic() => Some("names use only the letters a to z without accents, digits and `_`"),
         _ => None,
     }
 }
@@ -503,11 +479,7 @@ mod tests {
     use super::*;
 
     fn tokens(text: &str) -> Vec<Token> {
-        tokenize(SourceId(0), text)
-            .expect("valid tokens")
-            .into_iter()
-            .map(|(_, t, _)| t)
-            .collect()
+        tokenize(SourceId(0), text).expect("valid tokens").into_iter().map(|(_, t, _)| t).collect()
     }
 
     fn error(text: &str) -> Diagnostic {
@@ -585,10 +557,7 @@ mod tests {
 
     #[test]
     fn comments_run_to_the_end_of_the_line() {
-        assert_eq!(
-            tokens("a # b ( $\nc # d"),
-            vec![Token::Ident("a".into()), Token::Ident("c".into())]
-        );
+        assert_eq!(tokens("a # b ( $\nc # d"), vec![Token::Ident("a".into()), Token::Ident("c".into())]);
     }
 
     #[test]

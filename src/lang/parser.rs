@@ -8,7 +8,6 @@
 // The public functions return the `Diagnostic` itself (the signatures are
 // shared with the rest of the crate); a syntax error happens once per parse,
 // so its size costs nothing that matters.
-#![allow(clippy::result_large_err)]
 
 mod errors;
 mod order;
@@ -42,48 +41,24 @@ pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> 
 /// Like [`parse_file`], for a text whose first line is line `line_offset + 1`
 /// of what the user sees (see [`super::source::SourceFile::line_offset`]), so
 /// that messages such as "opened at line 12" give the user's line numbers.
-pub fn parse_file_with_line_offset(
-    source: SourceId,
-    text: &str,
-    line_offset: usize,
-) -> Result<Program, Diagnostic> {
-    parse(
-        source,
-        text,
-        &ItemOrder::file(source, text, line_offset),
-        line_offset,
-    )
+pub fn parse_file_with_line_offset(source: SourceId, text: &str, line_offset: usize) -> Result<Program, Diagnostic> {
+    parse(source, text, &ItemOrder::file(source, text, line_offset), line_offset)
 }
 
 /// Like [`parse_items`], for a text whose first line is line `line_offset + 1`.
-pub fn parse_items_with_line_offset(
-    source: SourceId,
-    text: &str,
-    line_offset: usize,
-) -> Result<Program, Diagnostic> {
+pub fn parse_items_with_line_offset(source: SourceId, text: &str, line_offset: usize) -> Result<Program, Diagnostic> {
     parse(source, text, &ItemOrder::any(), line_offset)
 }
 
 /// Runs the generated parser over the lexer, then the end-of-file order check.
-fn parse(
-    source: SourceId,
-    text: &str,
-    order: &ItemOrder,
-    line_offset: usize,
-) -> Result<Program, Diagnostic> {
+fn parse(source: SourceId, text: &str, order: &ItemOrder, line_offset: usize) -> Result<Program, Diagnostic> {
     let tokens = Lexer::new(source, text);
     match grammar::ItemsParser::new().parse(source, order, tokens) {
         Ok(items) => {
             order.check_end(text)?;
             Ok(Program { items })
         }
-        Err(error) => Err(errors::syntax_error(
-            source,
-            text,
-            line_offset,
-            order,
-            error,
-        )),
+        Err(error) => Err(errors::syntax_error(source, text, line_offset, order, error)),
     }
 }
 
@@ -95,9 +70,7 @@ pub(crate) fn push_item(
     order: &ItemOrder<'_>,
     span: Span,
 ) -> Result<Vec<Item>, ParseError<usize, Token, Box<Diagnostic>>> {
-    order
-        .check(&item, span)
-        .map_err(|error| ParseError::User { error })?;
+    order.check(&item, span).map_err(|error| ParseError::User { error })?;
     items.push(item);
     Ok(items)
 }
@@ -198,14 +171,7 @@ mod tests {
 
     #[test]
     fn trailing_operators_and_parens_are_incomplete() {
-        for text in [
-            "let x = 1 +",
-            "let x =",
-            "p(1,",
-            "let x = (1",
-            "let x = sin(",
-            "ambient",
-        ] {
+        for text in ["let x = 1 +", "let x =", "p(1,", "let x = (1", "let x = sin(", "ambient"] {
             assert!(is_incomplete(text), "{text}");
         }
         assert!(!is_incomplete("let x = (1)"));

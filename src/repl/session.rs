@@ -96,7 +96,6 @@ impl Session {
     /// Parses and runs one input. `name` is shown in diagnostics and
     /// `line_offset` is the number of lines before it in its script. On
     /// error the session is unchanged (SPEC 7).
-    #[allow(clippy::result_large_err)] // `Diagnostic` by value is the shared interface
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
         let program = parse_items(source, text)?;
@@ -104,7 +103,6 @@ impl Session {
     }
 
     /// Runs the text of a file, all of it as one input (its items in any order).
-    #[allow(clippy::result_large_err)]
     pub(crate) fn load(&mut self, name: &str, text: &str) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, 0);
         let program = parse_items(source, text)?;
@@ -112,7 +110,6 @@ impl Session {
     }
 
     /// Runs an already parsed input and records it in the history.
-    #[allow(clippy::result_large_err)]
     fn run(&mut self, text: String, program: Program) -> Result<Accepted, Diagnostic> {
         if self.interpreter_time != self.settings.time {
             self.rebuild(self.history.clone())?;
@@ -134,7 +131,6 @@ impl Session {
     }
 
     /// Takes back the last input, or the last `:reset`.
-    #[allow(clippy::result_large_err)]
     pub(crate) fn undo(&mut self) -> Result<Undone, Diagnostic> {
         let Some(step) = self.undo_steps.pop() else {
             return Ok(Undone::Nothing);
@@ -166,7 +162,6 @@ impl Session {
     /// Sets `time`. If anything read it, every input is evaluated again at
     /// once, and if one of them fails at the new time nothing changes.
     /// Returns whether inputs were evaluated again.
-    #[allow(clippy::result_large_err)]
     pub(crate) fn set_time(&mut self, time: f64) -> Result<bool, Diagnostic> {
         let previous = self.settings.time;
         self.settings.time = time;
@@ -188,14 +183,12 @@ impl Session {
     /// A fresh interpreter that ran the history at `time`; with
     /// `skip_static`, the scene holds only the primitives that depend on
     /// `time` (the other frames of an animation).
-    #[allow(clippy::result_large_err)]
     pub(crate) fn replay_at(&self, time: f64, skip_static: bool) -> Result<Interpreter, Diagnostic> {
         let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
         self.replay(interpreter, &self.history)
     }
 
     /// Replaces the interpreter by one that ran `history` at the current time.
-    #[allow(clippy::result_large_err)]
     fn rebuild(&mut self, history: Vec<Input>) -> Result<(), Diagnostic> {
         let time = self.settings.time;
         self.interpreter = self.replay(Interpreter::new(time, self.limits), &history)?;
@@ -209,7 +202,6 @@ impl Session {
         Ok(())
     }
 
-    #[allow(clippy::result_large_err)]
     fn replay(&self, mut interpreter: Interpreter, history: &[Input]) -> Result<Interpreter, Diagnostic> {
         for input in history {
             interpreter.run_with_sources(&input.program, &self.sources)?;

@@ -22,16 +22,7 @@ pub(super) type GrammarError = ParseError<usize, Token, Box<Diagnostic>>;
 /// The terminals that can start an expression.
 const EXPRESSION_STARTS: [&str; 8] = ["NUMBER", "NAME", "(", "-", "pi", "sin", "cos", "sqrt"];
 /// The terminals that can start an object expression.
-const OBJECT_STARTS: [&str; 8] = [
-    "sphere",
-    "plane",
-    "box",
-    "translate",
-    "rotate",
-    "scale",
-    "group",
-    "NAME",
-];
+const OBJECT_STARTS: [&str; 8] = ["sphere", "plane", "box", "translate", "rotate", "scale", "group", "NAME"];
 /// The terminals that can start an instruction.
 const INSTRUCTION_STARTS: [&str; 5] = ["let", "object", "put", "if", "NAME"];
 /// The keywords that start the items other than instructions.
@@ -54,31 +45,19 @@ pub(super) fn syntax_error(
     order: &ItemOrder<'_>,
     error: GrammarError,
 ) -> Diagnostic {
-    let place = Place {
-        source,
-        text,
-        line_offset,
-    };
+    let place = Place { source, text, line_offset };
     match error {
         ParseError::User { error } => *error,
         ParseError::UnrecognizedEof { location, expected } => {
             let context = Context::scan(place, usize::MAX);
             end_of_file_error(place, &context, &Expected::new(expected), location)
         }
-        ParseError::UnrecognizedToken {
-            token: (start, token, end),
-            expected,
-        } => {
+        ParseError::UnrecognizedToken { token: (start, token, end), expected } => {
             let context = Context::scan(place, start);
-            let found = Found {
-                token,
-                span: Span::new(source, start, end),
-            };
+            let found = Found { token, span: Span::new(source, start, end) };
             token_error(place, &context, &Expected::new(expected), order, &found)
         }
-        ParseError::ExtraToken {
-            token: (start, _, end),
-        } => {
+        ParseError::ExtraToken { token: (start, _, end) } => {
             let span = Span::new(source, start, end);
             Diagnostic::error(span, format!("unexpected `{}`", place.slice(span)))
         }
@@ -107,9 +86,7 @@ struct Place<'t> {
 impl Place<'_> {
     /// The source text of `span`.
     fn slice(&self, span: Span) -> &str {
-        self.text
-            .get(span.start as usize..span.end as usize)
-            .unwrap_or("")
+        self.text.get(span.start as usize..span.end as usize).unwrap_or("")
     }
 
     /// The line, as the user sees it, where `span` starts.
@@ -173,8 +150,7 @@ impl Context {
             }
             _ => {}
         }
-        if token.is_keyword() && !matches!(token, Token::Pi | Token::Sin | Token::Cos | Token::Sqrt)
-        {
+        if token.is_keyword() && !matches!(token, Token::Pi | Token::Sin | Token::Cos | Token::Sqrt) {
             self.triple = self.triple_after(&token);
         }
         self.before_previous = self.previous.take();
@@ -213,12 +189,10 @@ impl Expected {
     fn new(raw: Vec<String>) -> Expected {
         let names = raw
             .into_iter()
-            .map(
-                |name| match name.strip_prefix('"').and_then(|n| n.strip_suffix('"')) {
-                    Some(inner) => inner.to_string(),
-                    None => name,
-                },
-            )
+            .map(|name| match name.strip_prefix('"').and_then(|n| n.strip_suffix('"')) {
+                Some(inner) => inner.to_string(),
+                None => name,
+            })
             .collect();
         Expected { names }
     }
@@ -243,29 +217,17 @@ impl Expected {
             .map(String::as_str)
             .filter(|name| !CONTINUATIONS.contains(name) || (starts_expression && *name == "-"))
             .collect();
-        if essential.is_empty() {
-            self.names.iter().map(String::as_str).collect()
-        } else {
-            essential
-        }
+        if essential.is_empty() { self.names.iter().map(String::as_str).collect() } else { essential }
     }
 
     /// The expected keywords, for "did you mean ...?".
     fn keywords(&self) -> impl Iterator<Item = &str> {
-        self.names
-            .iter()
-            .map(String::as_str)
-            .filter(|name| lexer::keyword(name).is_some())
+        self.names.iter().map(String::as_str).filter(|name| lexer::keyword(name).is_some())
     }
 }
 
 /// The error when the text ends too early.
-fn end_of_file_error(
-    place: Place<'_>,
-    context: &Context,
-    expected: &Expected,
-    location: usize,
-) -> Diagnostic {
+fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, location: usize) -> Diagnostic {
     let span = last_character(place, location);
     if let Some((opener, opened)) = context.innermost().filter(|_| expected.has("end")) {
         let name = opener.to_string();
@@ -280,10 +242,7 @@ fn end_of_file_error(
     let what = describe(place, context, &expected.essential());
     let message = match &context.previous {
         Some((_, previous)) => {
-            format!(
-                "unexpected end of file: expected {what} after `{}`",
-                place.slice(*previous)
-            )
+            format!("unexpected end of file: expected {what} after `{}`", place.slice(*previous))
         }
         None => format!("unexpected end of file: expected {what}"),
     };
@@ -321,23 +280,16 @@ fn token_error(
 
 /// A hint for mistakes learners often make, recognised from the unexpected
 /// token and what comes before it.
-fn common_mistake(
-    place: Place<'_>,
-    context: &Context,
-    expected: &Expected,
-    found: &Found,
-) -> Option<String> {
+fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, found: &Found) -> Option<String> {
     let previous = context.previous.as_ref().map(|(token, _)| token);
     match (&found.token, previous) {
-        (Token::Eq, Some(Token::Eq)) => {
-            Some("a comparison is written with a single `=`".to_string())
-        }
+        (Token::Eq, Some(Token::Eq)) => Some("a comparison is written with a single `=`".to_string()),
         (Token::LParen, Some(Token::Number(_) | Token::RParen)) if expected.has("*") => {
             Some("to multiply, write `*`, like `2 * (x + 1)`".to_string())
         }
-        (Token::Eq, Some(keyword)) if keyword.is_keyword() && expected.has("NUMBER") => Some(
-            format!("write the value right after `{keyword}`, without `=`"),
-        ),
+        (Token::Eq, Some(keyword)) if keyword.is_keyword() && expected.has("NUMBER") => {
+            Some(format!("write the value right after `{keyword}`, without `=`"))
+        }
         (Token::Comma, _) => match context.parens.last() {
             Some((_, Some(function @ (Token::Sin | Token::Cos | Token::Sqrt)))) => {
                 Some(format!("`{function}` takes a single number"))
@@ -347,10 +299,9 @@ fn common_mistake(
             }
             _ => None,
         },
-        (token, _) if token.is_keyword() && expects_only_a_name(expected) => Some(format!(
-            "`{}` is a reserved word of the language; choose another name",
-            place.slice(found.span)
-        )),
+        (token, _) if token.is_keyword() && expects_only_a_name(expected) => {
+            Some(format!("`{}` is a reserved word of the language; choose another name", place.slice(found.span)))
+        }
         _ => None,
     }
 }
@@ -373,11 +324,8 @@ fn token_message(
             .with_label("this `end` closes nothing");
     }
     if found.token == Token::Else && !matches!(innermost, Some((Token::If, _))) {
-        return Diagnostic::error(
-            span,
-            "unexpected `else`: it belongs between `if ... then` and `end`",
-        )
-        .with_label("this `else` has no `if`");
+        return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`")
+            .with_label("this `else` has no `if`");
     }
     if order.is_file() && order.phase() == Phase::Start && context.previous.is_none() {
         return Diagnostic::error(span, "a scenario file must start with `camera ... end`")
@@ -385,21 +333,13 @@ fn token_message(
             .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`");
     }
     if TEXTURE.contains(&found_text) && expected.has_any(&TEXTURE) {
-        return Diagnostic::error(
-            span,
-            format!("the texture must be {TEXTURE_SHAPE} in this order"),
-        )
-        .with_label("out of order");
+        return Diagnostic::error(span, format!("the texture must be {TEXTURE_SHAPE} in this order"))
+            .with_label("out of order");
     }
     if expected.has("let") && OBJECT_STARTS[..7].contains(&found_text) {
-        return Diagnostic::error(
-            span,
-            format!("expected an instruction, found the object `{found_text}`"),
-        )
-        .with_label("an object is not an instruction")
-        .with_help(
-            "write `put` before it to add it to the scene, or `object name =` to give it a name",
-        );
+        return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))
+            .with_label("an object is not an instruction")
+            .with_help("write `put` before it to add it to the scene, or `object name =` to give it a name");
     }
     let essential = expected.essential();
     match essential.as_slice() {
@@ -431,9 +371,7 @@ fn token_message(
     };
     let diagnostic = Diagnostic::error(span, message).with_label(unexpected);
     match innermost {
-        Some((opener, opened)) if closes => {
-            diagnostic.with_related(*opened, format!("the `{opener}` opened here"))
-        }
+        Some((opener, opened)) if closes => diagnostic.with_related(*opened, format!("the `{opener}` opened here")),
         _ => diagnostic,
     }
 }
@@ -462,13 +400,7 @@ fn add_spelling_help(
         }
         if let Some(keyword) = suggest::closest(name, lexer::keyword_names()) {
             return diagnostic
-                .with_related(
-                    *span,
-                    format!(
-                        "`{}` is not a keyword, so it is read as a name",
-                        place.slice(*span)
-                    ),
-                )
+                .with_related(*span, format!("`{}` is not a keyword, so it is read as a name", place.slice(*span)))
                 .with_help(format!("did you mean `{keyword}`?"));
         }
     }
@@ -478,10 +410,7 @@ fn add_spelling_help(
 /// Whether the parser wanted a new name there (after `let`, `object`,
 /// `proc`, or in a parameter list).
 fn expects_only_a_name(expected: &Expected) -> bool {
-    matches!(
-        expected.essential().as_slice(),
-        ["NAME"] | ["NAME", ")"] | [")", "NAME"]
-    )
+    matches!(expected.essential().as_slice(), ["NAME"] | ["NAME", ")"] | [")", "NAME"])
 }
 
 /// Describes the expected terminals in words: "an expression (...)",
@@ -497,33 +426,17 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
         take(&mut left, &EXPRESSION_STARTS, "a condition (like `x < 1`)");
         left.retain(|name| *name != "!");
     } else if left.contains(&"NUMBER") {
-        take(
-            &mut left,
-            &EXPRESSION_STARTS,
-            "an expression (a number, a name, `(`...)",
-        );
+        take(&mut left, &EXPRESSION_STARTS, "an expression (a number, a name, `(`...)");
     }
     if left.contains(&"sphere") {
-        take(
-            &mut left,
-            &OBJECT_STARTS,
-            "an object (`sphere`, `plane`, `box`, a name...)",
-        );
+        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, a name...)");
     }
     if left.contains(&"let") {
-        take(
-            &mut left,
-            &INSTRUCTION_STARTS,
-            "an instruction (`let`, `object`, `put`, `if` or a procedure call)",
-        );
+        take(&mut left, &INSTRUCTION_STARTS, "an instruction (`let`, `object`, `put`, `if` or a procedure call)");
         left.retain(|name| !DEFINITION_STARTS.contains(name));
     }
     if left.contains(&"<") {
-        take(
-            &mut left,
-            &COMPARISONS,
-            "a comparison (`=`, `<`, `>`, `<=`, `>=` or `!=`)",
-        );
+        take(&mut left, &COMPARISONS, "a comparison (`=`, `<`, `>`, `<=`, `>=` or `!=`)");
     }
     if left.contains(&"kd") {
         take(&mut left, &["kd"], &format!("the texture {TEXTURE_SHAPE}"));
@@ -544,10 +457,7 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
 /// "`end`", and what it would close if something is open.
 fn end_phrase(place: Place<'_>, context: &Context) -> String {
     match context.innermost() {
-        Some((opener, opened)) => format!(
-            "`end` to close the `{opener}` opened at line {}",
-            place.line(*opened)
-        ),
+        Some((opener, opened)) => format!("`end` to close the `{opener}` opened at line {}", place.line(*opened)),
         None => "`end`".to_string(),
     }
 }

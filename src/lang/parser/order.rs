@@ -55,14 +55,7 @@ struct FileText<'t> {
 impl<'t> ItemOrder<'t> {
     /// The order check for a whole file.
     pub(crate) fn file(source: SourceId, text: &'t str, line_offset: usize) -> ItemOrder<'t> {
-        ItemOrder {
-            file: Some(FileText {
-                source,
-                text,
-                line_offset,
-            }),
-            ..ItemOrder::any()
-        }
+        ItemOrder { file: Some(FileText { source, text, line_offset }), ..ItemOrder::any() }
     }
 
     /// No check: a session input takes items in any order.
@@ -144,9 +137,7 @@ impl<'t> ItemOrder<'t> {
                 Phase::Instrs
             }
         };
-        if matches!(item, Item::Proc(_) | Item::Instr(_))
-            && self.first_proc_or_instr.get().is_none()
-        {
+        if matches!(item, Item::Proc(_) | Item::Instr(_)) && self.first_proc_or_instr.get().is_none() {
             self.first_proc_or_instr.set(Some(at));
         }
         self.phase.set(next);
@@ -157,23 +148,20 @@ impl<'t> ItemOrder<'t> {
         let Some(file) = self.file else { return Ok(()) };
         let end = end_of_text(file.source, text);
         match self.phase.get() {
-            Phase::Start => Err(start_error(end)
-                .with_label("the file ends here")
-                .with_note(ORDER_NOTE)),
-            Phase::Camera => Err(Diagnostic::error(
-                end,
-                "unexpected end of file: `ambient` must come right after the camera",
-            )
-            .with_label("the file ends here")
-            .with_note(ORDER_NOTE)),
+            Phase::Start => Err(start_error(end).with_label("the file ends here").with_note(ORDER_NOTE)),
+            Phase::Camera => {
+                Err(Diagnostic::error(end, "unexpected end of file: `ambient` must come right after the camera")
+                    .with_label("the file ends here")
+                    .with_note(ORDER_NOTE))
+            }
             _ => Ok(()),
         }
     }
 
     /// The error for a second `camera` or `ambient`.
     fn only_one(&self, at: Span, what: &str, first: Option<Span>) -> Diagnostic {
-        let error = Diagnostic::error(at, format!("a file has only one `{what}`"))
-            .with_label(format!("a second `{what}`"));
+        let error =
+            Diagnostic::error(at, format!("a file has only one `{what}`")).with_label(format!("a second `{what}`"));
         match (first, self.file) {
             (Some(first), Some(file)) => {
                 let line = line_of(file, first.start as usize);
@@ -185,13 +173,7 @@ impl<'t> ItemOrder<'t> {
 }
 
 /// An item that should have come before `earlier`.
-fn out_of_place(
-    at: Span,
-    message: &str,
-    label: &str,
-    earlier: Option<Span>,
-    earlier_name: &str,
-) -> Diagnostic {
+fn out_of_place(at: Span, message: &str, label: &str, earlier: Option<Span>, earlier_name: &str) -> Diagnostic {
     let error = Diagnostic::error(at, message).with_label(label);
     match earlier {
         Some(earlier) => error.with_related(earlier, format!("{earlier_name} is here")),
@@ -203,24 +185,19 @@ fn out_of_place(
 fn start_error(at: Span) -> Diagnostic {
     Diagnostic::error(at, "a scenario file must start with `camera ... end`")
         .with_label("expected `camera` here")
-        .with_help(
-            "begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`",
-        )
+        .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`")
 }
 
 /// The error for a file whose camera is not followed by `ambient`.
 fn ambient_missing(at: Span) -> Diagnostic {
-    Diagnostic::error(at, "`ambient` must come right after the camera")
-        .with_label("expected `ambient` here")
+    Diagnostic::error(at, "`ambient` must come right after the camera").with_label("expected `ambient` here")
 }
 
 /// The span of the first word of the item spanning `span`.
 fn first_word(file: FileText<'_>, span: Span) -> Span {
     let start = span.start as usize;
     let rest = file.text.get(start..span.end as usize).unwrap_or("");
-    let len = rest
-        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-        .unwrap_or(rest.len());
+    let len = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(rest.len());
     Span::new(file.source, start, start + len.max(1).min(rest.len()))
 }
 
