@@ -213,6 +213,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
         depth: cli.depth,
         samples: cli.samples,
         screen: cli.screen.screen(),
+        adaptive: cli.adaptive,
         ..RenderOptions::default()
     }
 }

@@ -51,6 +51,11 @@ pub struct Cli {
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub samples: u32,
 
+    /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges
+    /// (differing from a neighbour by more than 2 levels).
+    #[arg(long)]
+    pub adaptive: bool,
+
     /// Where the z axis meets the screen: its centre (default) or the middle of its bottom edge.
     #[arg(long, value_enum, default_value_t = ScreenArg::Centered)]
     pub screen: ScreenArg,

@@ -28,6 +28,13 @@
 //! [`TILE`] x [`TILE`] pixels; rayon spreads the bands over its threads.
 //! Every pixel is computed on its own, so the bytes do not depend on the
 //! number of threads.
+//!
+//! With [`RenderOptions::adaptive`], anti-aliasing is spent only where the
+//! image has edges: a first pass renders every pixel at its centre, then
+//! [`refinement_mask`] flags the pixels that differ from a neighbour by more
+//! than [`ADAPTIVE_THRESHOLD`] levels, and a second pass renders just those
+//! with all `samples` samples. A refined pixel gets exactly the bytes of the
+//! uniform `samples` render; any other keeps the bytes of the 1-sample one.
 
 pub mod bvh;
 pub mod camera;
@@ -113,6 +120,10 @@ pub struct RenderOptions {
     pub screen: Screen,
     /// Work-saving shortcuts.
     pub skips: Skips,
+    /// Adaptive anti-aliasing: with `samples > 1`, only the pixels flagged by
+    /// [`refinement_mask`] on the 1-sample image get `samples` samples; the
+    /// others keep their centre sample. Off by default.
+    pub adaptive: bool,
 }
 
 impl Default for RenderOptions {
@@ -124,8 +135,49 @@ impl Default for RenderOptions {
             samples: 1,
             screen: Screen::Centered,
             skips: Skips::all(),
+            adaptive: false,
         }
     }
+}
+
+/// Adaptive anti-aliasing refines a pixel when one of its channels differs
+/// by more than this many 8-bit levels from the same channel of one of its 8
+/// neighbours in the 1-sample image.
+pub const ADAPTIVE_THRESHOLD: u8 = 2;
+
+/// The pixels adaptive anti-aliasing renders again with all samples (row
+/// major, one flag per pixel): those of `image` (a 1-sample render) with a
+/// channel more than [`ADAPTIVE_THRESHOLD`] levels away from that channel
+/// of one of their 8 neighbours.
+///
+/// Both pixels of a differing pair are flagged, so an edge is refined on both
+/// of its sides.
+pub fn refinement_mask(image: &RgbImage) -> Vec<bool> {
+    let (width, height) = (image.width() as usize, image.height() as usize);
+    let raw = image.as_raw();
+    let at = |x: usize, y: usize| &raw[(y * width + x) * 3..(y * width + x) * 3 + 3];
+    let differ = |a: &[u8], b: &[u8]| a.iter().zip(b).any(|(&p, &q)| p.abs_diff(q) > ADAPTIVE_THRESHOLD);
+    let mut mask = vec![false; width * height];
+    for y in 0..height {
+        for x in 0..width {
+            let here = at(x, y);
+            // Each unordered pair once: the right, lower-left, lower and
+            // lower-right neighbours.
+            let later = [(1, 0), (-1, 1), (0, 1), (1, 1)];
+            for (dx, dy) in later {
+                let (nx, ny) = (x as isize + dx, y + dy);
+                if nx < 0 || nx as usize >= width || ny >= height {
+                    continue;
+                }
+                let nx = nx as usize;
+                if differ(here, at(nx, ny)) {
+                    mask[y * width + x] = true;
+                    mask[ny * width + nx] = true;
+                }
+            }
+        }
+    }
+    mask
 }
 
 /// Progress reporting and cancellation for one render.
@@ -204,9 +256,11 @@ pub fn render(
         .iter()
         .map(|l| prepared.planes_blocking(l.direction))
         .collect();
+    let adaptive = options.adaptive && options.samples > 1;
+    let first_samples = if adaptive { 1 } else { options.samples };
     let job = Job {
         rays: PrimaryRays::new(&scene.camera, width, height, options.screen),
-        offsets: sample_offsets(options.samples),
+        offsets: sample_offsets(first_samples),
         lighting: Lighting {
             ambient: scene.ambient,
             lights: &scene.lights,
@@ -218,23 +272,18 @@ pub fn render(
         width,
         control,
     };
-    let band_bytes = (TILE * width * 3) as usize;
-    let bands: Vec<BandStats> = if band_bytes == 0 {
-        Vec::new()
-    } else {
-        buffer
-            .par_chunks_mut(band_bytes)
-            .enumerate()
-            .map(|(band, pixels)| job.band(band as u32 * TILE, pixels))
-            .collect::<Result<_, Cancelled>>()?
-    };
     let mut stats = RenderStats::default();
-    for band in bands {
-        stats.rays += band.rays;
-        stats.resumed_paths += band.resumed_paths;
-    }
-    let image =
+    job.run(&mut buffer, None, &mut stats)?;
+    let mut image =
         RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
+    if adaptive {
+        let mask = refinement_mask(&image);
+        let refine = Job {
+            offsets: sample_offsets(options.samples),
+            ..job
+        };
+        refine.run(&mut image, Some(&mask), &mut stats)?;
+    }
     stats.elapsed = start.elapsed();
     Ok((image, stats))
 }
@@ -250,9 +299,34 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
+    /// Renders the whole image into `buffer` (its RGB bytes, row major) in
+    /// parallel bands, or only the pixels flagged in `mask` if given, and
+    /// adds the bands' counts to `stats`.
+    fn run(&self, buffer: &mut [u8], mask: Option<&[bool]>, stats: &mut RenderStats) -> Result<(), Cancelled> {
+        let band_pixels = (TILE * self.width) as usize;
+        if band_pixels == 0 {
+            return Ok(());
+        }
+        let bands: Vec<BandStats> = buffer
+            .par_chunks_mut(band_pixels * 3)
+            .enumerate()
+            .map(|(band, pixels)| {
+                let flags = mask.map(|m| &m[band * band_pixels..(band * band_pixels + pixels.len() / 3)]);
+                self.band(band as u32 * TILE, pixels, flags)
+            })
+            .collect::<Result<_, Cancelled>>()?;
+        for band in bands {
+            stats.rays += band.rays;
+            stats.resumed_paths += band.resumed_paths;
+        }
+        Ok(())
+    }
+
     /// Renders the band of rows starting at `top` into `pixels` (its RGB
-    /// bytes), tile by tile.
-    fn band(&self, top: u32, pixels: &mut [u8]) -> Result<BandStats, Cancelled> {
+    /// bytes), tile by tile; with `flags` (one per pixel of the band), only
+    /// the flagged pixels, and without reporting progress (the first pass
+    /// has already counted every pixel).
+    fn band(&self, top: u32, pixels: &mut [u8], flags: Option<&[bool]>) -> Result<BandStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
         let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
         let mut left = 0;
@@ -267,12 +341,15 @@ impl Job<'_> {
             let right = (left + TILE).min(self.width);
             for row in 0..rows {
                 for i in left..right {
-                    let at = (row as usize * self.width as usize + i as usize) * 3;
+                    let index = row as usize * self.width as usize + i as usize;
+                    if flags.is_some_and(|f| !f[index]) {
+                        continue;
+                    }
                     let rgb = self.pixel(&mut tracer, i, top + row);
-                    pixels[at..at + 3].copy_from_slice(&rgb);
+                    pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
                 }
             }
-            if let Some(progress) = self.control.progress {
+            if let (Some(progress), None) = (self.control.progress, flags) {
                 progress(u64::from((right - left) * rows));
             }
             left = right;
