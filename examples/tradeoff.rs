@@ -89,11 +89,7 @@ fn main() {
     let mut args = std::env::args().skip(1).map(|a| a.parse::<u32>().ok());
     let width = args.next().flatten().unwrap_or(320);
     let height = args.next().flatten().unwrap_or(240);
-    let base = RenderOptions {
-        width,
-        height,
-        ..RenderOptions::default()
-    };
+    let base = RenderOptions { width, height, ..RenderOptions::default() };
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut rows = Vec::new();
     for name in SCENES {
@@ -105,11 +101,7 @@ fn main() {
             }
         };
         let prepared = Prepared::new(&scene);
-        let reference_options = RenderOptions {
-            samples: 256,
-            skips: Skips::none(),
-            ..base
-        };
+        let reference_options = RenderOptions { samples: 256, skips: Skips::none(), ..base };
         let (reference, reference_time) = render_once(&scene, &prepared, &reference_options);
         eprintln!("{name}: reference in {:.2} s", reference_time.as_secs_f64());
         for setting in settings(base) {
@@ -123,13 +115,7 @@ fn main() {
                 100.0 * error.over1,
                 100.0 * error.over2
             );
-            rows.push(Row {
-                scene: name,
-                family: setting.family,
-                label: setting.label,
-                time,
-                error,
-            });
+            rows.push(Row { scene: name, family: setting.family, label: setting.label, time, error });
         }
     }
     let table = markdown(&rows, width, height);
@@ -168,48 +154,22 @@ fn settings(base: RenderOptions) -> Vec<Setting> {
         all.push(Setting {
             family: Family::Adaptive,
             label: format!("adaptive {samples}"),
-            options: RenderOptions {
-                samples,
-                adaptive: true,
-                ..base
-            },
+            options: RenderOptions { samples, adaptive: true, ..base },
         });
     }
     let all_on = Skips::all();
     let skips = [
         ("all skips on", all_on),
         ("all skips off", Skips::none()),
-        (
-            "back_facing_light off",
-            Skips {
-                back_facing_light: false,
-                ..all_on
-            },
-        ),
-        (
-            "zero_ks off",
-            Skips {
-                zero_ks: false,
-                ..all_on
-            },
-        ),
-        (
-            "negligible_reflection off",
-            Skips {
-                negligible_reflection: false,
-                ..all_on
-            },
-        ),
+        ("back_facing_light off", Skips { back_facing_light: false, ..all_on }),
+        ("zero_ks off", Skips { zero_ks: false, ..all_on }),
+        ("negligible_reflection off", Skips { negligible_reflection: false, ..all_on }),
     ];
     for (label, skips) in skips {
         all.push(Setting {
             family: Family::Skips,
             label: label.to_string(),
-            options: RenderOptions {
-                samples: 4,
-                skips,
-                ..base
-            },
+            options: RenderOptions { samples: 4, skips, ..base },
         });
     }
     for depth in 1..=10 {
@@ -256,11 +216,7 @@ fn compare(image: &RgbImage, reference: &RgbImage) -> Error {
         over2 += usize::from(largest > 2);
     }
     let pixels = (image.width() * image.height()).max(1) as f64;
-    Error {
-        rmse: (squares / (3.0 * pixels)).sqrt(),
-        over1: over1 as f64 / pixels,
-        over2: over2 as f64 / pixels,
-    }
+    Error { rmse: (squares / (3.0 * pixels)).sqrt(), over1: over1 as f64 / pixels, over2: over2 as f64 / pixels }
 }
 
 /// The first line of `/proc/cpuinfo` naming the CPU model.
@@ -348,10 +304,7 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
             );
         }
     }
-    let _ = writeln!(
-        s,
-        "\n\"Met\" means at most half the time and an RMSE at most 5% above uniform 16's.\n"
-    );
+    let _ = writeln!(s, "\n\"Met\" means at most half the time and an RMSE at most 5% above uniform 16's.\n");
     let _ = writeln!(s, "### All settings\n");
     let _ = writeln!(s, "| scene | setting | time (ms) | RMSE | >1 | >2 |\n|---|---|---:|---:|---:|---:|");
     for row in rows {
@@ -407,18 +360,16 @@ fn plot(rows: &[Row], path: &Path) -> Result<(), Box<dyn std::error::Error>> {
         let mut builder = ChartBuilder::on(panel);
         builder.margin(12);
         if text {
-            builder
-                .caption(scene, ("sans-serif", 24))
-                .x_label_area_size(40)
-                .y_label_area_size(60);
+            builder.caption(scene, ("sans-serif", 24)).x_label_area_size(40).y_label_area_size(60);
         }
-        let mut chart = builder.build_cartesian_2d(
-            (t_min * 0.7..t_max * 1.4).log_scale(),
-            (0.008..e_max * 1.5).log_scale(),
-        )?;
+        let mut chart =
+            builder.build_cartesian_2d((t_min * 0.7..t_max * 1.4).log_scale(), (0.008..e_max * 1.5).log_scale())?;
         let mut mesh = chart.configure_mesh();
         if text {
-            mesh.x_desc("median time (ms)").y_desc("RMSE (8-bit levels)");
+            mesh.x_labels(6)
+                .x_label_formatter(&|t| format!("{t:.0}"))
+                .x_desc("median time (ms)")
+                .y_desc("RMSE (8-bit levels)");
         } else {
             mesh.x_labels(0).y_labels(0);
         }
@@ -433,9 +384,7 @@ fn plot(rows: &[Row], path: &Path) -> Result<(), Box<dyn std::error::Error>> {
             }
             let drawn = chart.draw_series(series.iter().map(|&p| Circle::new(p, 5, colour.filled())))?;
             if text {
-                drawn
-                    .label(family.name())
-                    .legend(move |(x, y)| Circle::new((x + 8, y), 5, colour.filled()));
+                drawn.label(family.name()).legend(move |(x, y)| Circle::new((x + 8, y), 5, colour.filled()));
             }
         }
         if text {

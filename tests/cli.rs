@@ -326,3 +326,16 @@ fn a_non_finite_time_is_refused() {
     let (_dir, path) = scene(SPHERE);
     rayrepl().arg(&path).args(["--time", "nan"]).assert().code(2).stderr(contains("finite"));
 }
+
+#[test]
+fn adaptive_sampling_is_accepted() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.ppm");
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "32", "--height", "24", "--samples", "4", "--adaptive", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    assert!(out.exists());
+}

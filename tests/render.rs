@@ -12,7 +12,8 @@ use proptest::prelude::*;
 use rayrepl::render::bvh::Bvh;
 use rayrepl::render::intersect::{Bounded, BoxShape, SphereShape};
 use rayrepl::render::{
-    Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, render,
+    Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips,
+    refinement_mask, render,
 };
 use rayrepl::scene::{Camera, Light, Material, Primitive, Scene, Shape, TimeUse};
 
@@ -892,4 +893,94 @@ proptest! {
             prop_assert_eq!(prepared.blocked(ray, &planes), exists);
         }
     }
+}
+// ------------------------------------------------- adaptive anti-aliasing
+
+#[test]
+fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
+    for (name, s) in [("solar", solar()), ("random", random_scene(5, 200))] {
+        let base = options(96, 72);
+        let (one, _) = render_with(&s, &base);
+        let (uniform, _) = render_with(&s, &RenderOptions { samples: 9, ..base });
+        let (adaptive, _) = render_with(
+            &s,
+            &RenderOptions {
+                samples: 9,
+                adaptive: true,
+                ..base
+            },
+        );
+        let mask = refinement_mask(&one);
+        let flagged = mask.iter().filter(|&&f| f).count();
+        assert!(
+            0 < flagged && flagged < mask.len(),
+            "{name}: {flagged} pixels flagged"
+        );
+        for (k, &refine) in mask.iter().enumerate() {
+            let (x, y) = ((k % 96) as u32, (k / 96) as u32);
+            let expected = if refine {
+                uniform.get_pixel(x, y)
+            } else {
+                one.get_pixel(x, y)
+            };
+            assert_eq!(
+                adaptive.get_pixel(x, y),
+                expected,
+                "{name}: pixel ({x}, {y})"
+            );
+        }
+    }
+}
+
+#[test]
+fn adaptive_on_a_flat_image_is_the_one_sample_image() {
+    // A matt wall filling the view: one colour everywhere, no edge.
+    let wall = plane(
+        [0.0, 0.0, 1.0],
+        -5.0,
+        material([0.8, 0.4, 0.2], 0.9, 0.0, 1.0),
+    );
+    let s = scene(
+        10.0,
+        0.8,
+        0.2,
+        vec![light([0.2, 0.5, 1.0], 0.7)],
+        vec![wall],
+    );
+    let base = options(40, 30);
+    let (one, _) = render_with(&s, &base);
+    assert!(refinement_mask(&one).iter().all(|&f| !f));
+    let (adaptive, stats) = render_with(
+        &s,
+        &RenderOptions {
+            samples: 16,
+            adaptive: true,
+            ..base
+        },
+    );
+    assert!(adaptive == one);
+    assert_eq!(stats.rays.primary, 40 * 30);
+}
+
+#[test]
+fn adaptive_gives_the_same_bytes_with_one_and_two_threads() {
+    let s = random_scene(11, 300);
+    let o = RenderOptions {
+        samples: 4,
+        adaptive: true,
+        ..options(120, 90)
+    };
+    let prepared = Prepared::new(&s);
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool");
+        pool.install(|| {
+            render(&s, &prepared, &o, &RenderControl::default())
+                .expect("no cancel")
+                .0
+        })
+    };
+    assert!(run(1) == run(2));
 }
