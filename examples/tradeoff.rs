@@ -82,6 +82,8 @@ struct Row {
     family: Family,
     label: String,
     time: Duration,
+    /// Primary rays per pixel (shows how many pixels adaptive sampling refined).
+    rays_per_pixel: f64,
     error: Error,
 }
 
@@ -102,10 +104,10 @@ fn main() {
         };
         let prepared = Prepared::new(&scene);
         let reference_options = RenderOptions { samples: 256, skips: Skips::none(), ..base };
-        let (reference, reference_time) = render_once(&scene, &prepared, &reference_options);
+        let (reference, reference_time, _) = render_once(&scene, &prepared, &reference_options);
         eprintln!("{name}: reference in {:.2} s", reference_time.as_secs_f64());
         for setting in settings(base) {
-            let (image, time) = render_median(&scene, &prepared, &setting.options);
+            let (image, time, rays_per_pixel) = render_median(&scene, &prepared, &setting.options);
             let error = compare(&image, &reference);
             eprintln!(
                 "{name:12} {:28} {:9.4} s  rmse {:7.3}  >1 {:6.2}%  >2 {:6.2}%",
@@ -115,7 +117,7 @@ fn main() {
                 100.0 * error.over1,
                 100.0 * error.over2
             );
-            rows.push(Row { scene: name, family: setting.family, label: setting.label, time, error });
+            rows.push(Row { scene: name, family: setting.family, label: setting.label, time, rays_per_pixel, error });
         }
     }
     let table = markdown(&rows, width, height);
@@ -182,23 +184,25 @@ fn settings(base: RenderOptions) -> Vec<Setting> {
     all
 }
 
-/// One render and its wall-clock time.
-fn render_once(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> (RgbImage, Duration) {
+/// One render, its wall-clock time and its primary rays per pixel.
+fn render_once(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> (RgbImage, Duration, f64) {
     let (image, stats) = render(scene, prepared, options, &RenderControl::default()).expect("nothing cancels it");
-    (image, stats.elapsed)
+    let pixels = f64::from(options.width) * f64::from(options.height);
+    (image, stats.elapsed, stats.rays.primary as f64 / pixels)
 }
 
 /// The image of [`RUNS`] renders (all the same) and their median time.
-fn render_median(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> (RgbImage, Duration) {
+fn render_median(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> (RgbImage, Duration, f64) {
     let mut times = Vec::with_capacity(RUNS);
     let mut last = None;
     for _ in 0..RUNS {
-        let (image, time) = render_once(scene, prepared, options);
+        let (image, time, rays) = render_once(scene, prepared, options);
         times.push(time);
-        last = Some(image);
+        last = Some((image, rays));
     }
     times.sort();
-    (last.expect("RUNS > 0"), times[RUNS / 2])
+    let (image, rays) = last.expect("RUNS > 0");
+    (image, times[RUNS / 2], rays)
 }
 
 /// The error of `image` against `reference` (same size).
@@ -306,14 +310,18 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
     }
     let _ = writeln!(s, "\n\"Met\" means at most half the time and an RMSE at most 5% above uniform 16's.\n");
     let _ = writeln!(s, "### All settings\n");
-    let _ = writeln!(s, "| scene | setting | time (ms) | RMSE | >1 | >2 |\n|---|---|---:|---:|---:|---:|");
+    let _ = writeln!(
+        s,
+        "| scene | setting | time (ms) | primary rays / pixel | RMSE | >1 | >2 |\n|---|---|---:|---:|---:|---:|---:|"
+    );
     for row in rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.1} | {:.3} | {:.2}% | {:.2}% |",
+            "| {} | {} | {:.1} | {:.2} | {:.3} | {:.2}% | {:.2}% |",
             row.scene,
             row.label,
             1000.0 * row.time.as_secs_f64(),
+            row.rays_per_pixel,
             row.error.rmse,
             100.0 * row.error.over1,
             100.0 * row.error.over2
