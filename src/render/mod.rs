@@ -80,20 +80,12 @@ pub struct Skips {
 impl Skips {
     /// Every shortcut on (the default).
     pub const fn all() -> Skips {
-        Skips {
-            back_facing_light: true,
-            zero_ks: true,
-            negligible_reflection: true,
-        }
+        Skips { back_facing_light: true, zero_ks: true, negligible_reflection: true }
     }
 
     /// Every shortcut off: the formula of SPEC 6 followed literally.
     pub const fn none() -> Skips {
-        Skips {
-            back_facing_light: false,
-            zero_ks: false,
-            negligible_reflection: false,
-        }
+        Skips { back_facing_light: false, zero_ks: false, negligible_reflection: false }
     }
 }
 
@@ -251,11 +243,7 @@ pub fn render(
     let start = Instant::now();
     let (width, height) = (options.width, options.height);
     let mut buffer = vec![0u8; width as usize * height as usize * 3];
-    let blocking_planes: Vec<_> = scene
-        .lights
-        .iter()
-        .map(|l| prepared.planes_blocking(l.direction))
-        .collect();
+    let blocking_planes: Vec<_> = scene.lights.iter().map(|l| prepared.planes_blocking(l.direction)).collect();
     let adaptive = options.adaptive && options.samples > 1;
     let first_samples = if adaptive { 1 } else { options.samples };
     let job = Job {
@@ -274,14 +262,10 @@ pub fn render(
     };
     let mut stats = RenderStats::default();
     job.run(&mut buffer, None, &mut stats)?;
-    let mut image =
-        RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
+    let mut image = RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
     if adaptive {
         let mask = refinement_mask(&image);
-        let refine = Job {
-            offsets: sample_offsets(options.samples),
-            ..job
-        };
+        let refine = Job { offsets: sample_offsets(options.samples), ..job };
         refine.run(&mut image, Some(&mask), &mut stats)?;
     }
     stats.elapsed = start.elapsed();
@@ -331,11 +315,7 @@ impl Job<'_> {
         let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
         let mut left = 0;
         while left < self.width {
-            if self
-                .control
-                .cancel
-                .is_some_and(|c| c.load(Ordering::Relaxed))
-            {
+            if self.control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return Err(Cancelled);
             }
             let right = (left + TILE).min(self.width);
@@ -354,10 +334,7 @@ impl Job<'_> {
             }
             left = right;
         }
-        Ok(BandStats {
-            rays: tracer.counts,
-            resumed_paths: tracer.resumed,
-        })
+        Ok(BandStats { rays: tracer.counts, resumed_paths: tracer.resumed })
     }
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
@@ -379,19 +356,14 @@ impl Job<'_> {
             return bytes;
         }
         // The same sum in the same order as without the cutoff.
-        let exact =
-            (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
+        let exact = (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
         to_bytes(self.average(exact))
     }
 
     /// The average of a sum of sample colours.
     #[inline]
     fn average(&self, sum: DVec3) -> DVec3 {
-        if self.offsets.len() == 1 {
-            sum
-        } else {
-            sum / self.offsets.len() as f64
-        }
+        if self.offsets.len() == 1 { sum } else { sum / self.offsets.len() as f64 }
     }
 }
 
