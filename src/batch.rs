@@ -196,6 +196,12 @@ fn is_gif(path: &Path) -> bool {
 
 /// The renderer's settings from the command line.
 fn render_options(cli: &Cli) -> RenderOptions {
+    if cli.reference {
+        return RenderOptions {
+            screen: cli.screen.screen(),
+            ..RenderOptions::reference(cli.width, cli.height, cli.depth)
+        };
+    }
     RenderOptions {
         width: cli.width,
         height: cli.height,

@@ -51,6 +51,10 @@ pub struct Cli {
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub samples: u32,
 
+    /// Ground-truth render for error measurements: 256 stratified samples per pixel, no shortcuts, f64.
+    #[arg(long, conflicts_with = "samples")]
+    pub reference: bool,
+
     /// Where the z axis meets the screen: its centre (default) or the middle of its bottom edge.
     #[arg(long, value_enum, default_value_t = ScreenArg::Centered)]
     pub screen: ScreenArg,
@@ -171,5 +175,11 @@ mod tests {
         let args = ["rayrepl", "-hsize", "320", "-vsize", "200", "-depth", "2", "-anim", "3"];
         let cli = Cli::parse_from(translate_legacy_args(args.map(OsString::from)));
         assert_eq!((cli.width, cli.height, cli.depth, cli.anim), (320, 200, 2, Some(3)));
+    }
+
+    #[test]
+    fn reference_excludes_an_explicit_sample_count() {
+        assert!(Cli::parse_from(["rayrepl", "--reference", "a.ray"]).reference);
+        assert!(Cli::try_parse_from(["rayrepl", "--reference", "--samples", "4", "a.ray"]).is_err());
     }
 }

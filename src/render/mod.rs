@@ -115,6 +115,29 @@ pub struct RenderOptions {
     pub skips: Skips,
 }
 
+/// Samples per pixel of [`RenderOptions::reference`]: a 16 x 16 stratified grid.
+pub const REFERENCE_SAMPLES: u32 = 256;
+
+impl RenderOptions {
+    /// The ground truth for error measurements (`--reference`): 256
+    /// stratified samples per pixel (a 16 x 16 grid, [`sample_offsets`]), no
+    /// work-saving shortcut at all ([`Skips::none`]), and f64 arithmetic
+    /// throughout (the renderer has no lower-precision path).
+    ///
+    /// Every field is spelt out rather than taken from the default, so that
+    /// a new option (say, adaptive sampling) must be decided on here.
+    pub const fn reference(width: u32, height: u32, depth: u32) -> RenderOptions {
+        RenderOptions {
+            width,
+            height,
+            depth,
+            samples: REFERENCE_SAMPLES,
+            screen: Screen::Centered,
+            skips: Skips::none(),
+        }
+    }
+}
+
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
         RenderOptions {
