@@ -169,7 +169,14 @@ impl Bvh {
     #[inline(always)]
     pub fn any_hit(&self, ray: &Ray, t_max: f64) -> bool {
         if self.nodes.is_empty() {
-            return self.objects.iter().any(|o| o.hit(ray) < t_max);
+            // A plain loop: `Iterator::any` is not always inlined, which
+            // would put the ray through memory again.
+            for object in &self.objects {
+                if object.hit(ray) < t_max {
+                    return true;
+                }
+            }
+            return false;
         }
         self.any_hit_in_tree(ray, t_max)
     }
