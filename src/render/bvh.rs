@@ -6,6 +6,7 @@
 //! testing every object directly is cheaper than the node tests.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::intersect::{Aabb, Bounded, Ray};
 
@@ -94,7 +95,7 @@ impl Bvh {
             );
         }
         let mut items: Vec<Item> = objects
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(k, o)| {
                 let bounds = o.bounds();
@@ -106,10 +107,10 @@ impl Bvh {
             })
             .collect();
         let root = build_range(&mut items, 0, 0);
-        let mut nodes = Vec::with_capacity(2 * objects.len() / 2 + 1);
+        let mut nodes = Vec::with_capacity(objects.len());
         flatten(&root, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
-        let objects = order.iter().map(|&k| objects[k as usize]).collect();
+        let objects = order.par_iter().map(|&k| objects[k as usize]).collect();
         (Bvh { nodes, objects }, order)
     }
 
