@@ -241,7 +241,7 @@ pub fn render(
         width,
         control,
     };
-    let band_bytes = (TILE * width * 3) as usize;
+    let band_bytes = TILE as usize * width as usize * 3;
     let bands: Vec<BandStats> = if band_bytes == 0 {
         Vec::new()
     } else {
