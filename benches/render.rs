@@ -16,36 +16,19 @@ use rayrepl::render::{Prepared, RenderControl, RenderOptions, RenderStats, rende
 use rayrepl::scene::{Camera, Light, Material, Primitive, Scene, Shape, TimeUse};
 
 fn material(color: [f64; 3], kd: f64, ks: f64, phong: f64) -> Material {
-    Material {
-        color: DVec3::from(color),
-        kd,
-        ks,
-        phong,
-    }
+    Material { color: DVec3::from(color), kd, ks, phong }
 }
 
 fn sphere(center: DVec3, radius: f64, material: Material) -> Primitive {
-    Primitive {
-        shape: Shape::Sphere { center, radius },
-        material,
-    }
+    Primitive { shape: Shape::Sphere { center, radius }, material }
 }
 
 fn plane(normal: DVec3, shift: f64, material: Material) -> Primitive {
-    Primitive {
-        shape: Shape::Plane {
-            normal: normal.normalize(),
-            shift,
-        },
-        material,
-    }
+    Primitive { shape: Shape::Plane { normal: normal.normalize(), shift }, material }
 }
 
 fn light(direction: [f64; 3], intensity: f64) -> Light {
-    Light {
-        direction: DVec3::from(direction).normalize(),
-        intensity,
-    }
+    Light { direction: DVec3::from(direction).normalize(), intensity }
 }
 
 /// The sun, the earth and the moon over a mirror floor (ks 0.6) between two
@@ -56,10 +39,7 @@ fn solar(time: f64) -> Scene {
     let earth = DVec3::new(5.0 * angle.cos(), 0.5, -5.0 * angle.sin());
     let moon = earth + DVec3::new(1.3 * (4.0 * angle).cos(), 0.3, -1.3 * (4.0 * angle).sin());
     Scene {
-        camera: Camera {
-            distance: 20.0,
-            angle: 1.0,
-        },
+        camera: Camera { distance: 20.0, angle: 1.0 },
         ambient: 0.2,
         // Lights in the walls' plane: the walls are infinite planes, so a light
         // with an x component would be blocked by one of them everywhere.
@@ -88,39 +68,20 @@ fn box_field() -> Scene {
         state ^= state >> 27;
         (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
     };
-    let mut primitives = vec![plane(
-        DVec3::Y,
-        -4.0,
-        material([0.5, 0.5, 0.5], 0.7, 0.2, 10.0),
-    )];
+    let mut primitives = vec![plane(DVec3::Y, -4.0, material([0.5, 0.5, 0.5], 0.7, 0.2, 10.0))];
     for gx in 0..400 {
         for gz in 0..400 {
             let height = 0.2 + 1.5 * next() * next();
-            let center = DVec3::new(
-                -100.0 + gx as f64 * 0.5,
-                -4.0 + height / 2.0,
-                10.0 - gz as f64 * 0.5,
-            );
+            let center = DVec3::new(-100.0 + gx as f64 * 0.5, -4.0 + height / 2.0, 10.0 - gz as f64 * 0.5);
             let axes = DMat3::from_rotation_y(next() * 1.5);
             let ks = if next() < 0.125 { 0.5 } else { 0.0 };
-            let m = material(
-                [0.3 + 0.7 * next(), 0.3 + 0.7 * next(), 0.3 + 0.7 * next()],
-                0.7,
-                ks,
-                20.0,
-            );
+            let m = material([0.3 + 0.7 * next(), 0.3 + 0.7 * next(), 0.3 + 0.7 * next()], 0.7, ks, 20.0);
             let half = DVec3::new(0.18, height / 2.0, 0.18);
-            primitives.push(Primitive {
-                shape: Shape::Box { center, half, axes },
-                material: m,
-            });
+            primitives.push(Primitive { shape: Shape::Box { center, half, axes }, material: m });
         }
     }
     Scene {
-        camera: Camera {
-            distance: 20.0,
-            angle: 1.2,
-        },
+        camera: Camera { distance: 20.0, angle: 1.2 },
         ambient: 0.15,
         lights: vec![light([0.4, 1.0, 0.6], 0.7), light([-0.7, 0.6, 0.2], 0.4)],
         primitives,
@@ -130,34 +91,19 @@ fn box_field() -> Scene {
 }
 
 fn options(width: u32, height: u32) -> RenderOptions {
-    RenderOptions {
-        width,
-        height,
-        depth: 5,
-        ..RenderOptions::default()
-    }
+    RenderOptions { width, height, depth: 5, ..RenderOptions::default() }
 }
 
 fn render_once(scene: &Scene, prepared: &Prepared, width: u32, height: u32) -> RenderStats {
-    let (image, stats) = render(
-        scene,
-        prepared,
-        &options(width, height),
-        &RenderControl::default(),
-    )
-    .expect("no cancel");
+    let (image, stats) =
+        render(scene, prepared, &options(width, height), &RenderControl::default()).expect("no cancel");
     black_box(image);
     stats
 }
 
 /// Renders `frames` frames of the solar animation, reusing the static part.
 fn solar_animation(frames: u32, width: u32, height: u32) -> RenderStats {
-    let static_part = Prepared::new(&Scene {
-        timed_primitives: Vec::new(),
-        ..solar(0.0)
-    })
-    .static_part()
-    .clone();
+    let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..solar(0.0) }).static_part().clone();
     let mut total = RenderStats::default();
     for k in 1..=frames {
         let scene = solar(f64::from(k));
@@ -174,24 +120,16 @@ fn bench_solar(c: &mut Criterion) {
     let scene = solar(0.0);
     let prepared = Prepared::new(&scene);
     let mut group = c.benchmark_group("solar");
-    group
-        .sample_size(10)
-        .measurement_time(Duration::from_secs(8));
-    group.bench_function("1920x1080 depth 5", |b| {
-        b.iter(|| render_once(&scene, &prepared, 1920, 1080))
-    });
-    group.bench_function("100 frames 800x600", |b| {
-        b.iter(|| solar_animation(100, 800, 600))
-    });
+    group.sample_size(10).measurement_time(Duration::from_secs(8));
+    group.bench_function("1920x1080 depth 5", |b| b.iter(|| render_once(&scene, &prepared, 1920, 1080)));
+    group.bench_function("100 frames 800x600", |b| b.iter(|| solar_animation(100, 800, 600)));
     group.finish();
 }
 
 fn bench_boxes(c: &mut Criterion) {
     let scene = box_field();
     let mut group = c.benchmark_group("boxes");
-    group
-        .sample_size(10)
-        .measurement_time(Duration::from_secs(15));
+    group.sample_size(10).measurement_time(Duration::from_secs(15));
     group.bench_function("160k build", |b| b.iter(|| Prepared::new(&scene)));
     group.bench_function("160k build + 1920x1080", |b| {
         b.iter(|| {
@@ -248,16 +186,10 @@ fn f32_experiment() {
     let mut differ = 0;
     for _ in 0..7 {
         let start = Instant::now();
-        let a: Vec<_> = rays
-            .iter()
-            .map(|r| bvh.closest_hit(r, f64::INFINITY))
-            .collect();
+        let a: Vec<_> = rays.iter().map(|r| bvh.closest_hit(r, f64::INFINITY)).collect();
         t64 = t64.min(start.elapsed().as_secs_f64());
         let start = Instant::now();
-        let b: Vec<_> = rays
-            .iter()
-            .map(|r| nodes32.closest_hit(&bvh, r, f64::INFINITY))
-            .collect();
+        let b: Vec<_> = rays.iter().map(|r| nodes32.closest_hit(&bvh, r, f64::INFINITY)).collect();
         t32 = t32.min(start.elapsed().as_secs_f64());
         differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
     }
@@ -281,8 +213,7 @@ fn run_report(which: &str) {
         let scene = solar(0.0);
         let prepared = Prepared::new(&scene);
         let start = Instant::now();
-        let (image, stats) = render(&scene, &prepared, &options(w, h), &RenderControl::default())
-            .expect("no cancel");
+        let (image, stats) = render(&scene, &prepared, &options(w, h), &RenderControl::default()).expect("no cancel");
         report(&format!("solar {w}x{h} d5"), start.elapsed(), &stats);
         if let Ok(path) = std::env::var("RAYREPL_BENCH_SAVE") {
             rayrepl::output::write_image(std::path::Path::new(&path), &image).expect("write image");
@@ -296,37 +227,15 @@ fn run_report(which: &str) {
         let prepared = Prepared::new(&scene);
         let variants = [
             ("all skips", Skips::all()),
-            (
-                "no back-facing skip",
-                Skips {
-                    back_facing_light: false,
-                    ..Skips::all()
-                },
-            ),
-            (
-                "no ks=0 skip",
-                Skips {
-                    zero_ks: false,
-                    ..Skips::all()
-                },
-            ),
-            (
-                "no reflection cutoff",
-                Skips {
-                    negligible_reflection: false,
-                    ..Skips::all()
-                },
-            ),
+            ("no back-facing skip", Skips { back_facing_light: false, ..Skips::all() }),
+            ("no ks=0 skip", Skips { zero_ks: false, ..Skips::all() }),
+            ("no reflection cutoff", Skips { negligible_reflection: false, ..Skips::all() }),
             ("no skips", Skips::none()),
         ];
         for (name, skips) in variants {
-            let o = RenderOptions {
-                skips,
-                ..options(1920, 1080)
-            };
+            let o = RenderOptions { skips, ..options(1920, 1080) };
             let start = Instant::now();
-            let (_, stats) =
-                render(&scene, &prepared, &o, &RenderControl::default()).expect("no cancel");
+            let (_, stats) = render(&scene, &prepared, &o, &RenderControl::default()).expect("no cancel");
             report(name, start.elapsed(), &stats);
         }
         return;
@@ -354,10 +263,7 @@ fn run_report(which: &str) {
         let prepared = Prepared::new(&scene);
         let build = start.elapsed();
         let stats = render_once(&scene, &prepared, 1920, 1080);
-        println!(
-            "boxes 160k BVH build         {:>8.3} s",
-            build.as_secs_f64()
-        );
+        println!("boxes 160k BVH build         {:>8.3} s", build.as_secs_f64());
         report("boxes 160k build+1920x1080", start.elapsed(), &stats);
     }
 }

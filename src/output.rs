@@ -76,11 +76,9 @@ impl fmt::Display for OutputError {
             OutputError::Encode { path, source } => {
                 write!(f, "cannot encode `{}`: {source}", path.display())
             }
-            OutputError::NoFrames { path } => write!(
-                f,
-                "cannot write `{}`: the animation has no frame",
-                path.display()
-            ),
+            OutputError::NoFrames { path } => {
+                write!(f, "cannot write `{}`: the animation has no frame", path.display())
+            }
         }
     }
 }
@@ -98,9 +96,7 @@ impl std::error::Error for OutputError {
 /// Writes `image` to `path` in the format named by its extension (`.png` or
 /// `.ppm`), atomically.
 pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
-    let format = ImageFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat {
-        path: path.to_owned(),
-    })?;
+    let format = ImageFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat { path: path.to_owned() })?;
     write_atomically(path, |writer| match format {
         ImageFormat::Png => write_png(writer, image).map_err(|e| encode_error(path, e)),
         ImageFormat::Ppm => write_ppm(writer, image).map_err(|e| io_error(path, e)),
@@ -119,35 +115,24 @@ pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult
     // Fast compression: large renders and 100-frame animations would
     // otherwise spend more time compressing than tracing.
     let encoder = PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Adaptive);
-    encoder.write_image(
-        image.as_raw(),
-        image.width(),
-        image.height(),
-        image::ExtendedColorType::Rgb8,
-    )
+    encoder.write_image(image.as_raw(), image.width(), image.height(), image::ExtendedColorType::Rgb8)
 }
 
 /// Writes `frames` as an animated GIF looping forever, each frame shown for
 /// `delay_ms` milliseconds, atomically.
 pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), OutputError> {
     if frames.is_empty() {
-        return Err(OutputError::NoFrames {
-            path: path.to_owned(),
-        });
+        return Err(OutputError::NoFrames { path: path.to_owned() });
     }
     write_atomically(path, |writer| {
         // Speed 10 of 1..=30: quantising each frame at the default speed 1
         // takes seconds for a few hundred frames, for little visible gain.
         let mut encoder = GifEncoder::new_with_speed(writer, 10);
-        encoder
-            .set_repeat(Repeat::Infinite)
-            .map_err(|e| encode_error(path, e))?;
+        encoder.set_repeat(Repeat::Infinite).map_err(|e| encode_error(path, e))?;
         let delay = Delay::from_numer_denom_ms(delay_ms, 1);
         for frame in frames {
             let rgba: RgbaImage = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
-            encoder
-                .encode_frame(Frame::from_parts(rgba, 0, 0, delay))
-                .map_err(|e| encode_error(path, e))?;
+            encoder.encode_frame(Frame::from_parts(rgba, 0, 0, delay)).map_err(|e| encode_error(path, e))?;
         }
         Ok(())
     })
@@ -158,10 +143,7 @@ pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), 
 /// `out.png` gives `out0001.png`.
 pub fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
     let digits = n.to_string().len().max(4);
-    let stem = base
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let mut name = format!("{stem}{k:0digits$}");
     if let Some(ext) = base.extension() {
         name.push('.');
@@ -205,19 +187,13 @@ fn temp_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
 }
 
 fn io_error(path: &Path, source: io::Error) -> OutputError {
-    OutputError::Io {
-        path: path.to_owned(),
-        source,
-    }
+    OutputError::Io { path: path.to_owned(), source }
 }
 
 fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
     match source {
         image::ImageError::IoError(source) => io_error(path, source),
-        source => OutputError::Encode {
-            path: path.to_owned(),
-            source,
-        },
+        source => OutputError::Encode { path: path.to_owned(), source },
     }
 }
 
@@ -244,18 +220,9 @@ mod tests {
 
     #[test]
     fn frame_names_pad_to_four_digits_or_more() {
-        assert_eq!(
-            frame_path(Path::new("out.png"), 1, 100),
-            PathBuf::from("out0001.png")
-        );
-        assert_eq!(
-            frame_path(Path::new("dir/a.ppm"), 42, 12345),
-            PathBuf::from("dir/a00042.ppm")
-        );
-        assert_eq!(
-            frame_path(Path::new("noext"), 7, 9),
-            PathBuf::from("noext0007")
-        );
+        assert_eq!(frame_path(Path::new("out.png"), 1, 100), PathBuf::from("out0001.png"));
+        assert_eq!(frame_path(Path::new("dir/a.ppm"), 42, 12345), PathBuf::from("dir/a00042.ppm"));
+        assert_eq!(frame_path(Path::new("noext"), 7, 9), PathBuf::from("noext0007"));
     }
 
     #[test]

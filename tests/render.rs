@@ -11,67 +11,32 @@ use image::RgbImage;
 use proptest::prelude::*;
 use rayrepl::render::bvh::Bvh;
 use rayrepl::render::intersect::{Bounded, BoxShape, SphereShape};
-use rayrepl::render::{
-    Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, render,
-};
+use rayrepl::render::{Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, render};
 use rayrepl::scene::{Camera, Light, Material, Primitive, Scene, Shape, TimeUse};
 
 // ---------------------------------------------------------------- helpers
 
 fn material(color: [f64; 3], kd: f64, ks: f64, phong: f64) -> Material {
-    Material {
-        color: DVec3::from(color),
-        kd,
-        ks,
-        phong,
-    }
+    Material { color: DVec3::from(color), kd, ks, phong }
 }
 
 fn sphere(center: [f64; 3], radius: f64, material: Material) -> Primitive {
-    Primitive {
-        shape: Shape::Sphere {
-            center: DVec3::from(center),
-            radius,
-        },
-        material,
-    }
+    Primitive { shape: Shape::Sphere { center: DVec3::from(center), radius }, material }
 }
 
 fn plane(normal: [f64; 3], shift: f64, material: Material) -> Primitive {
-    Primitive {
-        shape: Shape::Plane {
-            normal: DVec3::from(normal).normalize(),
-            shift,
-        },
-        material,
-    }
+    Primitive { shape: Shape::Plane { normal: DVec3::from(normal).normalize(), shift }, material }
 }
 
 fn cube(center: [f64; 3], length: [f64; 3], axes: DMat3, material: Material) -> Primitive {
-    Primitive {
-        shape: Shape::Box {
-            center: DVec3::from(center),
-            half: DVec3::from(length) / 2.0,
-            axes,
-        },
-        material,
-    }
+    Primitive { shape: Shape::Box { center: DVec3::from(center), half: DVec3::from(length) / 2.0, axes }, material }
 }
 
 fn light(direction: [f64; 3], intensity: f64) -> Light {
-    Light {
-        direction: DVec3::from(direction).normalize(),
-        intensity,
-    }
+    Light { direction: DVec3::from(direction).normalize(), intensity }
 }
 
-fn scene(
-    distance: f64,
-    angle: f64,
-    ambient: f64,
-    lights: Vec<Light>,
-    primitives: Vec<Primitive>,
-) -> Scene {
+fn scene(distance: f64, angle: f64, ambient: f64, lights: Vec<Light>, primitives: Vec<Primitive>) -> Scene {
     Scene {
         camera: Camera { distance, angle },
         ambient,
@@ -83,11 +48,7 @@ fn scene(
 }
 
 fn options(width: u32, height: u32) -> RenderOptions {
-    RenderOptions {
-        width,
-        height,
-        ..RenderOptions::default()
-    }
+    RenderOptions { width, height, ..RenderOptions::default() }
 }
 
 fn render_with(scene: &Scene, options: &RenderOptions) -> (RgbImage, RenderStats) {
@@ -97,13 +58,7 @@ fn render_with(scene: &Scene, options: &RenderOptions) -> (RgbImage, RenderStats
 
 /// The single pixel of a 1x1 image: its ray is the camera's axis, (0,0,-1).
 fn centre_pixel(scene: &Scene, depth: u32) -> [u8; 3] {
-    let (image, _) = render_with(
-        scene,
-        &RenderOptions {
-            depth,
-            ..options(1, 1)
-        },
-    );
+    let (image, _) = render_with(scene, &RenderOptions { depth, ..options(1, 1) });
     image.get_pixel(0, 0).0
 }
 
@@ -119,13 +74,7 @@ fn centre_pixel(scene: &Scene, depth: u32) -> [u8; 3] {
 /// = 0.79144245; times C and 255: (201.818, 100.909, 50.454) -> (202, 101, 50).
 /// The reflected ray (0,0,1) hits nothing: + 0.3 * black.
 fn one_light_scene(object: Primitive) -> Scene {
-    scene(
-        10.0,
-        1.0,
-        0.2,
-        vec![light([0.0, FRAC_PI_4.cos(), FRAC_PI_4.sin()], 0.9)],
-        vec![object],
-    )
+    scene(10.0, 1.0, 0.2, vec![light([0.0, FRAC_PI_4.cos(), FRAC_PI_4.sin()], 0.9)], vec![object])
 }
 
 fn one_light_material() -> Material {
@@ -144,12 +93,7 @@ fn sphere_centre_under_one_light_matches_the_formula() {
 /// bytes: (202, 101, 50).
 #[test]
 fn box_face_matches_the_formula() {
-    let s = one_light_scene(cube(
-        [0.0, 0.0, 0.0],
-        [2.0, 2.0, 2.0],
-        DMat3::IDENTITY,
-        one_light_material(),
-    ));
+    let s = one_light_scene(cube([0.0, 0.0, 0.0], [2.0, 2.0, 2.0], DMat3::IDENTITY, one_light_material()));
     assert_eq!(centre_pixel(&s, 5), [202, 101, 50]);
 }
 
@@ -157,17 +101,7 @@ fn box_face_matches_the_formula() {
 /// 0.04) -> (51, 30.6, 10.2) -> (51, 31, 10).
 #[test]
 fn ambient_only() {
-    let s = scene(
-        10.0,
-        1.0,
-        0.4,
-        vec![],
-        vec![sphere(
-            [0.0, 0.0, 0.0],
-            1.0,
-            material([1.0, 0.6, 0.2], 0.5, 0.0, 1.0),
-        )],
-    );
+    let s = scene(10.0, 1.0, 0.4, vec![], vec![sphere([0.0, 0.0, 0.0], 1.0, material([1.0, 0.6, 0.2], 0.5, 0.0, 1.0))]);
     assert_eq!(centre_pixel(&s, 5), [51, 31, 10]);
 }
 
@@ -178,16 +112,8 @@ fn ambient_only() {
 /// 0.15 + 0.5*0.7071*1 = 0.50355 -> 128.41 -> 128 (ks = 0: no specular).
 #[test]
 fn shadowed_point_gets_ambient_only() {
-    let wall = plane(
-        [0.0, 0.0, 1.0],
-        0.0,
-        material([1.0, 1.0, 1.0], 0.5, 0.0, 1.0),
-    );
-    let blocker = sphere(
-        [0.0, 3.0, 3.0],
-        1.0,
-        material([0.0, 1.0, 0.0], 1.0, 0.0, 1.0),
-    );
+    let wall = plane([0.0, 0.0, 1.0], 0.0, material([1.0, 1.0, 1.0], 0.5, 0.0, 1.0));
+    let blocker = sphere([0.0, 3.0, 3.0], 1.0, material([0.0, 1.0, 0.0], 1.0, 0.0, 1.0));
     let lights = vec![light([0.0, 1.0, 1.0], 1.0)];
     let shadowed = scene(10.0, 1.0, 0.3, lights.clone(), vec![wall, blocker]);
     assert_eq!(centre_pixel(&shadowed, 5), [38, 38, 38]);
@@ -201,16 +127,8 @@ fn shadowed_point_gets_ambient_only() {
 /// 0.5 * that = (0.25, 0.15, 0.05) -> (63.75, 38.25, 12.75) -> (64, 38, 13).
 #[test]
 fn one_reflection() {
-    let mirror = plane(
-        [0.0, 0.0, 1.0],
-        0.0,
-        material([1.0, 1.0, 1.0], 0.0, 0.5, 1.0),
-    );
-    let ball = sphere(
-        [0.0, 0.0, 20.0],
-        1.0,
-        material([1.0, 0.6, 0.2], 1.0, 0.0, 1.0),
-    );
+    let mirror = plane([0.0, 0.0, 1.0], 0.0, material([1.0, 1.0, 1.0], 0.0, 0.5, 1.0));
+    let ball = sphere([0.0, 0.0, 20.0], 1.0, material([1.0, 0.6, 0.2], 1.0, 0.0, 1.0));
     let s = scene(10.0, 1.0, 0.5, vec![], vec![mirror, ball]);
     assert_eq!(centre_pixel(&s, 5), [64, 38, 13]);
     // depth 0: no reflection term, the mirror alone is black.
@@ -226,16 +144,8 @@ fn one_reflection() {
 /// (0.15,0.06,0.075) -> (38,15,19).
 #[test]
 fn two_reflections_between_facing_mirrors() {
-    let a = plane(
-        [0.0, 0.0, 1.0],
-        0.0,
-        material([1.0, 0.0, 0.0], 0.5, 0.5, 1.0),
-    );
-    let b = plane(
-        [0.0, 0.0, -1.0],
-        -20.0,
-        material([0.0, 0.8, 1.0], 0.5, 0.5, 1.0),
-    );
+    let a = plane([0.0, 0.0, 1.0], 0.0, material([1.0, 0.0, 0.0], 0.5, 0.5, 1.0));
+    let b = plane([0.0, 0.0, -1.0], -20.0, material([0.0, 0.8, 1.0], 0.5, 0.5, 1.0));
     let s = scene(10.0, 1.0, 0.3, vec![], vec![a, b]);
     assert_eq!(centre_pixel(&s, 2), [48, 15, 19]);
     assert_eq!(centre_pixel(&s, 1), [38, 15, 19]);
@@ -249,17 +159,8 @@ fn two_reflections_between_facing_mirrors() {
 /// 255).
 #[test]
 fn clamping_happens_at_every_level() {
-    let mirror = cube(
-        [0.0, 0.0, -0.5],
-        [2.0, 2.0, 1.0],
-        DMat3::IDENTITY,
-        material([0.5, 0.5, 0.5], 0.5, 0.5, 1.0),
-    );
-    let ball = sphere(
-        [0.0, 0.0, 20.0],
-        1.0,
-        material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0),
-    );
+    let mirror = cube([0.0, 0.0, -0.5], [2.0, 2.0, 1.0], DMat3::IDENTITY, material([0.5, 0.5, 0.5], 0.5, 0.5, 1.0));
+    let ball = sphere([0.0, 0.0, 20.0], 1.0, material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0));
     let lights = vec![light([0.5, 0.0, -1.0], 1.0), light([-0.5, 0.0, -1.0], 1.0)];
     let s = scene(10.0, 1.0, 1.0, lights, vec![mirror, ball]);
     assert_eq!(centre_pixel(&s, 5), [191, 191, 191]);
@@ -277,20 +178,10 @@ fn bottom_screen_convention() {
         2.0 * 0.5f64.atan(),
         0.5,
         vec![],
-        vec![sphere(
-            [0.0, 5.0, 0.0],
-            1.0,
-            material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0),
-        )],
+        vec![sphere([0.0, 5.0, 0.0], 1.0, material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0))],
     );
-    let bottom = RenderOptions {
-        screen: Screen::Bottom,
-        ..options(1, 1)
-    };
-    assert_eq!(
-        render_with(&s, &bottom).0.get_pixel(0, 0).0,
-        [128, 128, 128]
-    );
+    let bottom = RenderOptions { screen: Screen::Bottom, ..options(1, 1) };
+    assert_eq!(render_with(&s, &bottom).0.get_pixel(0, 0).0, [128, 128, 128]);
     assert_eq!(centre_pixel(&s, 5), [0, 0, 0]);
 }
 
@@ -300,13 +191,7 @@ fn bottom_screen_convention() {
 #[test]
 fn one_sided_plane_from_behind_is_black() {
     let m = material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0);
-    let behind = scene(
-        10.0,
-        1.0,
-        0.6,
-        vec![light([0.0, 0.0, -1.0], 1.0)],
-        vec![plane([0.0, 0.0, -1.0], 0.0, m)],
-    );
+    let behind = scene(10.0, 1.0, 0.6, vec![light([0.0, 0.0, -1.0], 1.0)], vec![plane([0.0, 0.0, -1.0], 0.0, m)]);
     assert_eq!(centre_pixel(&behind, 5), [0, 0, 0]);
     let front = scene(10.0, 1.0, 0.6, vec![], vec![plane([0.0, 0.0, 1.0], 0.0, m)]);
     assert_eq!(centre_pixel(&front, 5), [153, 153, 153]);
@@ -326,12 +211,7 @@ fn rotated_box_face() {
         1.0,
         0.1,
         vec![light([0.0, 0.0, 1.0], 0.8)],
-        vec![cube(
-            [0.0, 0.0, 0.0],
-            [2.0, 2.0, 2.0],
-            axes,
-            material([1.0, 1.0, 1.0], 0.6, 0.3, 2.0),
-        )],
+        vec![cube([0.0, 0.0, 0.0], [2.0, 2.0, 2.0], axes, material([1.0, 1.0, 1.0], 0.6, 0.3, 2.0))],
     );
     assert_eq!(centre_pixel(&s, 5), [167, 167, 167]);
 }
@@ -351,24 +231,11 @@ fn camera_inside_a_sphere() {
         1.0,
         0.3,
         lights.clone(),
-        vec![sphere(
-            [0.0, 0.0, 0.0],
-            2.0,
-            material([1.0, 0.5, 0.25], 0.5, 0.5, 3.0),
-        )],
+        vec![sphere([0.0, 0.0, 0.0], 2.0, material([1.0, 0.5, 0.25], 0.5, 0.5, 3.0))],
     );
     assert_eq!(centre_pixel(&mirror, 1), [57, 29, 14]);
-    let matte = scene(
-        0.5,
-        1.0,
-        0.3,
-        lights,
-        vec![sphere(
-            [0.0, 0.0, 0.0],
-            2.0,
-            material([1.0, 0.5, 0.25], 0.5, 0.0, 3.0),
-        )],
-    );
+    let matte =
+        scene(0.5, 1.0, 0.3, lights, vec![sphere([0.0, 0.0, 0.0], 2.0, material([1.0, 0.5, 0.25], 0.5, 0.0, 3.0))]);
     assert_eq!(centre_pixel(&matte, 5), [38, 19, 10]);
 }
 
@@ -381,12 +248,7 @@ fn camera_inside_a_box() {
         1.0,
         0.3,
         vec![light([0.0, 0.0, 1.0], 1.0)],
-        vec![cube(
-            [0.0, 0.0, 0.0],
-            [4.0, 4.0, 4.0],
-            DMat3::IDENTITY,
-            material([1.0, 0.5, 0.25], 0.5, 0.5, 3.0),
-        )],
+        vec![cube([0.0, 0.0, 0.0], [4.0, 4.0, 4.0], DMat3::IDENTITY, material([1.0, 0.5, 0.25], 0.5, 0.5, 3.0))],
     );
     assert_eq!(centre_pixel(&s, 1), [57, 29, 14]);
 }
@@ -418,12 +280,7 @@ fn no_acne_at_coordinates_of_50000() {
         1.2,
         0.2,
         vec![light([0.3, 0.5, 1.0], 1.0)],
-        vec![cube(
-            [40_000.0, 30_000.0, 0.0],
-            [30_000.0, 30_000.0, 30_000.0],
-            DMat3::IDENTITY,
-            face,
-        )],
+        vec![cube([40_000.0, 30_000.0, 0.0], [30_000.0, 30_000.0, 30_000.0], DMat3::IDENTITY, face)],
     );
     let n_dot_l = 1.0 / 1.34f64.sqrt();
     assert_eq!((255.0 * (0.1 + 0.5 * n_dot_l)).round(), 136.0);
@@ -453,24 +310,12 @@ fn no_acne_on_a_thin_wide_box() {
         100.0,
         1.0,
         0.2,
-        vec![Light {
-            direction: l,
-            intensity: 0.8,
-        }],
-        vec![cube(
-            [0.0, -17.5, 0.0],
-            [50_000.0, 15.0, 50_000.0],
-            axes,
-            top,
-        )],
+        vec![Light { direction: l, intensity: 0.8 }],
+        vec![cube([0.0, -17.5, 0.0], [50_000.0, 15.0, 50_000.0], axes, top)],
     );
     let n = axes * DVec3::Y;
     let c = DVec3::new(0.8, 0.6, 0.4) * (0.7 * 0.2 + 0.7 * n.dot(l) * 0.8);
-    let expected = [
-        (255.0 * c.x).round() as u8,
-        (255.0 * c.y).round() as u8,
-        (255.0 * c.z).round() as u8,
-    ];
+    let expected = [(255.0 * c.x).round() as u8, (255.0 * c.y).round() as u8, (255.0 * c.z).round() as u8];
     let (image, _) = render_with(&s, &options(200, 150));
     let lit = count_lit_exactly(&image, expected);
     assert!(lit > 200 * 70, "{lit} lit pixels");
@@ -491,11 +336,7 @@ fn large_coordinates_render_like_small_ones() {
             vec![
                 plane([0.0, 1.0, 0.0], -20_000.0 * k, m([0.9, 0.9, 0.9], 0.6, 0.5)),
                 plane([1.0, 0.0, 0.0], -45_000.0 * k, m([0.3, 0.5, 0.9], 0.5, 0.6)),
-                sphere(
-                    [-10_000.0 * k, -5_000.0 * k, 10_000.0 * k],
-                    15_000.0 * k,
-                    m([1.0, 0.3, 0.2], 0.7, 0.3),
-                ),
+                sphere([-10_000.0 * k, -5_000.0 * k, 10_000.0 * k], 15_000.0 * k, m([1.0, 0.3, 0.2], 0.7, 0.3)),
                 cube(
                     [25_000.0 * k, -12_500.0 * k, 0.0],
                     [15_000.0 * k, 15_000.0 * k, 15_000.0 * k],
@@ -507,19 +348,11 @@ fn large_coordinates_render_like_small_ones() {
     };
     let (large, _) = render_with(&build(1.0), &options(160, 120));
     let (small, _) = render_with(&build(1e-4), &options(160, 120));
-    let differing: Vec<_> = large
-        .enumerate_pixels()
-        .filter(|(x, y, p)| small.get_pixel(*x, *y) != *p)
-        .map(|(x, y, _)| (x, y))
-        .collect();
+    let differing: Vec<_> =
+        large.enumerate_pixels().filter(|(x, y, p)| small.get_pixel(*x, *y) != *p).map(|(x, y, _)| (x, y)).collect();
     // Only silhouette pixels may flip (a ray grazing an edge at both
     // scales); acne would flip whole regions.
-    assert!(
-        differing.len() <= 3,
-        "{} pixels differ: {:?}",
-        differing.len(),
-        &differing[..differing.len().min(10)]
-    );
+    assert!(differing.len() <= 3, "{} pixels differ: {:?}", differing.len(), &differing[..differing.len().min(10)]);
 }
 
 // ------------------------------------------------------ skips, options
@@ -572,80 +405,35 @@ fn random_scene(seed: u64, count: usize) -> Scene {
         state ^= state >> 27;
         (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
     };
-    let mut primitives = vec![plane(
-        [0.0, 1.0, 0.0],
-        -6.0,
-        material([0.7, 0.7, 0.7], 0.5, 0.5, 40.0),
-    )];
+    let mut primitives = vec![plane([0.0, 1.0, 0.0], -6.0, material([0.7, 0.7, 0.7], 0.5, 0.5, 40.0))];
     for k in 0..count {
-        let c = [
-            next() * 16.0 - 8.0,
-            next() * 12.0 - 6.0,
-            next() * 12.0 - 12.0,
-        ];
-        let m = material(
-            [next(), next(), next()],
-            next(),
-            next() * next(),
-            1.0 + 50.0 * next(),
-        );
+        let c = [next() * 16.0 - 8.0, next() * 12.0 - 6.0, next() * 12.0 - 12.0];
+        let m = material([next(), next(), next()], next(), next() * next(), 1.0 + 50.0 * next());
         if k % 2 == 0 {
             primitives.push(sphere(c, 0.2 + next(), m));
         } else {
-            let axes = DMat3::from_euler(
-                glam::EulerRot::ZYX,
-                next() * 3.0,
-                next() * 3.0,
-                next() * 3.0,
-            );
+            let axes = DMat3::from_euler(glam::EulerRot::ZYX, next() * 3.0, next() * 3.0, next() * 3.0);
             primitives.push(cube(c, [0.3 + next(), 0.3 + next(), 0.3 + next()], axes, m));
         }
     }
-    scene(
-        15.0,
-        1.1,
-        0.15,
-        vec![light([0.3, 1.0, 0.5], 0.7), light([-0.6, 0.5, 0.4], 0.5)],
-        primitives,
-    )
+    scene(15.0, 1.1, 0.15, vec![light([0.3, 1.0, 0.5], 0.7), light([-0.6, 0.5, 0.4], 0.5)], primitives)
 }
 
 #[test]
 fn each_skip_leaves_the_image_byte_identical() {
     let variants = [
         Skips::all(),
-        Skips {
-            back_facing_light: false,
-            ..Skips::all()
-        },
-        Skips {
-            zero_ks: false,
-            ..Skips::all()
-        },
-        Skips {
-            negligible_reflection: false,
-            ..Skips::all()
-        },
+        Skips { back_facing_light: false, ..Skips::all() },
+        Skips { zero_ks: false, ..Skips::all() },
+        Skips { negligible_reflection: false, ..Skips::all() },
     ];
-    for (name, s) in [
-        ("solar", solar()),
-        ("faint", faint_mirrors()),
-        ("random", random_scene(7, 60)),
-    ] {
+    for (name, s) in [("solar", solar()), ("faint", faint_mirrors()), ("random", random_scene(7, 60))] {
         for samples in [1, 3] {
-            let base = RenderOptions {
-                skips: Skips::none(),
-                samples,
-                depth: 6,
-                ..options(96, 72)
-            };
+            let base = RenderOptions { skips: Skips::none(), samples, depth: 6, ..options(96, 72) };
             let (reference, full) = render_with(&s, &base);
             for skips in variants {
                 let (image, stats) = render_with(&s, &RenderOptions { skips, ..base });
-                assert!(
-                    image == reference,
-                    "{name}, {samples} samples, {skips:?} changed the image"
-                );
+                assert!(image == reference, "{name}, {samples} samples, {skips:?} changed the image");
                 assert!(stats.total_rays() <= full.total_rays());
             }
         }
@@ -655,47 +443,22 @@ fn each_skip_leaves_the_image_byte_identical() {
 #[test]
 fn negligible_reflection_cutoff_saves_rays_and_resumes_boundary_pixels() {
     let s = faint_mirrors();
-    let base = RenderOptions {
-        depth: 8,
-        ..options(160, 120)
-    };
+    let base = RenderOptions { depth: 8, ..options(160, 120) };
     let (all, stats_all) = render_with(&s, &base);
-    let (none, stats_none) = render_with(
-        &s,
-        &RenderOptions {
-            skips: Skips::none(),
-            ..base
-        },
-    );
+    let (none, stats_none) = render_with(&s, &RenderOptions { skips: Skips::none(), ..base });
     assert!(all == none);
-    assert!(
-        stats_all.rays.reflection * 5 < stats_none.rays.reflection * 3,
-        "{stats_all:?} vs {stats_none:?}"
-    );
-    assert!(
-        stats_all.resumed_paths > 0,
-        "the resume path was not exercised"
-    );
+    assert!(stats_all.rays.reflection * 5 < stats_none.rays.reflection * 3, "{stats_all:?} vs {stats_none:?}");
+    assert!(stats_all.resumed_paths > 0, "the resume path was not exercised");
 }
 
 #[test]
 fn same_bytes_with_one_and_two_threads() {
     let s = random_scene(11, 300);
-    let o = RenderOptions {
-        samples: 2,
-        ..options(120, 90)
-    };
+    let o = RenderOptions { samples: 2, ..options(120, 90) };
     let prepared = Prepared::new(&s);
     let run = |threads| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("thread pool");
-        pool.install(|| {
-            render(&s, &prepared, &o, &RenderControl::default())
-                .expect("no cancel")
-                .0
-        })
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+        pool.install(|| render(&s, &prepared, &o, &RenderControl::default()).expect("no cancel").0)
     };
     assert!(run(1) == run(2));
 }
@@ -708,12 +471,7 @@ fn static_and_timed_parts_render_like_one_scene() {
         split.timed_primitives = split.primitives.split_off(split_at);
         let o = options(80, 60);
         let (a, _) = render_with(&whole, &o);
-        let static_part = Prepared::new(&Scene {
-            timed_primitives: Vec::new(),
-            ..split.clone()
-        })
-        .static_part()
-        .clone();
+        let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..split.clone() }).static_part().clone();
         let prepared = Prepared::with_static(Arc::clone(&static_part), &split.timed_primitives);
         let (b, _) = render(&split, &prepared, &o, &RenderControl::default()).expect("no cancel");
         assert!(a == b);
@@ -729,43 +487,24 @@ fn progress_adds_up_and_cancel_stops() {
     let progress = |n: u64| {
         done.fetch_add(n, Ordering::Relaxed);
     };
-    let control = RenderControl {
-        progress: Some(&progress),
-        cancel: None,
-    };
+    let control = RenderControl { progress: Some(&progress), cancel: None };
     let (_, stats) = render(&s, &prepared, &o, &control).expect("no cancel");
     assert_eq!(done.load(Ordering::Relaxed), 50 * 37);
     assert_eq!(stats.rays.primary, 50 * 37);
     let cancel = AtomicBool::new(true);
-    let control = RenderControl {
-        progress: None,
-        cancel: Some(&cancel),
-    };
-    assert_eq!(
-        render(&s, &prepared, &o, &control).map(|_| ()),
-        Err(Cancelled)
-    );
+    let control = RenderControl { progress: None, cancel: Some(&cancel) };
+    assert_eq!(render(&s, &prepared, &o, &control).map(|_| ()), Err(Cancelled));
 }
 
 #[test]
 fn anti_aliasing_averages_samples() {
     let s = solar();
     let (one, _) = render_with(&s, &options(64, 48));
-    let (four, stats) = render_with(
-        &s,
-        &RenderOptions {
-            samples: 4,
-            ..options(64, 48)
-        },
-    );
+    let (four, stats) = render_with(&s, &RenderOptions { samples: 4, ..options(64, 48) });
     assert_eq!(stats.rays.primary, 64 * 48 * 4);
     assert!(one != four);
     // Flat regions stay the same; edges change.
-    let same = one
-        .pixels()
-        .zip(four.pixels())
-        .filter(|(a, b)| a == b)
-        .count();
+    let same = one.pixels().zip(four.pixels()).filter(|(a, b)| a == b).count();
     assert!(same > 64 * 48 / 2);
 }
 
@@ -780,12 +519,7 @@ fn empty_and_degenerate_images_do_not_panic() {
     assert_eq!(image.dimensions(), (3, 3));
     let mut empty = s;
     empty.primitives.clear();
-    assert!(
-        render_with(&empty, &options(8, 8))
-            .0
-            .pixels()
-            .all(|p| p.0 == [0, 0, 0])
-    );
+    assert!(render_with(&empty, &options(8, 8)).0.pixels().all(|p| p.0 == [0, 0, 0]));
 }
 
 // ------------------------------------------------------ BVH vs brute force
@@ -793,17 +527,9 @@ fn empty_and_degenerate_images_do_not_panic() {
 fn bounded_strategy() -> impl Strategy<Value = Bounded> {
     let coord = -10.0..10.0f64;
     prop_oneof![
-        ((coord.clone(), coord.clone(), coord.clone()), 0.05..3.0f64).prop_map(|(c, r)| {
-            Bounded::Sphere(SphereShape {
-                center: DVec3::new(c.0, c.1, c.2),
-                radius: r,
-            })
-        }),
-        (
-            (coord.clone(), coord.clone(), coord),
-            (0.05..3.0f64, 0.05..3.0f64, 0.05..3.0f64),
-            (0.0..6.3f64, 0.0..6.3f64)
-        )
+        ((coord.clone(), coord.clone(), coord.clone()), 0.05..3.0f64)
+            .prop_map(|(c, r)| { Bounded::Sphere(SphereShape { center: DVec3::new(c.0, c.1, c.2), radius: r }) }),
+        ((coord.clone(), coord.clone(), coord), (0.05..3.0f64, 0.05..3.0f64, 0.05..3.0f64), (0.0..6.3f64, 0.0..6.3f64))
             .prop_map(|(c, h, (a, b))| {
                 let axes = DMat3::from_rotation_y(a) * DMat3::from_rotation_x(b);
                 Bounded::Box(BoxShape {
@@ -816,19 +542,9 @@ fn bounded_strategy() -> impl Strategy<Value = Bounded> {
 }
 
 fn ray_strategy() -> impl Strategy<Value = Ray> {
-    (
-        (-15.0..15.0f64, -15.0..15.0f64, -15.0..15.0f64),
-        (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
-    )
-        .prop_filter("non-zero direction", |(_, d)| {
-            d.0 * d.0 + d.1 * d.1 + d.2 * d.2 > 1e-4
-        })
-        .prop_map(|(o, d)| {
-            Ray::new(
-                DVec3::new(o.0, o.1, o.2),
-                DVec3::new(d.0, d.1, d.2).normalize(),
-            )
-        })
+    ((-15.0..15.0f64, -15.0..15.0f64, -15.0..15.0f64), (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64))
+        .prop_filter("non-zero direction", |(_, d)| d.0 * d.0 + d.1 * d.1 + d.2 * d.2 > 1e-4)
+        .prop_map(|(o, d)| Ray::new(DVec3::new(o.0, o.1, o.2), DVec3::new(d.0, d.1, d.2).normalize()))
 }
 
 proptest! {
@@ -901,23 +617,8 @@ proptest! {
 #[test]
 fn huge_depth_between_perfect_mirrors() {
     let m = material([1.0, 1.0, 1.0], 0.5, 1.0, 1.0);
-    let s = scene(
-        10.0,
-        1.0,
-        0.2,
-        vec![],
-        vec![
-            plane([0.0, 0.0, 1.0], 0.0, m),
-            plane([0.0, 0.0, -1.0], -20.0, m),
-        ],
-    );
-    let (image, stats) = render_with(
-        &s,
-        &RenderOptions {
-            depth: 100_000,
-            ..options(1, 1)
-        },
-    );
+    let s = scene(10.0, 1.0, 0.2, vec![], vec![plane([0.0, 0.0, 1.0], 0.0, m), plane([0.0, 0.0, -1.0], -20.0, m)]);
+    let (image, stats) = render_with(&s, &RenderOptions { depth: 100_000, ..options(1, 1) });
     assert_eq!(image.get_pixel(0, 0).0, [255, 255, 255]);
     assert_eq!(stats.rays.reflection, 100_000);
 }

@@ -66,16 +66,8 @@ struct Item {
 
 /// The tree as built, before flattening.
 enum BuildNode {
-    Leaf {
-        bounds: Aabb,
-        start: usize,
-        count: usize,
-    },
-    Interior {
-        bounds: Aabb,
-        axis: usize,
-        children: Box<(BuildNode, BuildNode)>,
-    },
+    Leaf { bounds: Aabb, start: usize, count: usize },
+    Interior { bounds: Aabb, axis: usize, children: Box<(BuildNode, BuildNode)> },
 }
 
 impl Bvh {
@@ -86,24 +78,14 @@ impl Bvh {
     pub fn build(objects: &[Bounded]) -> (Bvh, Vec<u32>) {
         if objects.len() <= BRUTE_FORCE_MAX {
             let order = (0..objects.len() as u32).collect();
-            return (
-                Bvh {
-                    nodes: Vec::new(),
-                    objects: objects.to_vec(),
-                },
-                order,
-            );
+            return (Bvh { nodes: Vec::new(), objects: objects.to_vec() }, order);
         }
         let mut items: Vec<Item> = objects
             .par_iter()
             .enumerate()
             .map(|(k, o)| {
                 let bounds = o.bounds();
-                Item {
-                    bounds,
-                    centroid: bounds.center(),
-                    index: k as u32,
-                }
+                Item { bounds, centroid: bounds.center(), index: k as u32 }
             })
             .collect();
         let root = build_range(&mut items, 0, 0);
@@ -122,10 +104,8 @@ impl Bvh {
 
     /// A flat list of the objects of two flat lists, `a`'s first.
     pub fn concat_flat(a: &Bvh, b: &Bvh) -> Option<Bvh> {
-        (a.is_flat() && b.is_flat()).then(|| Bvh {
-            nodes: Vec::new(),
-            objects: a.objects.iter().chain(&b.objects).copied().collect(),
-        })
+        (a.is_flat() && b.is_flat())
+            .then(|| Bvh { nodes: Vec::new(), objects: a.objects.iter().chain(&b.objects).copied().collect() })
     }
 
     /// The objects, in tree order.
@@ -158,9 +138,7 @@ impl Bvh {
     /// [`Bvh::closest_hit`] when there is a tree.
     fn closest_hit_in_tree(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
         let inv_dir = ray.dir.recip();
-        closest_in(&self.nodes, &self.objects, ray, t_max, |node, t| {
-            node.bounds.hit(ray, inv_dir, t)
-        })
+        closest_in(&self.nodes, &self.objects, ray, t_max, |node, t| node.bounds.hit(ray, inv_dir, t))
     }
 
     /// Whether some object is hit at `0 < t < t_max`; stops at the first hit
@@ -193,10 +171,7 @@ impl Bvh {
             if node.bounds.hit(ray, inv_dir, t_max) {
                 if node.count > 0 {
                     let start = node.index as usize;
-                    if self.objects[start..start + node.count as usize]
-                        .iter()
-                        .any(|o| o.hit(ray) < t_max)
-                    {
+                    if self.objects[start..start + node.count as usize].iter().any(|o| o.hit(ray) < t_max) {
                         return true;
                     }
                 } else {
@@ -218,17 +193,9 @@ impl Bvh {
     pub fn depth(&self) -> usize {
         fn depth_from(nodes: &[Node], k: usize) -> usize {
             let node = &nodes[k];
-            if node.count > 0 {
-                1
-            } else {
-                1 + depth_from(nodes, k + 1).max(depth_from(nodes, node.index as usize))
-            }
+            if node.count > 0 { 1 } else { 1 + depth_from(nodes, k + 1).max(depth_from(nodes, node.index as usize)) }
         }
-        if self.nodes.is_empty() {
-            0
-        } else {
-            depth_from(&self.nodes, 0)
-        }
+        if self.nodes.is_empty() { 0 } else { depth_from(&self.nodes, 0) }
     }
 }
 
@@ -343,12 +310,7 @@ fn closest_in<N: Linked>(
             let (index, count, axis) = node.links();
             if count > 0 {
                 let start = index as usize;
-                test_range(
-                    &objects[start..start + count as usize],
-                    start,
-                    ray,
-                    &mut best,
-                );
+                test_range(&objects[start..start + count as usize], start, ray, &mut best);
             } else {
                 // Visit the child on the ray's side of the split first, so
                 // `best` shrinks early and prunes the other.
@@ -389,46 +351,24 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize) -> BuildNode {
     let bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
     let count = items.len();
     if count <= 2 {
-        return BuildNode::Leaf {
-            bounds,
-            start: offset,
-            count,
-        };
+        return BuildNode::Leaf { bounds, start: offset, count };
     }
     let centroids = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
-    let split = if depth < SAH_MAX_DEPTH {
-        sah_split(items, &bounds, &centroids)
-    } else {
-        None
-    };
+    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &bounds, &centroids) } else { None };
     let (axis, mid) = match split {
         Some(Split::Leaf) if count <= MAX_LEAF => {
-            return BuildNode::Leaf {
-                bounds,
-                start: offset,
-                count,
-            };
+            return BuildNode::Leaf { bounds, start: offset, count };
         }
         Some(Split::At { axis, mid }) => (axis, mid),
         _ => median_split(items, &centroids),
     };
     let (left, right) = items.split_at_mut(mid);
     let (left, right) = if count >= PARALLEL_MIN {
-        rayon::join(
-            || build_range(left, offset, depth + 1),
-            || build_range(right, offset + mid, depth + 1),
-        )
+        rayon::join(|| build_range(left, offset, depth + 1), || build_range(right, offset + mid, depth + 1))
     } else {
-        (
-            build_range(left, offset, depth + 1),
-            build_range(right, offset + mid, depth + 1),
-        )
+        (build_range(left, offset, depth + 1), build_range(right, offset + mid, depth + 1))
     };
-    BuildNode::Interior {
-        bounds,
-        axis,
-        children: Box::new((left, right)),
-    }
+    BuildNode::Interior { bounds, axis, children: Box::new((left, right)) }
 }
 
 /// What the SAH chose for a range.
@@ -484,18 +424,12 @@ fn sah_split(items: &mut [Item], bounds: &Aabb, centroids: &Aabb) -> Option<Spli
     }
     let (cost, axis, bin) = best?;
     let area = bounds.half_area();
-    let split_cost = if area > 0.0 {
-        TRAVERSAL_COST + cost / area
-    } else {
-        f64::INFINITY
-    };
+    let split_cost = if area > 0.0 { TRAVERSAL_COST + cost / area } else { f64::INFINITY };
     if split_cost >= items.len() as f64 {
         return Some(Split::Leaf);
     }
     let scale = BINS as f64 / extent[axis];
-    let mid = partition(items, |it| {
-        (((it.centroid[axis] - centroids.min[axis]) * scale) as usize).min(BINS - 1) < bin
-    });
+    let mid = partition(items, |it| (((it.centroid[axis] - centroids.min[axis]) * scale) as usize).min(BINS - 1) < bin);
     Some(Split::At { axis, mid })
 }
 
@@ -511,11 +445,7 @@ fn median_split(items: &mut [Item], centroids: &Aabb) -> (usize, usize) {
         2
     };
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |a, b| {
-        a.centroid[axis]
-            .total_cmp(&b.centroid[axis])
-            .then(a.index.cmp(&b.index))
-    });
+    items.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]).then(a.index.cmp(&b.index)));
     (axis, mid)
 }
 
@@ -535,30 +465,12 @@ fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> usize {
 /// Appends the subtree depth-first: a node, its left subtree, its right.
 fn flatten(node: &BuildNode, nodes: &mut Vec<Node>) {
     match node {
-        BuildNode::Leaf {
-            bounds,
-            start,
-            count,
-        } => {
-            nodes.push(Node {
-                bounds: *bounds,
-                index: *start as u32,
-                count: *count as u16,
-                axis: 0,
-            });
+        BuildNode::Leaf { bounds, start, count } => {
+            nodes.push(Node { bounds: *bounds, index: *start as u32, count: *count as u16, axis: 0 });
         }
-        BuildNode::Interior {
-            bounds,
-            axis,
-            children,
-        } => {
+        BuildNode::Interior { bounds, axis, children } => {
             let at = nodes.len();
-            nodes.push(Node {
-                bounds: *bounds,
-                index: 0,
-                count: 0,
-                axis: *axis as u16,
-            });
+            nodes.push(Node { bounds: *bounds, index: 0, count: 0, axis: *axis as u16 });
             flatten(&children.0, nodes);
             nodes[at].index = nodes.len() as u32;
             flatten(&children.1, nodes);
@@ -573,14 +485,8 @@ mod tests {
 
     #[test]
     fn coincident_centroids_still_give_a_shallow_tree() {
-        let spheres: Vec<Bounded> = (0..1000)
-            .map(|k| {
-                Bounded::Sphere(SphereShape {
-                    center: DVec3::ZERO,
-                    radius: 1.0 + k as f64,
-                })
-            })
-            .collect();
+        let spheres: Vec<Bounded> =
+            (0..1000).map(|k| Bounded::Sphere(SphereShape { center: DVec3::ZERO, radius: 1.0 + k as f64 })).collect();
         let (bvh, order) = Bvh::build(&spheres);
         assert!(bvh.depth() < STACK_SIZE);
         let mut sorted = order.clone();
@@ -591,12 +497,7 @@ mod tests {
     #[test]
     fn exponential_layout_depth_is_bounded() {
         let spheres: Vec<Bounded> = (0..2000)
-            .map(|k| {
-                Bounded::Sphere(SphereShape {
-                    center: DVec3::new(1.01f64.powi(k), 0.0, 0.0),
-                    radius: 1e-3,
-                })
-            })
+            .map(|k| Bounded::Sphere(SphereShape { center: DVec3::new(1.01f64.powi(k), 0.0, 0.0), radius: 1e-3 }))
             .collect();
         let (bvh, _) = Bvh::build(&spheres);
         assert!(bvh.depth() < STACK_SIZE, "depth {}", bvh.depth());

@@ -75,14 +75,7 @@ pub fn sample_offsets(n: u32) -> Vec<DVec2> {
     let k = (f64::from(n).sqrt().round()) as u32;
     if k * k == n {
         let step = 1.0 / f64::from(k);
-        return (0..n)
-            .map(|s| {
-                DVec2::new(
-                    (f64::from(s % k) + 0.5) * step,
-                    (f64::from(s / k) + 0.5) * step,
-                )
-            })
-            .collect();
+        return (0..n).map(|s| DVec2::new((f64::from(s % k) + 0.5) * step, (f64::from(s / k) + 0.5) * step)).collect();
     }
     let inv_golden = (5f64.sqrt() - 1.0) / 2.0;
     (0..n)
@@ -100,15 +93,7 @@ mod tests {
 
     #[test]
     fn centre_pixel_of_odd_image_looks_down_minus_z() {
-        let rays = PrimaryRays::new(
-            &Camera {
-                distance: 5.0,
-                angle: 1.0,
-            },
-            3,
-            3,
-            Screen::Centered,
-        );
+        let rays = PrimaryRays::new(&Camera { distance: 5.0, angle: 1.0 }, 3, 3, Screen::Centered);
         let r = rays.ray(1, 1, DVec2::splat(0.5));
         assert_eq!(r.origin, DVec3::new(0.0, 0.0, 5.0));
         assert_eq!(r.dir, DVec3::new(0.0, 0.0, -1.0));
@@ -116,15 +101,7 @@ mod tests {
 
     #[test]
     fn bottom_screen_puts_axis_at_bottom_edge() {
-        let rays = PrimaryRays::new(
-            &Camera {
-                distance: 5.0,
-                angle: 1.0,
-            },
-            4,
-            4,
-            Screen::Bottom,
-        );
+        let rays = PrimaryRays::new(&Camera { distance: 5.0, angle: 1.0 }, 4, 4, Screen::Bottom);
         // Row 3 (the last) centre is at y = 4 - 3.5 = 0.5 above the axis.
         let f = 4.0 / (2.0 * 0.5f64.tan());
         let expected = DVec3::new(0.5 - 2.0 + 1.0, 0.5, -f).normalize();
@@ -136,12 +113,7 @@ mod tests {
         assert_eq!(sample_offsets(1), vec![DVec2::splat(0.5)]);
         assert_eq!(
             sample_offsets(4),
-            vec![
-                DVec2::new(0.25, 0.25),
-                DVec2::new(0.75, 0.25),
-                DVec2::new(0.25, 0.75),
-                DVec2::new(0.75, 0.75)
-            ]
+            vec![DVec2::new(0.25, 0.25), DVec2::new(0.75, 0.25), DVec2::new(0.25, 0.75), DVec2::new(0.75, 0.75)]
         );
         let five = sample_offsets(5);
         assert_eq!(five.len(), 5);

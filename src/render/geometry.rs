@@ -72,12 +72,7 @@ impl Geometry {
         }
         let (bvh, order) = Bvh::build(&bounded);
         let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
-        Geometry {
-            bvh,
-            bounded_materials,
-            planes,
-            plane_materials,
-        }
+        Geometry { bvh, bounded_materials, planes, plane_materials }
     }
 
     /// The union of two geometries without trees (both small), `a` first:
@@ -122,17 +117,13 @@ impl Geometry {
     /// large).
     #[inline]
     fn any_hit(&self, ray: &Ray) -> bool {
-        self.planes.iter().any(|p| p.hit(ray) < f64::INFINITY)
-            || self.bvh.any_hit(ray, f64::INFINITY)
+        self.planes.iter().any(|p| p.hit(ray) < f64::INFINITY) || self.bvh.any_hit(ray, f64::INFINITY)
     }
 
     /// The planes that a ray along `dir` moves towards (`n·dir < 0`): the
     /// only ones that can stop it.
     fn planes_facing(&self, dir: DVec3) -> impl Iterator<Item = PlaneShape> + '_ {
-        self.planes
-            .iter()
-            .copied()
-            .filter(move |p| p.normal.dot(dir) < 0.0)
+        self.planes.iter().copied().filter(move |p| p.normal.dot(dir) < 0.0)
     }
 
     /// The surface data of a hit found by [`Geometry::closest_hit`].
@@ -142,22 +133,11 @@ impl Geometry {
         let (normal, material) = match hit.object {
             ObjectId::Bounded(k) => {
                 let object: &Bounded = &self.bvh.objects()[k as usize];
-                (
-                    object.normal(ray, hit.t),
-                    self.bounded_materials[k as usize],
-                )
+                (object.normal(ray, hit.t), self.bounded_materials[k as usize])
             }
-            ObjectId::Plane(k) => (
-                self.planes[k as usize].normal(),
-                self.plane_materials[k as usize],
-            ),
+            ObjectId::Plane(k) => (self.planes[k as usize].normal(), self.plane_materials[k as usize]),
         };
-        SurfaceHit {
-            t: hit.t,
-            point,
-            normal,
-            material,
-        }
+        SurfaceHit { t: hit.t, point, normal, material }
     }
 }
 
@@ -174,10 +154,8 @@ pub struct Prepared {
 impl Prepared {
     /// Prepares both parts of `scene`.
     pub fn new(scene: &Scene) -> Prepared {
-        let (static_part, timed) = rayon::join(
-            || Geometry::build(&scene.primitives),
-            || Geometry::build(&scene.timed_primitives),
-        );
+        let (static_part, timed) =
+            rayon::join(|| Geometry::build(&scene.primitives), || Geometry::build(&scene.timed_primitives));
         Prepared::from_parts(Arc::new(static_part), timed)
     }
 
@@ -188,16 +166,8 @@ impl Prepared {
     }
 
     fn from_parts(static_part: Arc<Geometry>, timed: Geometry) -> Prepared {
-        let merged = if timed.is_empty() {
-            None
-        } else {
-            Geometry::concat_flat(&static_part, &timed)
-        };
-        Prepared {
-            static_part,
-            timed,
-            merged,
-        }
+        let merged = if timed.is_empty() { None } else { Geometry::concat_flat(&static_part, &timed) };
+        Prepared { static_part, timed, merged }
     }
 
     /// The geometry of [`Scene::primitives`], the same for every frame of an
@@ -217,9 +187,7 @@ impl Prepared {
     #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
         if let Some(merged) = &self.merged {
-            return merged
-                .closest_hit(ray, f64::INFINITY)
-                .map(|h| merged.surface(ray, h));
+            return merged.closest_hit(ray, f64::INFINITY).map(|h| merged.surface(ray, h));
         }
         let static_hit = self.static_part.closest_hit(ray, f64::INFINITY);
         if self.timed.is_empty() {
@@ -243,10 +211,7 @@ impl Prepared {
     /// light's direction): those with `n·dir < 0`. Shadow rays towards that
     /// light test only these, with [`Prepared::blocked`].
     pub fn planes_blocking(&self, dir: DVec3) -> Vec<PlaneShape> {
-        self.static_part
-            .planes_facing(dir)
-            .chain(self.timed.planes_facing(dir))
-            .collect()
+        self.static_part.planes_facing(dir).chain(self.timed.planes_facing(dir)).collect()
     }
 
     /// The same answer as [`Prepared::any_hit`] for a ray whose direction
@@ -262,10 +227,7 @@ impl Prepared {
         }
         match &self.merged {
             Some(merged) => merged.bvh.any_hit(ray, f64::INFINITY),
-            None => {
-                self.static_part.bvh.any_hit(ray, f64::INFINITY)
-                    || self.timed.bvh.any_hit(ray, f64::INFINITY)
-            }
+            None => self.static_part.bvh.any_hit(ray, f64::INFINITY) || self.timed.bvh.any_hit(ray, f64::INFINITY),
         }
     }
 }

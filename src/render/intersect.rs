@@ -94,10 +94,7 @@ impl SphereShape {
     /// An axis-aligned box enclosing the sphere.
     pub fn bounds(&self) -> Aabb {
         let r = DVec3::splat(self.radius);
-        Aabb {
-            min: self.center - r,
-            max: self.center + r,
-        }
+        Aabb { min: self.center - r, max: self.center + r }
     }
 }
 
@@ -162,11 +159,7 @@ impl BoxShape {
     pub fn facing_normal(&self, ray: &Ray) -> DVec3 {
         let (near, far) = self.slabs(ray);
         let t_near = near.max_element();
-        let axis = if t_near > 0.0 {
-            argmax(near)
-        } else {
-            argmin(far)
-        };
+        let axis = if t_near > 0.0 { argmax(near) } else { argmin(far) };
         let d = self.to_local.row(axis).dot(ray.dir);
         let e = self.to_local.row(axis);
         if d > 0.0 { -e } else { e }
@@ -176,13 +169,9 @@ impl BoxShape {
     /// is the axes matrix with absolute entries.
     pub fn bounds(&self) -> Aabb {
         let axes = self.to_local.transpose();
-        let extent = axes.x_axis.abs() * self.half.x
-            + axes.y_axis.abs() * self.half.y
-            + axes.z_axis.abs() * self.half.z;
-        Aabb {
-            min: self.center - extent,
-            max: self.center + extent,
-        }
+        let extent =
+            axes.x_axis.abs() * self.half.x + axes.y_axis.abs() * self.half.y + axes.z_axis.abs() * self.half.z;
+        Aabb { min: self.center - extent, max: self.center + extent }
     }
 }
 
@@ -298,15 +287,11 @@ pub enum ShapeClass {
 impl From<&Shape> for ShapeClass {
     fn from(shape: &Shape) -> ShapeClass {
         match *shape {
-            Shape::Sphere { center, radius } => {
-                ShapeClass::Bounded(Bounded::Sphere(SphereShape { center, radius }))
-            }
+            Shape::Sphere { center, radius } => ShapeClass::Bounded(Bounded::Sphere(SphereShape { center, radius })),
             Shape::Plane { normal, shift } => ShapeClass::Plane(PlaneShape { normal, shift }),
-            Shape::Box { center, half, axes } => ShapeClass::Bounded(Bounded::Box(BoxShape {
-                center,
-                half,
-                to_local: axes.transpose(),
-            })),
+            Shape::Box { center, half, axes } => {
+                ShapeClass::Bounded(Bounded::Box(BoxShape { center, half, to_local: axes.transpose() }))
+            }
         }
     }
 }
@@ -322,27 +307,18 @@ pub struct Aabb {
 
 impl Aabb {
     /// The empty box (the identity of [`Aabb::union`]).
-    pub const EMPTY: Aabb = Aabb {
-        min: DVec3::INFINITY,
-        max: DVec3::NEG_INFINITY,
-    };
+    pub const EMPTY: Aabb = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
 
     /// The smallest box containing both.
     #[inline]
     pub fn union(self, other: Aabb) -> Aabb {
-        Aabb {
-            min: self.min.min(other.min),
-            max: self.max.max(other.max),
-        }
+        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
     }
 
     /// The smallest box containing `self` and the point `p`.
     #[inline]
     pub fn grow(self, p: DVec3) -> Aabb {
-        Aabb {
-            min: self.min.min(p),
-            max: self.max.max(p),
-        }
+        Aabb { min: self.min.min(p), max: self.max.max(p) }
     }
 
     /// The centre.
@@ -380,24 +356,15 @@ mod tests {
 
     #[test]
     fn sphere_from_outside_hits_entry_point() {
-        let s = SphereShape {
-            center: DVec3::new(0.0, 0.0, -10.0),
-            radius: 2.0,
-        };
+        let s = SphereShape { center: DVec3::new(0.0, 0.0, -10.0), radius: 2.0 };
         assert_eq!(s.hit(&ray([0.0, 0.0, 0.0], [0.0, 0.0, -1.0])), 8.0);
         assert_eq!(s.hit(&ray([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])), f64::INFINITY);
-        assert_eq!(
-            s.hit(&ray([0.0, 3.0, 0.0], [0.0, 0.0, -1.0])),
-            f64::INFINITY
-        );
+        assert_eq!(s.hit(&ray([0.0, 3.0, 0.0], [0.0, 0.0, -1.0])), f64::INFINITY);
     }
 
     #[test]
     fn sphere_from_inside_hits_exit_point_with_inward_normal() {
-        let s = Bounded::Sphere(SphereShape {
-            center: DVec3::ZERO,
-            radius: 2.0,
-        });
+        let s = Bounded::Sphere(SphereShape { center: DVec3::ZERO, radius: 2.0 });
         let r = ray([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]);
         let t = s.hit(&r);
         assert_eq!(t, 3.0);
@@ -406,40 +373,25 @@ mod tests {
 
     #[test]
     fn plane_is_one_sided() {
-        let p = PlaneShape {
-            normal: DVec3::Y,
-            shift: -1.0,
-        };
+        let p = PlaneShape { normal: DVec3::Y, shift: -1.0 };
         assert_eq!(p.hit(&ray([0.0, 1.0, 0.0], [0.0, -1.0, 0.0])), 2.0);
         // From below (the solid side) it is never hit.
-        assert_eq!(
-            p.hit(&ray([0.0, -2.0, 0.0], [0.0, 1.0, 0.0])),
-            f64::INFINITY
-        );
+        assert_eq!(p.hit(&ray([0.0, -2.0, 0.0], [0.0, 1.0, 0.0])), f64::INFINITY);
         // Origin on the plane: n·S <= d, never hits.
-        assert_eq!(
-            p.hit(&ray([0.0, -1.0, 0.0], [0.0, -1.0, 0.0])),
-            f64::INFINITY
-        );
+        assert_eq!(p.hit(&ray([0.0, -1.0, 0.0], [0.0, -1.0, 0.0])), f64::INFINITY);
     }
 
     #[test]
     fn box_entry_exit_and_normals() {
-        let b = Bounded::Box(BoxShape {
-            center: DVec3::ZERO,
-            half: DVec3::new(1.0, 2.0, 3.0),
-            to_local: DMat3::IDENTITY,
-        });
+        let b =
+            Bounded::Box(BoxShape { center: DVec3::ZERO, half: DVec3::new(1.0, 2.0, 3.0), to_local: DMat3::IDENTITY });
         let r = ray([0.0, 10.0, 0.0], [0.0, -1.0, 0.0]);
         assert_eq!(b.hit(&r), 8.0);
         assert_eq!(b.normal(&r, 8.0), DVec3::Y);
         let inside = ray([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]);
         assert_eq!(b.hit(&inside), 1.0);
         assert_eq!(b.normal(&inside, 1.0), -DVec3::X);
-        assert_eq!(
-            b.hit(&ray([5.0, 10.0, 0.0], [0.0, -1.0, 0.0])),
-            f64::INFINITY
-        );
+        assert_eq!(b.hit(&ray([5.0, 10.0, 0.0], [0.0, -1.0, 0.0])), f64::INFINITY);
     }
 
     #[test]
@@ -456,20 +408,14 @@ mod tests {
     #[test]
     fn rotated_box_bounds_contain_corners() {
         let axes = DMat3::from_rotation_z(0.3) * DMat3::from_rotation_x(0.7);
-        let b = BoxShape {
-            center: DVec3::new(1.0, 2.0, 3.0),
-            half: DVec3::new(1.0, 0.5, 2.0),
-            to_local: axes.transpose(),
-        };
+        let b =
+            BoxShape { center: DVec3::new(1.0, 2.0, 3.0), half: DVec3::new(1.0, 0.5, 2.0), to_local: axes.transpose() };
         let aabb = b.bounds();
         for sx in [-1.0, 1.0] {
             for sy in [-1.0, 1.0] {
                 for sz in [-1.0, 1.0] {
                     let corner = b.center + axes * (b.half * DVec3::new(sx, sy, sz));
-                    assert!(
-                        corner.cmpge(aabb.min - 1e-12).all()
-                            && corner.cmple(aabb.max + 1e-12).all()
-                    );
+                    assert!(corner.cmpge(aabb.min - 1e-12).all() && corner.cmple(aabb.max + 1e-12).all());
                 }
             }
         }

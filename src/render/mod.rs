@@ -73,20 +73,12 @@ pub struct Skips {
 impl Skips {
     /// Every shortcut on (the default).
     pub const fn all() -> Skips {
-        Skips {
-            back_facing_light: true,
-            zero_ks: true,
-            negligible_reflection: true,
-        }
+        Skips { back_facing_light: true, zero_ks: true, negligible_reflection: true }
     }
 
     /// Every shortcut off: the formula of SPEC 6 followed literally.
     pub const fn none() -> Skips {
-        Skips {
-            back_facing_light: false,
-            zero_ks: false,
-            negligible_reflection: false,
-        }
+        Skips { back_facing_light: false, zero_ks: false, negligible_reflection: false }
     }
 }
 
@@ -140,14 +132,7 @@ impl RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
-        RenderOptions {
-            width: 800,
-            height: 600,
-            depth: 5,
-            samples: 1,
-            screen: Screen::Centered,
-            skips: Skips::all(),
-        }
+        RenderOptions { width: 800, height: 600, depth: 5, samples: 1, screen: Screen::Centered, skips: Skips::all() }
     }
 }
 
@@ -222,11 +207,7 @@ pub fn render(
     let start = Instant::now();
     let (width, height) = (options.width, options.height);
     let mut buffer = vec![0u8; width as usize * height as usize * 3];
-    let blocking_planes: Vec<_> = scene
-        .lights
-        .iter()
-        .map(|l| prepared.planes_blocking(l.direction))
-        .collect();
+    let blocking_planes: Vec<_> = scene.lights.iter().map(|l| prepared.planes_blocking(l.direction)).collect();
     let job = Job {
         rays: PrimaryRays::new(&scene.camera, width, height, options.screen),
         offsets: sample_offsets(options.samples),
@@ -256,8 +237,7 @@ pub fn render(
         stats.rays += band.rays;
         stats.resumed_paths += band.resumed_paths;
     }
-    let image =
-        RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
+    let image = RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
     stats.elapsed = start.elapsed();
     Ok((image, stats))
 }
@@ -280,11 +260,7 @@ impl Job<'_> {
         let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
         let mut left = 0;
         while left < self.width {
-            if self
-                .control
-                .cancel
-                .is_some_and(|c| c.load(Ordering::Relaxed))
-            {
+            if self.control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return Err(Cancelled);
             }
             let right = (left + TILE).min(self.width);
@@ -300,10 +276,7 @@ impl Job<'_> {
             }
             left = right;
         }
-        Ok(BandStats {
-            rays: tracer.counts,
-            resumed_paths: tracer.resumed,
-        })
+        Ok(BandStats { rays: tracer.counts, resumed_paths: tracer.resumed })
     }
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
@@ -325,19 +298,14 @@ impl Job<'_> {
             return bytes;
         }
         // The same sum in the same order as without the cutoff.
-        let exact =
-            (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
+        let exact = (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
         to_bytes(self.average(exact))
     }
 
     /// The average of a sum of sample colours.
     #[inline]
     fn average(&self, sum: DVec3) -> DVec3 {
-        if self.offsets.len() == 1 {
-            sum
-        } else {
-            sum / self.offsets.len() as f64
-        }
+        if self.offsets.len() == 1 { sum } else { sum / self.offsets.len() as f64 }
     }
 }
 

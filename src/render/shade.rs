@@ -125,19 +125,8 @@ impl<'a> Tracer<'a> {
     /// A tracer over `geometry` with the image constants `lighting`, for
     /// `slots` samples per pixel.
     pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a> {
-        let paths = (0..slots.max(1))
-            .map(|_| Path {
-                levels: Vec::with_capacity(8),
-                paused: None,
-            })
-            .collect();
-        Tracer {
-            geometry,
-            lighting,
-            counts: RayCounts::default(),
-            resumed: 0,
-            paths,
-        }
+        let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
+        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths }
     }
 
     /// The colour seen along a primary ray, each component in [0, 1]
@@ -147,11 +136,7 @@ impl<'a> Tracer<'a> {
         self.counts.primary += 1;
         let mut levels = std::mem::take(&mut self.paths[slot].levels);
         levels.clear();
-        let (tail, paused) = self.follow(
-            &mut levels,
-            *primary,
-            self.lighting.skips.negligible_reflection,
-        );
+        let (tail, paused) = self.follow(&mut levels, *primary, self.lighting.skips.negligible_reflection);
         let bracket = fold(&levels, tail);
         self.paths[slot] = Path { levels, paused };
         bracket
@@ -178,12 +163,7 @@ impl<'a> Tracer<'a> {
     /// level per hit. Returns what lies past the last level and, when the
     /// cutoff stopped it, the reflected ray not traced.
     #[inline(always)]
-    fn follow(
-        &mut self,
-        levels: &mut Vec<Level>,
-        mut ray: Ray,
-        cutoff: bool,
-    ) -> (Tail, Option<Ray>) {
+    fn follow(&mut self, levels: &mut Vec<Level>, mut ray: Ray, cutoff: bool) -> (Tail, Option<Ray>) {
         let mut weight: f64 = levels.iter().map(|l| l.ks).product();
         loop {
             let Some(hit) = self.geometry.closest_hit(&ray) else {
@@ -214,22 +194,12 @@ impl<'a> Tracer<'a> {
     /// specular parts. Shadow rays start at `origin`, P moved off the surface.
     #[inline(always)]
     fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> DVec3 {
-        let Material {
-            color,
-            kd,
-            ks,
-            phong,
-        } = hit.material;
+        let Material { color, kd, ks, phong } = hit.material;
         let n = hit.normal;
         let skips = self.lighting.skips;
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
-        for (light, planes) in self
-            .lighting
-            .lights
-            .iter()
-            .zip(self.lighting.blocking_planes)
-        {
+        for (light, planes) in self.lighting.lights.iter().zip(self.lighting.blocking_planes) {
             let l = light.direction;
             let n_dot_l = n.dot(l);
             // The formula sums only lights with N·L > 0: for the others the
@@ -319,40 +289,19 @@ mod tests {
     #[test]
     fn fold_clamps_at_every_level() {
         // Level 0: local 0.5, ks 0.5; level 1: local 3.0 (clamped to 1).
-        let levels = [
-            Level {
-                local: DVec3::splat(0.5),
-                ks: 0.5,
-            },
-            Level {
-                local: DVec3::splat(3.0),
-                ks: 0.0,
-            },
-        ];
+        let levels = [Level { local: DVec3::splat(0.5), ks: 0.5 }, Level { local: DVec3::splat(3.0), ks: 0.0 }];
         let c = fold(&levels, Tail::Black);
         // Clamped per level: 0.5 + 0.5 * 1 = 1.0; unclamped would also be 1,
         // so check a case where it matters: local 0.2 -> 0.2 + 0.5*1 = 0.7,
         // not 0.2 + 0.5*3 = 1.7 -> 1.
         assert_eq!(c.lo, DVec3::ONE);
-        let levels = [
-            Level {
-                local: DVec3::splat(0.2),
-                ks: 0.5,
-            },
-            Level {
-                local: DVec3::splat(3.0),
-                ks: 0.0,
-            },
-        ];
+        let levels = [Level { local: DVec3::splat(0.2), ks: 0.5 }, Level { local: DVec3::splat(3.0), ks: 0.0 }];
         assert_eq!(fold(&levels, Tail::Black).lo, DVec3::splat(0.7));
     }
 
     #[test]
     fn fold_brackets_an_unknown_tail() {
-        let levels = [Level {
-            local: DVec3::new(0.1, 0.99, 0.5),
-            ks: 0.001,
-        }];
+        let levels = [Level { local: DVec3::new(0.1, 0.99, 0.5), ks: 0.001 }];
         let b = fold(&levels, Tail::Unknown);
         assert_eq!(b.lo, DVec3::new(0.1, 0.99, 0.5));
         assert_eq!(b.hi, DVec3::new(0.1 + 0.001, 0.99 + 0.001, 0.5 + 0.001));
@@ -360,19 +309,13 @@ mod tests {
 
     #[test]
     fn offset_scales_with_coordinates() {
-        assert_eq!(
-            offset_origin(DVec3::ZERO, DVec3::Y),
-            DVec3::new(0.0, 1e-9, 0.0)
-        );
+        assert_eq!(offset_origin(DVec3::ZERO, DVec3::Y), DVec3::new(0.0, 1e-9, 0.0));
         let far = offset_origin(DVec3::new(50_000.0, 0.0, 0.0), DVec3::Y);
         assert!((far.y - 5e-5).abs() < 1e-15);
     }
 
     #[test]
     fn clamp_unit_removes_nan() {
-        assert_eq!(
-            clamp_unit(DVec3::new(f64::NAN, -1.0, 2.0)),
-            DVec3::new(0.0, 0.0, 1.0)
-        );
+        assert_eq!(clamp_unit(DVec3::new(f64::NAN, -1.0, 2.0)), DVec3::new(0.0, 0.0, 1.0));
     }
 }

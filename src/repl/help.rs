@@ -563,8 +563,8 @@ pub(crate) fn overview() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::repl::commands::COMMANDS;
     use crate::lang::lexer::keyword_names;
+    use crate::repl::commands::COMMANDS;
 
     #[test]
     fn every_keyword_has_a_page_with_an_example() {
