@@ -220,6 +220,32 @@ fn run_report(which: &str) {
         }
         return;
     }
+    if which == "skips" {
+        // What each skip saves on the solar scene (one frame, 1920x1080).
+        use rayrepl::render::Skips;
+        let scene = solar(0.0);
+        let prepared = Prepared::new(&scene);
+        let variants = [
+            ("all skips", Skips::all()),
+            ("no back-facing skip", Skips { back_facing_light: false, ..Skips::all() }),
+            ("no ks=0 skip", Skips { zero_ks: false, ..Skips::all() }),
+            ("no reflection cutoff", Skips { negligible_reflection: false, ..Skips::all() }),
+            ("no skips", Skips::none()),
+        ];
+        for (name, skips) in variants {
+            let o = RenderOptions { skips, ..options(1920, 1080) };
+            let start = Instant::now();
+            let (_, stats) = render(&scene, &prepared, &o, &RenderControl::default()).expect("no cancel");
+            report(name, start.elapsed(), &stats);
+        }
+        return;
+    }
+    if which == "animation" {
+        let start = Instant::now();
+        let stats = solar_animation(100, 800, 600);
+        report("solar 100 x 800x600 d5", start.elapsed(), &stats);
+        return;
+    }
     if which.contains("solar") || which == "1" {
         let scene = solar(0.0);
         let prepared = Prepared::new(&scene);

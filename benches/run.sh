@@ -27,20 +27,21 @@ trap 'rm -rf "$WORK"' EXIT
   for ((i = 0; i < 1000; i++)); do tail -n +3 "$WORK/chunk.ray"; done
 } > "$WORK/million.ray"
 
-# median SECONDS MAXRSS_MB of RUNS runs of a command
+# median WALL_SECONDS CPU_SECONDS MAXRSS_MB of RUNS runs of a command
 measure() {
-  local times=() rss=()
+  local times=() cpus=() rss=()
   for ((r = 0; r < RUNS; r++)); do
-    /usr/bin/time -f "%e %M" -o "$WORK/time" "$@" > /dev/null 2> "$WORK/stderr" || {
+    /usr/bin/time -f "%e %U %S %M" -o "$WORK/time" "$@" > /dev/null 2> "$WORK/stderr" || {
       echo "FAILED: $*" >&2; cat "$WORK/stderr" >&2; return 1; }
-    read -r t m < "$WORK/time"
-    times+=("$t"); rss+=("$m")
+    read -r t u k m < "$WORK/time"
+    times+=("$t"); cpus+=("$(echo "$u + $k" | bc)"); rss+=("$m")
   done
   local mid=$((RUNS / 2))
-  local t m
+  local t c m
   t=$(printf '%s\n' "${times[@]}" | sort -g | sed -n "$((mid + 1))p")
+  c=$(printf '%s\n' "${cpus[@]}" | sort -g | sed -n "$((mid + 1))p")
   m=$(printf '%s\n' "${rss[@]}" | sort -g | sed -n "$((mid + 1))p")
-  echo "$t $((m / 1024))"
+  echo "$t $c $((m / 1024))"
 }
 
 # rayrepl's --stats line for one run of the command
@@ -51,22 +52,25 @@ stats() {
 row() {
   local name=$1 target=$2; shift 2
   local result
-  result=$(measure "$@")
-  printf '| %s | %s | %s s | %s MB |\n' "$name" "$target" "${result% *}" "${result#* }"
+  local wall cpu mem
+  read -r wall cpu mem <<< "$(measure "$@")"
+  printf '| %s | %s | %s s | %s s | %s MB |\n' "$name" "$target" "$wall" "$cpu" "$mem"
 }
 
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(free -g | awk '/Mem/ {print $2}') GiB"
 echo "Runs: median of $RUNS, wall time, release build, $(date -u +%Y-%m-%d)"
 echo
-echo "| benchmark | target | time | peak memory |"
-echo "|---|---|---|---|"
+echo "Load average before the run: $(cut -d' ' -f1-3 /proc/loadavg) (CPU time is the figure to trust on a busy machine)"
+echo
+echo "| benchmark | target | wall time | CPU time (user + sys) | peak memory |"
+echo "|---|---|---|---|---|"
 row "parse + evaluate 1,000,002 lines" "< 1 s (parse)" "$BIN" --check "$WORK/million.ray"
 row "Menger depth 5: evaluate 3.2 M boxes" "< 2 s, < 1.5 GB" "$BIN" --check benches/scenes/sponge5.ray
 row "solar 1920x1080 depth 5" "5x faster than POV-Ray" "$BIN" benches/scenes/solar.ray --width 1920 --height 1080 -o "$WORK/solar.png"
 if command -v povray > /dev/null; then
   row "POV-Ray 3.7 solar 1920x1080 (+WT2)" "" povray +Ibenches/pov/solar.pov "+O$WORK/solar_pov.png" +W1920 +H1080 +WT2 -D -V -GA File_Gamma=1.0
 else
-  echo "| POV-Ray 3.7 | not installed (apt-get install povray) | | |"
+  echo "| POV-Ray 3.7 | not installed (apt-get install povray) | | | |"
 fi
 mkdir -p "$WORK/anim"
 row "solar animation 100 frames 800x600 (PNG)" "< 5 s" "$BIN" benches/scenes/solar.ray --anim 100 -o "$WORK/anim/solar.png"

@@ -134,23 +134,12 @@ pub fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
         let mut text = String::new();
         std::io::stdin()
             .read_to_string(&mut text)
-            .map_err(|e| format!("rayrepl: cannot read the scene from standard input: {}", io_reason(&e)))?;
+            .map_err(|e| format!("rayrepl: cannot read the scene from standard input: {}", output::io_reason(&e)))?;
         return Ok(sources.add("<stdin>", text, 0));
     }
     let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("rayrepl: cannot read `{}`: {}", path.display(), io_reason(&e)))?;
+        .map_err(|e| format!("rayrepl: cannot read `{}`: {}", path.display(), output::io_reason(&e)))?;
     Ok(sources.add(path.display().to_string(), text, 0))
-}
-
-/// An I/O error in plain words, without Rust's `(os error 2)` suffix.
-pub fn io_reason(error: &std::io::Error) -> String {
-    match error.kind() {
-        std::io::ErrorKind::NotFound => "no such file".into(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
-        std::io::ErrorKind::IsADirectory => "it is a directory".into(),
-        std::io::ErrorKind::InvalidData => "it is not UTF-8 text".into(),
-        _ => error.to_string(),
-    }
 }
 
 /// "3 spheres, 1 plane, 0 boxes, 2 lights".
@@ -207,6 +196,12 @@ fn is_gif(path: &Path) -> bool {
 
 /// The renderer's settings from the command line.
 fn render_options(cli: &Cli) -> RenderOptions {
+    if cli.reference {
+        return RenderOptions {
+            screen: cli.screen.screen(),
+            ..RenderOptions::reference(cli.width, cli.height, cli.depth)
+        };
+    }
     RenderOptions {
         width: cli.width,
         height: cli.height,
@@ -237,7 +232,7 @@ fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
         let mut stdout = std::io::stdout().lock();
         output::write_ppm(&mut stdout, &image)
             .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", io_reason(&e)))
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))
     } else {
         output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))
     }

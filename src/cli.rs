@@ -56,6 +56,10 @@ pub struct Cli {
     #[arg(long)]
     pub adaptive: bool,
 
+    /// Ground-truth render for error measurements: 256 stratified samples per pixel, no shortcuts, f64.
+    #[arg(long, conflicts_with_all = ["samples", "adaptive"])]
+    pub reference: bool,
+
     /// Where the z axis meets the screen: its centre (default) or the middle of its bottom edge.
     #[arg(long, value_enum, default_value_t = ScreenArg::Centered)]
     pub screen: ScreenArg,
@@ -176,5 +180,11 @@ mod tests {
         let args = ["rayrepl", "-hsize", "320", "-vsize", "200", "-depth", "2", "-anim", "3"];
         let cli = Cli::parse_from(translate_legacy_args(args.map(OsString::from)));
         assert_eq!((cli.width, cli.height, cli.depth, cli.anim), (320, 200, 2, Some(3)));
+    }
+
+    #[test]
+    fn reference_excludes_an_explicit_sample_count() {
+        assert!(Cli::parse_from(["rayrepl", "--reference", "a.ray"]).reference);
+        assert!(Cli::try_parse_from(["rayrepl", "--reference", "--samples", "4", "a.ray"]).is_err());
     }
 }

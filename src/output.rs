@@ -71,7 +71,7 @@ impl fmt::Display for OutputError {
                 path.display()
             ),
             OutputError::Io { path, source } => {
-                write!(f, "cannot write `{}`: {source}", path.display())
+                write!(f, "cannot write `{}`: {}", path.display(), io_reason(source))
             }
             OutputError::Encode { path, source } => {
                 write!(f, "cannot encode `{}`: {source}", path.display())
@@ -194,6 +194,19 @@ fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
     match source {
         image::ImageError::IoError(source) => io_error(path, source),
         source => OutputError::Encode { path: path.to_owned(), source },
+    }
+}
+
+/// An I/O error in plain words, without Rust's `(os error 2)` suffix.
+pub fn io_reason(error: &io::Error) -> String {
+    match error.kind() {
+        io::ErrorKind::NotFound => "no such file or folder".into(),
+        io::ErrorKind::PermissionDenied => "permission denied".into(),
+        io::ErrorKind::IsADirectory => "it is a directory".into(),
+        io::ErrorKind::InvalidData => "it is not UTF-8 text".into(),
+        io::ErrorKind::ReadOnlyFilesystem => "the file system is read-only".into(),
+        io::ErrorKind::StorageFull => "the disk is full".into(),
+        _ => error.to_string(),
     }
 }
 

@@ -234,7 +234,7 @@ fn a_missing_scene_is_a_clear_error() {
         .arg("no/such/scene.ray")
         .assert()
         .code(1)
-        .stderr(contains("cannot read `no/such/scene.ray`: no such file"));
+        .stderr(contains("cannot read `no/such/scene.ray`: no such file or folder"));
 }
 
 #[test]

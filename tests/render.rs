@@ -655,3 +655,16 @@ fn adaptive_gives_the_same_bytes_with_one_and_two_threads() {
     };
     assert!(run(1) == run(2));
 }
+
+/// Paths are followed iteratively: a huge depth between two perfect mirrors
+/// neither overflows the stack nor produces anything but the clamped sum.
+/// local = kd*Ia*C = 0.5*0.2 = 0.1 per level, ks = 1: the sum saturates at
+/// 1 -> 255.
+#[test]
+fn huge_depth_between_perfect_mirrors() {
+    let m = material([1.0, 1.0, 1.0], 0.5, 1.0, 1.0);
+    let s = scene(10.0, 1.0, 0.2, vec![], vec![plane([0.0, 0.0, 1.0], 0.0, m), plane([0.0, 0.0, -1.0], -20.0, m)]);
+    let (image, stats) = render_with(&s, &RenderOptions { depth: 100_000, ..options(1, 1) });
+    assert_eq!(image.get_pixel(0, 0).0, [255, 255, 255]);
+    assert_eq!(stats.rays.reflection, 100_000);
+}

@@ -6,6 +6,7 @@
 //! testing every object directly is cheaper than the node tests.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::intersect::{Aabb, Bounded, Ray};
 
@@ -80,7 +81,7 @@ impl Bvh {
             return (Bvh { nodes: Vec::new(), objects: objects.to_vec() }, order);
         }
         let mut items: Vec<Item> = objects
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(k, o)| {
                 let bounds = o.bounds();
@@ -88,10 +89,10 @@ impl Bvh {
             })
             .collect();
         let root = build_range(&mut items, 0, 0);
-        let mut nodes = Vec::with_capacity(2 * objects.len() / 2 + 1);
+        let mut nodes = Vec::with_capacity(objects.len());
         flatten(&root, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
-        let objects = order.iter().map(|&k| objects[k as usize]).collect();
+        let objects = order.par_iter().map(|&k| objects[k as usize]).collect();
         (Bvh { nodes, objects }, order)
     }
 
@@ -119,19 +120,48 @@ impl Bvh {
 
     /// The nearest hit with `0 < t < t_max`: `(t, object index in tree
     /// order)`, or `(t_max, u32::MAX)` for none.
-    #[inline]
+    ///
+    /// Inlined for flat lists, so that a ray just computed by the caller is
+    /// read from registers (loading it back from memory right after storing
+    /// it, in other widths, stalls store forwarding: measured 18% of the
+    /// time on the solar scene).
+    #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
+        if self.nodes.is_empty() {
+            let mut best = (t_max, u32::MAX);
+            test_range(&self.objects, 0, ray, &mut best);
+            return best;
+        }
+        self.closest_hit_in_tree(ray, t_max)
+    }
+
+    /// [`Bvh::closest_hit`] when there is a tree.
+    fn closest_hit_in_tree(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
         let inv_dir = ray.dir.recip();
         closest_in(&self.nodes, &self.objects, ray, t_max, |node, t| node.bounds.hit(ray, inv_dir, t))
     }
 
     /// Whether some object is hit at `0 < t < t_max`; stops at the first hit
     /// found (for shadow rays).
-    #[inline]
+    ///
+    /// Inlined for flat lists, as [`Bvh::closest_hit`] is.
+    #[inline(always)]
     pub fn any_hit(&self, ray: &Ray, t_max: f64) -> bool {
         if self.nodes.is_empty() {
-            return self.objects.iter().any(|o| o.hit(ray) < t_max);
+            // A plain loop: `Iterator::any` is not always inlined, which
+            // would put the ray through memory again.
+            for object in &self.objects {
+                if object.hit(ray) < t_max {
+                    return true;
+                }
+            }
+            return false;
         }
+        self.any_hit_in_tree(ray, t_max)
+    }
+
+    /// [`Bvh::any_hit`] when there is a tree.
+    fn any_hit_in_tree(&self, ray: &Ray, t_max: f64) -> bool {
         let inv_dir = ray.dir.recip();
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;

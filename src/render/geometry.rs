@@ -99,7 +99,7 @@ impl Geometry {
     }
 
     /// The nearest hit with `0 < t < t_max`, if any.
-    #[inline]
+    #[inline(always)]
     fn closest_hit(&self, ray: &Ray, t_max: f64) -> Option<GeometryHit> {
         let (mut t, index) = self.bvh.closest_hit(ray, t_max);
         let mut object = (index != u32::MAX).then_some(ObjectId::Bounded(index));
@@ -127,7 +127,7 @@ impl Geometry {
     }
 
     /// The surface data of a hit found by [`Geometry::closest_hit`].
-    #[inline]
+    #[inline(always)]
     fn surface(&self, ray: &Ray, hit: GeometryHit) -> SurfaceHit {
         let point = ray.at(hit.t);
         let (normal, material) = match hit.object {
@@ -184,7 +184,7 @@ impl Prepared {
     /// The nearest hit with `t > 0` (SPEC 6), with its point, facing normal
     /// and material. Ties (equal distances) are broken in a fixed order, so
     /// the answer does not depend on threads.
-    #[inline]
+    #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
         if let Some(merged) = &self.merged {
             return merged.closest_hit(ray, f64::INFINITY).map(|h| merged.surface(ray, h));

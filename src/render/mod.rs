@@ -118,6 +118,30 @@ pub struct RenderOptions {
     pub adaptive: bool,
 }
 
+/// Samples per pixel of [`RenderOptions::reference`]: a 16 x 16 stratified grid.
+pub const REFERENCE_SAMPLES: u32 = 256;
+
+impl RenderOptions {
+    /// The ground truth for error measurements (`--reference`): 256
+    /// stratified samples per pixel (a 16 x 16 grid, [`sample_offsets`]), no
+    /// work-saving shortcut at all ([`Skips::none`]), and f64 arithmetic
+    /// throughout (the renderer has no lower-precision path).
+    ///
+    /// Every field is spelt out rather than taken from the default, so that
+    /// a new option (say, adaptive sampling) must be decided on here.
+    pub const fn reference(width: u32, height: u32, depth: u32) -> RenderOptions {
+        RenderOptions {
+            width,
+            height,
+            depth,
+            samples: REFERENCE_SAMPLES,
+            screen: Screen::Centered,
+            skips: Skips::none(),
+            adaptive: false,
+        }
+    }
+}
+
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
         RenderOptions {
@@ -287,7 +311,7 @@ impl Job<'_> {
     /// parallel bands, or only the pixels flagged in `mask` if given, and
     /// adds the bands' counts to `stats`.
     fn run(&self, buffer: &mut [u8], mask: Option<&[bool]>, stats: &mut RenderStats) -> Result<(), Cancelled> {
-        let band_pixels = (TILE * self.width) as usize;
+        let band_pixels = TILE as usize * self.width as usize;
         if band_pixels == 0 {
             return Ok(());
         }

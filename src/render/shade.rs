@@ -162,6 +162,7 @@ impl<'a> Tracer<'a> {
     /// Follows the path from `ray` (at level `levels.len()`), appending a
     /// level per hit. Returns what lies past the last level and, when the
     /// cutoff stopped it, the reflected ray not traced.
+    #[inline(always)]
     fn follow(&mut self, levels: &mut Vec<Level>, mut ray: Ray, cutoff: bool) -> (Tail, Option<Ray>) {
         let mut weight: f64 = levels.iter().map(|l| l.ks).product();
         loop {
@@ -191,7 +192,7 @@ impl<'a> Tracer<'a> {
     /// Everything in SPEC 6's formula but the reflection term: the ambient
     /// part and, for each visible light on the front side, the diffuse and
     /// specular parts. Shadow rays start at `origin`, P moved off the surface.
-    #[inline]
+    #[inline(always)]
     fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> DVec3 {
         let Material { color, kd, ks, phong } = hit.material;
         let n = hit.normal;

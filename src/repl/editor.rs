@@ -20,7 +20,8 @@ use crate::lang::is_incomplete;
 use super::commands::{COMMANDS, is_command};
 use super::help;
 use super::session::Vocabulary;
-use super::syntax::{KEYWORDS, TokenKind, is_word_char, tokens};
+use super::syntax::{TokenKind, is_word_char, tokens};
+use crate::lang::lexer::keyword_names;
 
 /// Commands whose arguments are file names.
 const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim"];
@@ -84,7 +85,7 @@ impl RayHelper {
         if typed.is_empty() {
             return (pos, Vec::new());
         }
-        let keywords = KEYWORDS.iter().map(|k| keyword_candidate(k));
+        let keywords = keyword_names().map(keyword_candidate);
         let mut candidates: Vec<Pair> =
             keywords.chain(self.names.iter().cloned()).filter(|pair| pair.replacement.starts_with(typed)).collect();
         candidates.sort_by(|a, b| a.display.cmp(&b.display));

@@ -563,12 +563,12 @@ pub(crate) fn overview() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lang::lexer::keyword_names;
     use crate::repl::commands::COMMANDS;
-    use crate::repl::syntax::KEYWORDS;
 
     #[test]
     fn every_keyword_has_a_page_with_an_example() {
-        for keyword in KEYWORDS {
+        for keyword in keyword_names() {
             let topic = find(keyword).unwrap_or_else(|| panic!("no help for `{keyword}`"));
             assert!(topic.text.contains("Example"), "no example for `{keyword}`");
         }

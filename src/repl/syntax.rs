@@ -4,45 +4,7 @@
 //! The language's own lexer reports errors; this one never fails, because the
 //! line being edited is usually not a valid program yet.
 
-/// The reserved words of SPEC 1.
-pub(crate) const KEYWORDS: &[&str] = &[
-    "ambient",
-    "angle",
-    "box",
-    "by",
-    "camera",
-    "center",
-    "color",
-    "cos",
-    "distance",
-    "else",
-    "end",
-    "group",
-    "if",
-    "intensity",
-    "kd",
-    "ks",
-    "length",
-    "let",
-    "light",
-    "object",
-    "phong",
-    "pi",
-    "plane",
-    "proc",
-    "put",
-    "radius",
-    "rotate",
-    "rotation",
-    "scale",
-    "shift",
-    "sin",
-    "sphere",
-    "sqrt",
-    "then",
-    "translate",
-    "vector",
-];
+use crate::lang::lexer::keyword;
 
 /// Keywords that open a construct closed by `end`.
 const OPENERS: &[&str] =
@@ -152,7 +114,7 @@ pub(crate) fn continuation_prompt(pending: &str) -> String {
 fn classify_word(word: &str) -> TokenKind {
     if BUILTINS.contains(&word) {
         TokenKind::Builtin
-    } else if KEYWORDS.contains(&word) {
+    } else if keyword(word).is_some() {
         TokenKind::Keyword
     } else {
         TokenKind::Ident
