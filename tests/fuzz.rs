@@ -65,6 +65,9 @@ fn survives(text: &str) {
 }
 
 proptest! {
+    // Many cases: this stands in for a cargo-fuzz target, within CI's time.
+    #![proptest_config(ProptestConfig::with_cases(5_000))]
+
     #[test]
     fn token_soup_never_panics(
         tokens in prop::collection::vec(prop::sample::select(vocabulary()), 0..60),
