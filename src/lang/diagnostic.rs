@@ -180,6 +180,9 @@ mod render {
     /// The lines ariadne draws for `diagnostic`, after the header: the
     /// location, the source lines with their labels, and the closing line.
     pub(super) fn snippet(diagnostic: &Diagnostic, sources: &SourceMap, color: bool) -> String {
+        if !color {
+            return plain_snippet(diagnostic, sources);
+        }
         let file = sources.get(diagnostic.span.source);
         let (line, column) = file.line_col(floor_boundary(&file.text, diagnostic.span.start as usize));
         let location = format!("{}:{line}:{column}", file.name);
@@ -196,6 +199,42 @@ mod render {
         for line in lines {
             out.push_str(line.trim_end());
             out.push('\n');
+        }
+        out
+    }
+
+    /// The snippet in plain text, for pipes, logs and files (ariadne's ASCII
+    /// drawing is hard to read): rustc's layout, each labelled line once with
+    /// `^` under the spot and `-` under the related places.
+    fn plain_snippet(diagnostic: &Diagnostic, sources: &SourceMap) -> String {
+        let mut marks = vec![(diagnostic.span, '^', diagnostic.label.as_deref().unwrap_or(""))];
+        marks.extend(diagnostic.related.iter().map(|(span, text)| (*span, '-', text.as_str())));
+        marks.sort_by_key(|(span, _, _)| (span.source != diagnostic.span.source, span.source.0, span.start));
+        let place = |span: Span| {
+            let file = sources.get(span.source);
+            let start = floor_boundary(&file.text, span.start as usize);
+            let (line, column) = file.line_col(start);
+            (file, start, line, column)
+        };
+        let width = marks.iter().map(|(span, _, _)| place(*span).2.to_string().len()).max().unwrap_or(1);
+        let gutter = " ".repeat(width);
+        let (file, _, line, column) = place(diagnostic.span);
+        let mut out = format!("{gutter}--> {}:{line}:{column}\n{gutter} |\n", file.name);
+        let mut current = diagnostic.span.source;
+        for (span, mark, text) in marks {
+            let (file, start, line, column) = place(span);
+            if span.source != current {
+                current = span.source;
+                out.push_str(&format!("{gutter}::: {}:{line}:{column}\n{gutter} |\n", file.name));
+            }
+            let line_start = file.text[..start].rfind('\n').map_or(0, |i| i + 1);
+            let line_end = file.text[start..].find('\n').map_or(file.text.len(), |i| start + i);
+            let shown = printable(file.text[line_start..line_end].trim_end_matches('\r')).replace('\t', " ");
+            let end = floor_boundary(&file.text, (span.end as usize).clamp(start, line_end));
+            let marks = mark.to_string().repeat(file.text[start..end].chars().count().max(1));
+            let under = format!("{gutter} | {}{marks} {text}", " ".repeat(column - 1));
+            let source_line = format!("{line:>width$} | {shown}");
+            out.push_str(&format!("{}\n{}\n", source_line.trim_end(), under.trim_end()));
         }
         out
     }
@@ -302,12 +341,10 @@ mod tests {
             .with_help("did you mean `sphere`?");
         let expected = "\
 error: unknown object `spher`
-  --> scene.ray:2:5
-   |
- 2 | put spher
-   |     ^^|^^
-   |       `---- not defined
----'
+ --> scene.ray:2:5
+  |
+2 | put spher
+  |     ^^^^^ not defined
 help: did you mean `sphere`?
 ";
         assert_eq!(diagnostic.render(&map, false), expected);
@@ -319,12 +356,10 @@ help: did you mean `sphere`?
         let diagnostic = Diagnostic::error(Span::new(id, 18, 19), "unexpected character `$`");
         let expected = "\
 error: unexpected character `$`
-   --> script.ray:18:9
-    |
- 18 | let y = $
-    |         |
-    |         `-- here
-----'
+  --> script.ray:18:9
+   |
+18 | let y = $
+   |         ^
 ";
         assert_eq!(diagnostic.render(&map, false), expected);
     }
@@ -340,18 +375,14 @@ error: unexpected character `$`
             .with_note("called from the top level");
         let expected = "\
 error: `p` takes 1 argument, but 2 are given
-  --> <input>:1:1
-   |
- 1 | p(1, 2)
-   | ^^^|^^^
-   |    `----- 2 arguments
-   |
-   |-[ scene.ray:1:1 ]
-   |
- 1 | proc p(a)
-   | ^^^^|^^^^
-   |     `------ `p` is defined here
----'
+ --> <input>:1:1
+  |
+1 | p(1, 2)
+  | ^^^^^^^ 2 arguments
+ ::: scene.ray:1:1
+  |
+1 | proc p(a)
+  | --------- `p` is defined here
 note: called from the top level
 ";
         assert_eq!(diagnostic.render(&map, false), expected);
@@ -361,7 +392,7 @@ note: called from the top level
     fn warnings_say_so() {
         let (map, id) = map_with("a.ray", "color 300, 0, 0", 0);
         let rendered = Diagnostic::warning(Span::new(id, 6, 9), "clamped to 255").render(&map, false);
-        assert!(rendered.starts_with("warning: clamped to 255\n  --> a.ray:1:7\n"), "{rendered}");
+        assert!(rendered.starts_with("warning: clamped to 255\n --> a.ray:1:7\n"), "{rendered}");
     }
 
     #[test]
@@ -379,7 +410,7 @@ note: called from the top level
     fn an_empty_text_or_a_span_past_its_end_still_renders() {
         let (map, id) = map_with("empty.ray", "", 0);
         let rendered = Diagnostic::error(Span::new(id, 0, 0), "empty").render(&map, false);
-        assert_eq!(rendered, "error: empty\n --> empty.ray:1:1\n");
+        assert_eq!(rendered, "error: empty\n --> empty.ray:1:1\n  |\n1 |\n  | ^\n");
         let (map, id) = map_with("a.ray", "é", 0);
         let rendered = Diagnostic::error(Span::new(id, 1, 40), "inside a character").render(&map, false);
         assert!(rendered.contains("a.ray:1:"), "{rendered}");
