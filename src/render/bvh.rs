@@ -184,6 +184,12 @@ impl SharedFrame {
     /// [`Bvh::any_hit`] through the frame.
     fn any_hit(&self, nodes: &[Node], ray: &Ray, t_max: f64) -> bool {
         let (local, inv) = self.local_ray(ray);
+        // Far child first (on the split axis, the child the ray moves
+        // towards): a shadow ray leaves a lit face, whose own side of the
+        // tree is mostly empty in the light's direction, and the occluders
+        // lie further on. Callgrind, sponge4 at 320x180: any-hit 196.4M ->
+        // 163.5M Ir (near child first: 205.7M; left child first: 196.4M).
+        let far_is_right = [local.dir.x >= 0.0, local.dir.y >= 0.0, local.dir.z >= 0.0];
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
         let mut current = 0usize;
@@ -198,9 +204,14 @@ impl SharedFrame {
                         return true;
                     }
                 } else {
-                    stack[top] = node.index;
+                    let (first, second) = if far_is_right[node.axis as usize] {
+                        (node.index as usize, current + 1)
+                    } else {
+                        (current + 1, node.index as usize)
+                    };
+                    stack[top] = second as u32;
                     top += 1;
-                    current += 1;
+                    current = first;
                     continue;
                 }
             }
