@@ -572,6 +572,55 @@ proptest! {
     }
 }
 
+/// Boxes that all share one turned frame (the renderer groups them in that
+/// frame), on a grid where neighbours touch, and some randomly placed.
+fn shared_axes_boxes() -> impl Strategy<Value = Vec<Bounded>> {
+    let cell = (0..6i32, 0..6i32, 0..6i32);
+    ((0.0..6.3f64, 0.0..6.3f64), prop::collection::vec(cell, 0..120), prop::collection::vec(-8.0..8.0f64, 0..30))
+        .prop_map(|((a, b), cells, loose)| {
+            let axes = DMat3::from_rotation_y(a) * DMat3::from_rotation_x(b);
+            let boxed = |c: DVec3, half: DVec3| Bounded::Box(BoxShape { center: c, half, to_local: axes.transpose() });
+            let grid = cells.into_iter().map(|(x, y, z)| {
+                boxed(axes * (DVec3::new(f64::from(x), f64::from(y), f64::from(z)) - 2.5), DVec3::splat(0.5))
+            });
+            let scattered = loose
+                .chunks(3)
+                .map(|c| boxed(DVec3::from_slice(&[c[0], c[0] * 0.7, c[0] * -0.3]), DVec3::new(0.3, 0.6, 0.2)));
+            grid.chain(scattered).collect()
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn bvh_over_boxes_with_shared_axes_agrees_with_brute_force(
+        objects in shared_axes_boxes(),
+        rays in prop::collection::vec(ray_strategy(), 1..20),
+    ) {
+        let (bvh, order) = Bvh::build(&objects);
+        for ray in &rays {
+            let brute = objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
+            let (t, index) = bvh.closest_hit(ray, f64::INFINITY);
+            if brute == f64::INFINITY {
+                prop_assert_eq!(index, u32::MAX);
+            } else {
+                prop_assert_eq!(t, brute);
+                prop_assert_eq!(objects[order[index as usize] as usize].hit(ray), t);
+                // A secondary ray from the hit (the way shading starts them).
+                let hit = &objects[order[index as usize] as usize];
+                let n = hit.normal(ray, t);
+                let p = ray.at(t) + n * 1e-9;
+                let out = Ray::new(p, n);
+                let brute_out = objects.iter().map(|o| o.hit(&out)).fold(f64::INFINITY, f64::min);
+                prop_assert_eq!(bvh.closest_hit(&out, f64::INFINITY).0, brute_out);
+                prop_assert_eq!(bvh.any_hit(&out, f64::INFINITY), brute_out < f64::INFINITY);
+            }
+            prop_assert_eq!(bvh.any_hit(ray, f64::INFINITY), brute < f64::INFINITY);
+        }
+    }
+}
+
 fn primitive_strategy() -> impl Strategy<Value = Primitive> {
     let m = material([0.5, 0.5, 0.5], 0.5, 0.5, 10.0);
     prop_oneof![

@@ -117,36 +117,61 @@ impl BoxShape {
     /// own frame).
     #[inline]
     fn slabs(&self, ray: &Ray) -> (DVec3, DVec3) {
-        let o = self.to_local * (ray.origin - self.center);
         let d = self.to_local * ray.dir;
-        let inv = d.recip();
-        let t1 = (-self.half - o) * inv;
-        let t2 = (self.half - o) * inv;
-        // A ray lying in a face plane gives `0 * ∞ = NaN` for that face.
-        // glam's `min`/`max` return their right operand on NaN, and the NaN
-        // then made `max_element`/`min_element` drop another axis's bound (a
-        // phantom hit outside the box); `f64::min`/`max` return the other,
-        // infinite, distance, so such a ray misses (it sees the face edge-on).
-        (
-            DVec3::new(t1.x.min(t2.x), t1.y.min(t2.y), t1.z.min(t2.z)),
-            DVec3::new(t1.x.max(t2.x), t1.y.max(t2.y), t1.z.max(t2.z)),
-        )
+        slabs_in_frame(self.to_local, self.center, self.half, ray.origin, d.recip())
     }
 
+    /// Distance to the nearest hit with `t > 0`, or infinity, for a box
+    /// whose axes are `to_local`, given the ray's `1 / (to_local * dir)`
+    /// (computed once per ray when many boxes share their axes): the same
+    /// arithmetic as [`BoxShape::hit`], so the same answer to the bit.
+    #[inline(always)]
+    pub fn hit_in_frame(to_local: DMat3, center: DVec3, half: DVec3, origin: DVec3, inv: DVec3) -> f64 {
+        let (near, far) = slabs_in_frame(to_local, center, half, origin, inv);
+        entry_or_exit(near, far)
+    }
+}
+
+/// [`BoxShape::slabs`] with the ray direction in the box's frame already
+/// inverted (`inv`).
+#[inline(always)]
+fn slabs_in_frame(to_local: DMat3, center: DVec3, half: DVec3, origin: DVec3, inv: DVec3) -> (DVec3, DVec3) {
+    let o = to_local * (origin - center);
+    let t1 = (-half - o) * inv;
+    let t2 = (half - o) * inv;
+    // A ray lying in a face plane gives `0 * ∞ = NaN` for that face.
+    // glam's `min`/`max` return their right operand on NaN, and the NaN
+    // then made `max_element`/`min_element` drop another axis's bound (a
+    // phantom hit outside the box); `f64::min`/`max` return the other,
+    // infinite, distance, so such a ray misses (it sees the face edge-on).
+    (
+        DVec3::new(t1.x.min(t2.x), t1.y.min(t2.y), t1.z.min(t2.z)),
+        DVec3::new(t1.x.max(t2.x), t1.y.max(t2.y), t1.z.max(t2.z)),
+    )
+}
+
+/// The hit distance from the slab distances: the entry point when the
+/// origin is outside, the exit point when it is inside, infinity for none.
+#[inline(always)]
+fn entry_or_exit(near: DVec3, far: DVec3) -> f64 {
+    let t_near = near.max_element();
+    let t_far = far.min_element();
+    if t_near > t_far || t_far <= 0.0 {
+        f64::INFINITY
+    } else if t_near > 0.0 {
+        t_near
+    } else {
+        t_far
+    }
+}
+
+impl BoxShape {
     /// Distance to the nearest hit with `t > 0`, or infinity: the entry point
     /// when the origin is outside, the exit point when it is inside.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> f64 {
         let (near, far) = self.slabs(ray);
-        let t_near = near.max_element();
-        let t_far = far.min_element();
-        if t_near > t_far || t_far <= 0.0 {
-            f64::INFINITY
-        } else if t_near > 0.0 {
-            t_near
-        } else {
-            t_far
-        }
+        entry_or_exit(near, far)
     }
 
     /// The unit normal of the face hit by `ray`, facing the side the ray comes
