@@ -18,45 +18,17 @@ use image::RgbImage;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_items};
 use rayrepl::render::shade::offset_origin;
 use rayrepl::render::{Prepared, PrimaryRays, Ray, RenderControl, RenderOptions, Screen, Skips, render};
-use rayrepl::scene::{Camera, Light, Material, Primitive, Scene, Shape, TimeUse};
+use rayrepl::scene::{Material, Scene, Shape};
+
+mod common;
+use common::{cube, light, material, plane, scene, sphere};
 
 // ---------------------------------------------------------------- helpers
-
-fn material(color: [f64; 3], kd: f64, ks: f64, phong: f64) -> Material {
-    Material { color: DVec3::from(color), kd, ks, phong }
-}
 
 /// A matte material (ks = 0): flat faces under directional lights get one
 /// uniform colour, which makes acne easy to see.
 fn matte(color: [f64; 3]) -> Material {
     material(color, 0.8, 0.0, 1.0)
-}
-
-fn sphere(center: [f64; 3], radius: f64, material: Material) -> Primitive {
-    Primitive { shape: Shape::Sphere { center: DVec3::from(center), radius }, material }
-}
-
-fn plane(normal: [f64; 3], shift: f64, material: Material) -> Primitive {
-    Primitive { shape: Shape::Plane { normal: DVec3::from(normal).normalize(), shift }, material }
-}
-
-fn cube(center: [f64; 3], length: [f64; 3], axes: DMat3, material: Material) -> Primitive {
-    Primitive { shape: Shape::Box { center: DVec3::from(center), half: DVec3::from(length) / 2.0, axes }, material }
-}
-
-fn light(direction: [f64; 3], intensity: f64) -> Light {
-    Light { direction: DVec3::from(direction).normalize(), intensity }
-}
-
-fn scene(distance: f64, angle: f64, ambient: f64, lights: Vec<Light>, primitives: Vec<Primitive>) -> Scene {
-    Scene {
-        camera: Camera { distance, angle },
-        ambient,
-        lights,
-        primitives,
-        timed_primitives: Vec::new(),
-        time_use: TimeUse::default(),
-    }
 }
 
 /// The scene of a `.ray` program (session-style items) that must succeed.
