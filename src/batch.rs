@@ -12,14 +12,11 @@ use image::RgbImage;
 use crate::cli::Cli;
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_file};
-use crate::output::{self, ImageFormat};
+use crate::output::{self, FrameSink, ImageFormat};
 use crate::progress::Progress;
 use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
 use crate::repl::{self, RenderSettings, SessionOptions};
 use crate::scene::Scene;
-
-/// How long each frame of an animated GIF is shown (25 frames per second).
-const GIF_FRAME_MS: u32 = 40;
 
 /// Runs what the command line asks for and returns the process's exit code.
 ///
@@ -272,7 +269,7 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     let first = frontend.evaluate(f64::from(*frames.start()), false)?;
     let first_prepared = Prepared::new(&first);
     let static_part = Arc::clone(first_prepared.static_part());
-    let mut frame_writer = FrameWriter::new(output, count as usize);
+    let mut frames_out = FrameSink::new(output, count as usize);
     let mut total = RenderStats::default();
     let mut still_image: Option<RgbImage> = None;
     for k in frames.clone() {
@@ -293,13 +290,13 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
             add_stats(&mut total, &stats);
             image
         };
-        frame_writer.push(k as usize, image)?;
+        frames_out.add(k as usize, image).map_err(|e| format!("rayrepl: {e}"))?;
     }
     progress.finish();
     if cli.stats {
         print_stats(&total, frames.count());
     }
-    frame_writer.finish()
+    frames_out.finish().map(drop).map_err(|e| format!("rayrepl: {e}"))
 }
 
 /// Adds one frame's statistics to a running total.
@@ -307,42 +304,6 @@ fn add_stats(total: &mut RenderStats, frame: &RenderStats) {
     total.rays += frame.rays;
     total.resumed_paths += frame.resumed_paths;
     total.elapsed += frame.elapsed;
-}
-
-/// Writes frames as they come: numbered images at once, or a GIF at the end.
-struct FrameWriter<'a> {
-    output: &'a Path,
-    count: usize,
-    gif_frames: Option<Vec<RgbImage>>,
-}
-
-impl<'a> FrameWriter<'a> {
-    /// A writer for an animation of `count` frames named after `output`.
-    fn new(output: &'a Path, count: usize) -> FrameWriter<'a> {
-        FrameWriter { output, count, gif_frames: is_gif(output).then(Vec::new) }
-    }
-
-    /// Writes (or keeps, for a GIF) frame `k`.
-    fn push(&mut self, k: usize, image: RgbImage) -> Result<(), String> {
-        match &mut self.gif_frames {
-            Some(frames) => {
-                frames.push(image);
-                Ok(())
-            }
-            None => {
-                let path = output::frame_path(self.output, k, self.count);
-                output::write_image(&path, &image).map_err(|e| format!("rayrepl: {e}"))
-            }
-        }
-    }
-
-    /// Writes the GIF, if that is what was asked for.
-    fn finish(self) -> Result<(), String> {
-        match self.gif_frames {
-            Some(frames) => output::write_gif(self.output, &frames, GIF_FRAME_MS).map_err(|e| format!("rayrepl: {e}")),
-            None => Ok(()),
-        }
-    }
 }
 
 /// Prints `--stats`: rays of each kind, render time and throughput.

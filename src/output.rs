@@ -138,6 +138,54 @@ pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), 
     })
 }
 
+/// How long each frame of an animated GIF is shown: 25 frames a second.
+pub const GIF_FRAME_DELAY_MS: u32 = 40;
+
+/// Where the frames of an animation go as they are rendered: kept for one
+/// animated GIF if the file name ends in `.gif`, otherwise written at once as
+/// numbered images (`spin.png` gives `spin0001.png`, ...), so that a long
+/// animation does not have to fit in memory.
+pub struct FrameSink {
+    path: PathBuf,
+    count: usize,
+    gif_frames: Option<Vec<RgbImage>>,
+    written: Vec<PathBuf>,
+}
+
+impl FrameSink {
+    /// A sink for `count` frames named after `path`.
+    pub fn new(path: &Path, count: usize) -> FrameSink {
+        let gif = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gif"));
+        FrameSink {
+            path: path.to_path_buf(),
+            count,
+            gif_frames: gif.then(|| Vec::with_capacity(count)),
+            written: Vec::new(),
+        }
+    }
+
+    /// Takes frame number `frame` (from 1).
+    pub fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), OutputError> {
+        if let Some(frames) = &mut self.gif_frames {
+            frames.push(image);
+            return Ok(());
+        }
+        let path = frame_path(&self.path, frame, self.count);
+        write_image(&path, &image)?;
+        self.written.push(path);
+        Ok(())
+    }
+
+    /// Writes what is left to write; returns the files written.
+    pub fn finish(mut self) -> Result<Vec<PathBuf>, OutputError> {
+        if let Some(frames) = self.gif_frames.take() {
+            write_gif(&self.path, &frames, GIF_FRAME_DELAY_MS)?;
+            self.written.push(self.path);
+        }
+        Ok(self.written)
+    }
+}
+
 /// The file name of frame `k` of `n`: the frame number, zero-padded to at
 /// least 4 digits (more if `n` needs them), inserted before the extension:
 /// `out.png` gives `out0001.png`.

@@ -9,14 +9,13 @@ use image::RgbImage;
 
 use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
+use crate::output::{FrameSink, OutputError};
 use crate::render::Prepared;
 use crate::scene::Scene;
 
 use super::console::Console;
 use super::help;
-use super::rendering::{
-    FrameSink, ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_image,
-};
+use super::rendering::{ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_image};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 
@@ -278,7 +277,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let size = Size { width: session.settings().width, height: session.settings().height };
     let started = Instant::now();
     let mut sink = FrameSink::new(&path, frames as usize);
-    let cannot_write = |e: String| CommandError::Failed(format!("cannot write {}: {e}", path.display()));
+    let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
     render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write))?;
     let written = sink.finish().map_err(cannot_write)?;
     let names = match written.as_slice() {

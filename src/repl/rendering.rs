@@ -1,7 +1,7 @@
 //! Turning the session's scene into images: the one call into the renderer,
 //! progress and cancellation around it, and writing image files.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::thread;
 use std::time::{Duration, Instant};
@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::output::{frame_path, write_gif};
+use crate::output::{GIF_FRAME_DELAY_MS, write_gif};
 use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, Screen, render};
 use crate::scene::Scene;
 
@@ -178,10 +178,6 @@ impl ImageFormat {
     }
 }
 
-/// Delay between the frames of an animated GIF: 25 frames a second, as for
-/// `rayrepl --anim`.
-const GIF_FRAME_DELAY_MS: u32 = 40;
-
 /// Writes one image to `path`, in the format its extension names.
 pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
     let written = match ImageFormat::of(path) {
@@ -189,51 +185,6 @@ pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
         _ => crate::output::write_image(path, image),
     };
     written.map_err(|e| e.to_string())
-}
-
-/// Where the frames of an animation go as they are rendered: kept for one
-/// animated GIF if the file name ends in `.gif`, otherwise written at once as
-/// numbered images (`spin.png` gives `spin0001.png`, ...), so that a long
-/// animation does not have to fit in memory.
-pub(crate) struct FrameSink {
-    path: PathBuf,
-    count: usize,
-    gif_frames: Option<Vec<RgbImage>>,
-    written: Vec<PathBuf>,
-}
-
-impl FrameSink {
-    /// A sink for `count` frames named after `path`.
-    pub(crate) fn new(path: &Path, count: usize) -> FrameSink {
-        let gif = ImageFormat::of(path) == Some(ImageFormat::Gif);
-        FrameSink {
-            path: path.to_path_buf(),
-            count,
-            gif_frames: gif.then(|| Vec::with_capacity(count)),
-            written: Vec::new(),
-        }
-    }
-
-    /// Takes frame number `frame` (from 1).
-    pub(crate) fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), String> {
-        if let Some(frames) = &mut self.gif_frames {
-            frames.push(image);
-            return Ok(());
-        }
-        let path = frame_path(&self.path, frame, self.count);
-        crate::output::write_image(&path, &image).map_err(|e| e.to_string())?;
-        self.written.push(path);
-        Ok(())
-    }
-
-    /// Writes what is left to write; returns the files written.
-    pub(crate) fn finish(mut self) -> Result<Vec<PathBuf>, String> {
-        if let Some(frames) = self.gif_frames.take() {
-            write_gif(&self.path, &frames, GIF_FRAME_DELAY_MS).map_err(|e| e.to_string())?;
-            self.written.push(self.path);
-        }
-        Ok(self.written)
-    }
 }
 
 #[cfg(test)]
