@@ -1,6 +1,8 @@
 //! Batch work from the command line: checking, rendering still images and
 //! animations of a scene file.
 
+use std::cell::RefCell;
+use std::collections::HashSet;
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -11,7 +13,7 @@ use image::RgbImage;
 
 use crate::cli::Cli;
 use crate::lang::ast::Program;
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_file};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
 use crate::output::{self, FrameSink, ImageFormat};
 use crate::progress::Progress;
 use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
@@ -92,31 +94,31 @@ struct Frontend {
     sources: SourceMap,
     program: Program,
     limits: Limits,
+    /// The warnings already printed.
+    warned: RefCell<HashSet<(Span, String)>>,
 }
 
 impl Frontend {
     /// Parses the file `id` of `sources`.
     fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<Frontend, String> {
         let program = parse_file(id, &sources.get(id).text).map_err(|d| show(&sources, &d))?;
-        Ok(Frontend { sources, program, limits: limits(cli) })
+        Ok(Frontend { sources, program, limits: limits(cli), warned: RefCell::default() })
     }
 
     /// Evaluates the program at `time`, printing warnings on stderr. With
     /// `skip_static`, primitives that do not depend on `time` are not kept
     /// (an animation's later frames reuse the first frame's).
+    /// A warning is printed once per run, however many frames raise it.
     fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, String> {
-        Ok(self.evaluate_interpreter(time, skip_static)?.into_scene())
-    }
-
-    /// Like [`Frontend::evaluate`], keeping the interpreter (to ask what it read).
-    fn evaluate_interpreter(&self, time: f64, skip_static: bool) -> Result<Interpreter, String> {
         let mut interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
         let result = interpreter.run_with_sources(&self.program, &self.sources);
         for warning in interpreter.take_warnings() {
-            eprint!("{}", show(&self.sources, &warning));
+            if self.warned.borrow_mut().insert((warning.span, warning.message.clone())) {
+                eprint!("{}", show(&self.sources, &warning));
+            }
         }
         result.map_err(|d| show(&self.sources, &d))?;
-        Ok(interpreter)
+        Ok(interpreter.into_scene())
     }
 }
 

@@ -339,3 +339,14 @@ fn adaptive_sampling_is_accepted() {
         .success();
     assert!(out.exists());
 }
+
+#[test]
+fn an_animation_warns_once_not_once_per_frame() {
+    let text = "camera distance 10 angle 1 end\nambient 0.2\n\
+                put sphere center time, 0, 0 radius 1 kd 2 ks 0 phong 1 color 255, 0, 0 end\n";
+    let (dir, path) = scene(text);
+    let out = dir.path().join("w.png");
+    let assert = rayrepl().arg(&path).args(["--width", "8", "--height", "8", "--anim", "3", "-o"]).arg(&out).assert();
+    let stderr = String::from_utf8_lossy(&assert.success().get_output().stderr).into_owned();
+    assert_eq!(stderr.matches("warning:").count(), 1, "{stderr}");
+}
