@@ -5,6 +5,8 @@
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
 
+use std::cell::Cell;
+
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
@@ -143,42 +145,24 @@ impl SharedFrame {
     /// [`Bvh::closest_hit`] through the frame; `nodes` are the tree's links.
     fn closest_hit(&self, nodes: &[Node], ray: &Ray, t_max: f64) -> (f64, u32) {
         let (local, inv) = self.local_ray(ray);
-        // The tree was split along the frame's axes.
+        // The tree was split along the frame's axes: near child first, as in `closest_in`.
         let dir_negative = [local.dir.x < 0.0, local.dir.y < 0.0, local.dir.z < 0.0];
-        let mut best = (t_max, u32::MAX);
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &nodes[current];
-            if self.bounds[current].hit(&local, inv, best.0) {
-                if node.count > 0 {
-                    let start = node.index as usize;
-                    for (k, &(center, half)) in self.boxes[start..start + node.count as usize].iter().enumerate() {
-                        let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
-                        if t < best.0 {
-                            best = (t, (start + k) as u32);
-                        }
+        let best = Cell::new((t_max, u32::MAX));
+        walk(
+            nodes,
+            |k| self.bounds[k].hit(&local, inv, best.get().0),
+            |axis| dir_negative[axis as usize],
+            |start, count| {
+                for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
+                    let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
+                    if t < best.get().0 {
+                        best.set((t, (start + k) as u32));
                     }
-                } else {
-                    // Near child first, as in `closest_in`.
-                    let (first, second) = if dir_negative[node.axis as usize] {
-                        (node.index as usize, current + 1)
-                    } else {
-                        (current + 1, node.index as usize)
-                    };
-                    stack[top] = second as u32;
-                    top += 1;
-                    current = first;
-                    continue;
                 }
-            }
-            if top == 0 {
-                return best;
-            }
-            top -= 1;
-            current = stack[top] as usize;
-        }
+                false
+            },
+        );
+        best.get()
     }
 
     /// [`Bvh::any_hit`] through the frame.
@@ -190,37 +174,16 @@ impl SharedFrame {
         // lie further on. Callgrind, sponge4 at 320x180: any-hit 196.4M ->
         // 163.5M Ir (near child first: 205.7M; left child first: 196.4M).
         let far_is_right = [local.dir.x >= 0.0, local.dir.y >= 0.0, local.dir.z >= 0.0];
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &nodes[current];
-            if self.bounds[current].hit(&local, inv, t_max) {
-                if node.count > 0 {
-                    let start = node.index as usize;
-                    if self.boxes[start..start + node.count as usize].iter().any(|&(center, half)| {
-                        BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max
-                    }) {
-                        return true;
-                    }
-                } else {
-                    let (first, second) = if far_is_right[node.axis as usize] {
-                        (node.index as usize, current + 1)
-                    } else {
-                        (current + 1, node.index as usize)
-                    };
-                    stack[top] = second as u32;
-                    top += 1;
-                    current = first;
-                    continue;
-                }
-            }
-            if top == 0 {
-                return false;
-            }
-            top -= 1;
-            current = stack[top] as usize;
-        }
+        walk(
+            nodes,
+            |k| self.bounds[k].hit(&local, inv, t_max),
+            |axis| far_is_right[axis as usize],
+            |start, count| {
+                self.boxes[start..start + count]
+                    .iter()
+                    .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
+            },
+        )
     }
 }
 
@@ -348,30 +311,12 @@ impl Bvh {
             return shared.any_hit(&self.nodes, ray, t_max);
         }
         let inv_dir = ray.dir.recip();
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &self.nodes[current];
-            if node.bounds.hit(ray, inv_dir, t_max) {
-                if node.count > 0 {
-                    let start = node.index as usize;
-                    if self.objects[start..start + node.count as usize].iter().any(|o| o.hit(ray) < t_max) {
-                        return true;
-                    }
-                } else {
-                    stack[top] = node.index;
-                    top += 1;
-                    current += 1;
-                    continue;
-                }
-            }
-            if top == 0 {
-                return false;
-            }
-            top -= 1;
-            current = stack[top] as usize;
-        }
+        walk(
+            &self.nodes,
+            |k| self.nodes[k].bounds.hit(ray, inv_dir, t_max),
+            |_| false,
+            |start, count| self.objects[start..start + count].iter().any(|o| o.hit(ray) < t_max),
+        )
     }
 
     /// The depth of the tree (1 for a single leaf, 0 without a tree).
@@ -485,25 +430,50 @@ fn closest_in<N: Linked>(
         test_range(objects, 0, ray, &mut best);
         return best;
     }
+    // Visit the child on the ray's side of the split first, so `best`
+    // shrinks early and prunes the other.
     let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
+    let best = Cell::new(best);
+    walk(
+        nodes,
+        |k| node_hit(&nodes[k], best.get().0),
+        |axis| dir_negative[axis as usize],
+        |start, count| {
+            let mut nearest = best.get();
+            test_range(&objects[start..start + count], start, ray, &mut nearest);
+            best.set(nearest);
+            false
+        },
+    );
+    best.get()
+}
+
+/// The depth-first walk of a flattened tree shared by every query, with an
+/// explicit stack: at a node whose box the ray `meets`, a leaf's objects go
+/// to `leaf(start, count)`, which returns true to stop the walk (the walk
+/// then returns true); of an inner node's two children, the one stored at
+/// the node's `index` is visited first when `index_first(axis)`, else the
+/// one right after the node.
+#[inline(always)]
+fn walk<N: Linked>(
+    nodes: &[N],
+    mut meets: impl FnMut(usize) -> bool,
+    index_first: impl Fn(u16) -> bool,
+    mut leaf: impl FnMut(usize, usize) -> bool,
+) -> bool {
     let mut stack = [0u32; STACK_SIZE];
     let mut top = 0usize;
     let mut current = 0usize;
     loop {
-        let node = &nodes[current];
-        if node_hit(node, best.0) {
-            let (index, count, axis) = node.links();
+        if meets(current) {
+            let (index, count, axis) = nodes[current].links();
             if count > 0 {
-                let start = index as usize;
-                test_range(&objects[start..start + count as usize], start, ray, &mut best);
+                if leaf(index as usize, count as usize) {
+                    return true;
+                }
             } else {
-                // Visit the child on the ray's side of the split first, so
-                // `best` shrinks early and prunes the other.
-                let (first, second) = if dir_negative[axis as usize] {
-                    (index as usize, current + 1)
-                } else {
-                    (current + 1, index as usize)
-                };
+                let (first, second) =
+                    if index_first(axis) { (index as usize, current + 1) } else { (current + 1, index as usize) };
                 stack[top] = second as u32;
                 top += 1;
                 current = first;
@@ -511,7 +481,7 @@ fn closest_in<N: Linked>(
             }
         }
         if top == 0 {
-            return best;
+            return false;
         }
         top -= 1;
         current = stack[top] as usize;
