@@ -2,8 +2,11 @@
 //! programs parse, with the precedence of SPEC 2.
 
 use proptest::prelude::*;
-use rayrepl::lang::ast::{BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func, InstrKind, Item};
+use rayrepl::lang::ast::{InstrKind, Item};
 use rayrepl::lang::{SourceId, SourceMap, is_incomplete, parse_file, parse_items};
+
+mod common;
+use common::sexpr::{cond, expr};
 
 // ---- Anything at all ------------------------------------------------------------
 
@@ -144,33 +147,6 @@ fn expected_expr(e: &E) -> String {
     }
 }
 
-/// The S-expression of a parsed expression.
-fn sexpr(e: &Expr) -> String {
-    match &e.kind {
-        ExprKind::Number(n) => format!("{n}"),
-        ExprKind::Var(name) => name.to_string(),
-        ExprKind::Pi => "pi".to_string(),
-        ExprKind::Neg(inner) => format!("(neg {})", sexpr(inner)),
-        ExprKind::Binary(op, a, b) => {
-            let op = match op {
-                BinOp::Add => '+',
-                BinOp::Sub => '-',
-                BinOp::Mul => '*',
-                BinOp::Div => '/',
-            };
-            format!("({op} {} {})", sexpr(a), sexpr(b))
-        }
-        ExprKind::Call(f, arg) => {
-            let f = match f {
-                Func::Sin => "sin",
-                Func::Cos => "cos",
-                Func::Sqrt => "sqrt",
-            };
-            format!("({f} {})", sexpr(arg))
-        }
-    }
-}
-
 fn expr_tree() -> impl Strategy<Value = E> {
     let leaf = prop_oneof![
         any::<u16>().prop_map(E::Num),
@@ -227,25 +203,6 @@ fn expected_cond(c: &C) -> String {
         C::Not(inner) => format!("(not {})", expected_cond(inner)),
         C::Cmp(op, a, b) => format!("({op} {} {})", expected_expr(a), expected_expr(b)),
         C::Paren(inner) => expected_cond(inner),
-    }
-}
-
-fn cond_sexpr(c: &Cond) -> String {
-    match &c.kind {
-        CondKind::Or(a, b) => format!("(or {} {})", cond_sexpr(a), cond_sexpr(b)),
-        CondKind::And(a, b) => format!("(and {} {})", cond_sexpr(a), cond_sexpr(b)),
-        CondKind::Not(inner) => format!("(not {})", cond_sexpr(inner)),
-        CondKind::Compare(op, a, b) => {
-            let op = match op {
-                CmpOp::Eq => "=",
-                CmpOp::Ne => "!=",
-                CmpOp::Lt => "<",
-                CmpOp::Le => "<=",
-                CmpOp::Gt => ">",
-                CmpOp::Ge => ">=",
-            };
-            format!("({op} {} {})", sexpr(a), sexpr(b))
-        }
     }
 }
 
@@ -350,7 +307,7 @@ proptest! {
         let program = parse_items(SourceId(0), &text).map_err(|d| TestCaseError::fail(d.message))?;
         let Some(Item::Instr(instr)) = program.items.first() else { panic!("one instruction") };
         let InstrKind::Let(_, parsed) = &instr.kind else { panic!("a let") };
-        prop_assert_eq!(sexpr(parsed), expected_expr(&e), "{}", text);
+        prop_assert_eq!(expr(parsed), expected_expr(&e), "{}", text);
     }
 
     #[test]
@@ -359,7 +316,7 @@ proptest! {
         let program = parse_items(SourceId(0), &text).map_err(|d| TestCaseError::fail(format!("{text}: {}", d.message)))?;
         let Some(Item::Instr(instr)) = program.items.first() else { panic!("one instruction") };
         let InstrKind::If(parsed, _, _) = &instr.kind else { panic!("an if") };
-        prop_assert_eq!(cond_sexpr(parsed), expected_cond(&c), "{}", text);
+        prop_assert_eq!(cond(parsed), expected_cond(&c), "{}", text);
     }
 
     #[test]

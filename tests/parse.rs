@@ -2,57 +2,13 @@
 //! ambiguity of conditions, the order of a file's parts, and the messages of
 //! syntax errors with their line and column.
 
-use rayrepl::lang::ast::{
-    BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func, Instr, InstrKind, Item, Obj, ObjKind, Program, Texture, Triple,
-};
+use rayrepl::lang::ast::{ExprKind, Instr, InstrKind, Item, Obj, ObjKind, Program, Texture, Triple};
 use rayrepl::lang::{Diagnostic, SourceId, SourceMap, parse_file, parse_items};
 
+mod common;
+use common::sexpr::{cond, expr};
+
 // ---- Helpers: compact S-expressions of AST shapes --------------------------
-
-fn expr(e: &Expr) -> String {
-    match &e.kind {
-        ExprKind::Number(n) => format!("{n}"),
-        ExprKind::Var(name) => name.to_string(),
-        ExprKind::Pi => "pi".to_string(),
-        ExprKind::Neg(inner) => format!("(neg {})", expr(inner)),
-        ExprKind::Binary(op, a, b) => {
-            let op = match op {
-                BinOp::Add => "+",
-                BinOp::Sub => "-",
-                BinOp::Mul => "*",
-                BinOp::Div => "/",
-            };
-            format!("({op} {} {})", expr(a), expr(b))
-        }
-        ExprKind::Call(f, arg) => {
-            let f = match f {
-                Func::Sin => "sin",
-                Func::Cos => "cos",
-                Func::Sqrt => "sqrt",
-            };
-            format!("({f} {})", expr(arg))
-        }
-    }
-}
-
-fn cond(c: &Cond) -> String {
-    match &c.kind {
-        CondKind::Or(a, b) => format!("(or {} {})", cond(a), cond(b)),
-        CondKind::And(a, b) => format!("(and {} {})", cond(a), cond(b)),
-        CondKind::Not(a) => format!("(not {})", cond(a)),
-        CondKind::Compare(op, a, b) => {
-            let op = match op {
-                CmpOp::Eq => "=",
-                CmpOp::Ne => "!=",
-                CmpOp::Lt => "<",
-                CmpOp::Le => "<=",
-                CmpOp::Gt => ">",
-                CmpOp::Ge => ">=",
-            };
-            format!("({op} {} {})", expr(a), expr(b))
-        }
-    }
-}
 
 fn triple(t: &Triple) -> String {
     format!("[{} {} {}]", expr(&t.parts[0]), expr(&t.parts[1]), expr(&t.parts[2]))

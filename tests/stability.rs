@@ -21,7 +21,7 @@ use rayrepl::render::{Prepared, PrimaryRays, Ray, RenderControl, RenderOptions, 
 use rayrepl::scene::{Material, Scene, Shape};
 
 mod common;
-use common::{cube, light, material, plane, scene, sphere};
+use common::scenes::{cube, light, material, plane, scene, sphere};
 
 // ---------------------------------------------------------------- helpers
 

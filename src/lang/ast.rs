@@ -55,6 +55,18 @@ pub enum BinOp {
     Div,
 }
 
+impl BinOp {
+    /// The operator as written: `+`, `-`, `*` or `/`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+        }
+    }
+}
+
 /// The built-in numeric functions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Func {
@@ -64,6 +76,17 @@ pub enum Func {
     Cos,
     /// `sqrt`
     Sqrt,
+}
+
+impl Func {
+    /// The function's name: `sin`, `cos` or `sqrt`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Sqrt => "sqrt",
+        }
+    }
 }
 
 /// A condition of an `if`.
@@ -103,6 +126,20 @@ pub enum CmpOp {
     Gt,
     /// `>=`
     Ge,
+}
+
+impl CmpOp {
+    /// The operator as written: `=`, `!=`, `<`, `<=`, `>` or `>=`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CmpOp::Eq => "=",
+            CmpOp::Ne => "!=",
+            CmpOp::Lt => "<",
+            CmpOp::Le => "<=",
+            CmpOp::Gt => ">",
+            CmpOp::Ge => ">=",
+        }
+    }
 }
 
 /// Three expressions separated by commas: a point, a vector, a rotation or a colour.
