@@ -23,12 +23,24 @@ pub struct Progress {
 impl Progress {
     /// Progress over `total` units, labelled `what` ("rendering").
     pub fn new(total: u64, what: &str) -> Progress {
+        Progress::styled(total, &format!("{what} [{{bar:40}}] {{percent:>3}}% eta {{eta}}"), true)
+    }
+
+    /// Progress of a render in the interactive session, which Ctrl-C can
+    /// cancel; `visible` is false where the session shows no bars (scripts).
+    pub fn in_session(total: u64, what: &str, visible: bool) -> Progress {
+        Progress::styled(total, &format!("{what} [{{bar:30}}] {{percent}}% ({{elapsed}}, Ctrl-C cancels)"), visible)
+    }
+
+    /// A bar drawn with the indicatif `template`, shown only when `visible`
+    /// and stderr is a terminal.
+    fn styled(total: u64, template: &str, visible: bool) -> Progress {
         let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
-        let template = format!("{what} [{{bar:40}}] {{percent:>3}}% eta {{eta}}");
-        if let Ok(style) = ProgressStyle::with_template(&template) {
+        if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
-        Progress { bar, start: Instant::now(), shown: OnceLock::new(), enabled: std::io::stderr().is_terminal() }
+        let enabled = visible && std::io::stderr().is_terminal();
+        Progress { bar, start: Instant::now(), shown: OnceLock::new(), enabled }
     }
 
     /// Records `units` more done; shows the bar once the work is slow enough to need it.
@@ -39,8 +51,14 @@ impl Progress {
         }
     }
 
-    /// Removes the bar from the screen.
+    /// Removes the bar from the screen (also done when it is dropped).
     pub fn finish(&self) {
         self.bar.finish_and_clear();
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        self.finish();
     }
 }

@@ -10,12 +10,13 @@ use image::RgbImage;
 use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
 use crate::output::{FrameSink, OutputError};
+use crate::progress::Progress;
 use crate::render::Prepared;
 use crate::scene::Scene;
 
 use super::console::Console;
 use super::help;
-use super::rendering::{ImageFormat, Progress, RenderError, RenderSettings, Size, render_image, write_image};
+use super::rendering::{ImageFormat, RenderError, RenderSettings, Size, render_image, write_image};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 
@@ -508,16 +509,12 @@ fn render_scene(
 ) -> Result<(RgbImage, Duration), CommandError> {
     let started = Instant::now();
     let total = size.width as usize * size.height as usize;
-    let progress = Progress { visible: console.progress, label: "rendering", total };
+    let progress = Progress::in_session(total as u64, "rendering", console.progress);
     let armed = console.cancel.map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
-    let image = progress
-        .run(|pixels| {
-            let prepared = Prepared::new(scene);
-            render_image(scene, &prepared, size, settings, cancel, pixels)
-        })
-        .map_err(render_failure)?;
+    let tick = |pixels: u64| progress.advance(pixels);
+    let image = render_image(scene, &Prepared::new(scene), size, settings, cancel, &tick).map_err(render_failure)?;
     Ok((image, started.elapsed()))
 }
 
@@ -535,34 +532,33 @@ fn render_frames(
     let timed = session.depends_on_time();
     let rendered_frames = if timed { frames as usize } else { 1 };
     let total = rendered_frames * size.width as usize * size.height as usize;
-    let progress = Progress { visible: console.progress, label: "animating", total };
+    let progress = Progress::in_session(total as u64, "animating", console.progress);
     let armed = console.cancel.map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
-    progress.run(|pixels| {
-        let render = |scene: &Scene, prepared: &Prepared| {
-            render_image(scene, prepared, size, &settings, cancel, pixels).map_err(render_failure)
-        };
-        if !timed {
-            // Nothing reads `time`: every frame is the same picture.
-            let scene = session.scene();
-            let image = render(scene, &Prepared::new(scene))?;
-            for frame in 1..=frames as usize {
-                sink(frame, image.clone())?;
-            }
-            return Ok(());
+    let tick = |pixels: u64| progress.advance(pixels);
+    let render = |scene: &Scene, prepared: &Prepared| {
+        render_image(scene, prepared, size, &settings, cancel, &tick).map_err(render_failure)
+    };
+    if !timed {
+        // Nothing reads `time`: every frame is the same picture.
+        let scene = session.scene();
+        let image = render(scene, &Prepared::new(scene))?;
+        for frame in 1..=frames as usize {
+            sink(frame, image.clone())?;
         }
-        let first = session.replay_at(1.0, false).map_err(|d| frame_failure(d, 1))?.into_scene();
-        let first_prepared = Prepared::new(&first);
-        sink(1, render(&first, &first_prepared)?)?;
-        for frame in 2..=frames {
-            let scene = session.replay_at(f64::from(frame), true).map_err(|d| frame_failure(d, frame))?.into_scene();
-            let static_part = Arc::clone(first_prepared.static_part());
-            let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
-            sink(frame as usize, render(&scene, &prepared)?)?;
-        }
-        Ok(())
-    })
+        return Ok(());
+    }
+    let first = session.replay_at(1.0, false).map_err(|d| frame_failure(d, 1))?.into_scene();
+    let first_prepared = Prepared::new(&first);
+    sink(1, render(&first, &first_prepared)?)?;
+    for frame in 2..=frames {
+        let scene = session.replay_at(f64::from(frame), true).map_err(|d| frame_failure(d, frame))?.into_scene();
+        let static_part = Arc::clone(first_prepared.static_part());
+        let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
+        sink(frame as usize, render(&scene, &prepared)?)?;
+    }
+    Ok(())
 }
 
 fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {

@@ -2,12 +2,9 @@
 //! progress and cancellation around it, and writing image files.
 
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::thread;
-use std::time::{Duration, Instant};
+use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::output::{GIF_FRAME_DELAY_MS, write_gif};
 use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, Screen, render};
@@ -62,14 +59,14 @@ pub(crate) enum RenderError {
 /// and samples of `settings`.
 ///
 /// This is the only place that calls the renderer. It stops when `cancel`
-/// is raised and counts finished pixels in `pixels_done`, for the progress bar.
+/// is raised and reports finished pixels to `progress`, for the progress bar.
 pub(crate) fn render_image(
     scene: &Scene,
     prepared: &Prepared,
     size: Size,
     settings: &RenderSettings,
     cancel: &AtomicBool,
-    pixels_done: &AtomicUsize,
+    progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RgbImage, RenderError> {
     let options = RenderOptions {
         width: size.width,
@@ -79,78 +76,10 @@ pub(crate) fn render_image(
         screen: settings.screen,
         ..RenderOptions::default()
     };
-    let count = |pixels: u64| {
-        pixels_done.fetch_add(pixels as usize, Ordering::Relaxed);
-    };
-    let control = RenderControl { progress: Some(&count), cancel: Some(cancel) };
+    let control = RenderControl { progress: Some(progress), cancel: Some(cancel) };
     match render(scene, prepared, &options, &control) {
         Ok((image, _stats)) => Ok(image),
         Err(Cancelled) => Err(RenderError::Cancelled),
-    }
-}
-
-/// Progress reporting for a long job: after half a second a bar appears on
-/// standard error, fed from a counter the job increments.
-pub(crate) struct Progress<'a> {
-    /// Whether to show a bar at all (interactive sessions only).
-    pub visible: bool,
-    /// What the bar says ("rendering", "animating").
-    pub label: &'a str,
-    /// The count at which the job is done.
-    pub total: usize,
-}
-
-/// How long a job runs before its progress bar appears.
-const PROGRESS_DELAY: Duration = Duration::from_millis(500);
-/// How often the bar is refreshed.
-const PROGRESS_TICK: Duration = Duration::from_millis(50);
-
-impl Progress<'_> {
-    /// Runs `job`, which counts its progress in the counter it is given, and
-    /// shows a bar if it lasts longer than half a second.
-    pub(crate) fn run<R>(&self, job: impl FnOnce(&AtomicUsize) -> R) -> R {
-        let counter = AtomicUsize::new(0);
-        let finished = AtomicBool::new(false);
-        thread::scope(|scope| {
-            let watcher = self.visible.then(|| scope.spawn(|| self.watch(&counter, &finished)));
-            let result = job(&counter);
-            finished.store(true, Ordering::SeqCst);
-            // Wake the watcher now rather than at its next tick: a fast
-            // render must not wait for it.
-            if let Some(watcher) = watcher {
-                watcher.thread().unpark();
-            }
-            result
-        })
-    }
-
-    fn watch(&self, counter: &AtomicUsize, finished: &AtomicBool) {
-        let started = Instant::now();
-        let mut bar: Option<ProgressBar> = None;
-        while !finished.load(Ordering::SeqCst) {
-            thread::park_timeout(PROGRESS_TICK);
-            if finished.load(Ordering::SeqCst) {
-                break;
-            }
-            if bar.is_none() && started.elapsed() >= PROGRESS_DELAY {
-                bar = Some(self.new_bar());
-            }
-            if let Some(bar) = &bar {
-                bar.set_position(counter.load(Ordering::Relaxed) as u64);
-            }
-        }
-        if let Some(bar) = bar {
-            bar.finish_and_clear();
-        }
-    }
-
-    fn new_bar(&self) -> ProgressBar {
-        let bar = ProgressBar::with_draw_target(Some(self.total as u64), ProgressDrawTarget::stderr());
-        if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:30}] {percent}% ({elapsed}, Ctrl-C cancels)") {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        bar.set_message(self.label.to_string());
-        bar
     }
 }
 
@@ -189,6 +118,8 @@ pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
 
 #[cfg(test)]
 mod tests {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
     use super::*;
 
     #[test]
@@ -210,8 +141,7 @@ mod tests {
         let size = Size { width: 64, height: 64 };
         let settings = RenderSettings::default();
         let cancel = AtomicBool::new(true);
-        let pixels = AtomicUsize::new(0);
-        let result = render_image(&scene, &Prepared::new(&scene), size, &settings, &cancel, &pixels);
+        let result = render_image(&scene, &Prepared::new(&scene), size, &settings, &cancel, &|_| {});
         assert_eq!(result, Err(RenderError::Cancelled));
     }
 
@@ -220,22 +150,11 @@ mod tests {
         let scene = empty_scene();
         let size = Size { width: 40, height: 20 };
         let (cancel, pixels) = (AtomicBool::new(false), AtomicUsize::new(0));
-        let image = render_image(&scene, &Prepared::new(&scene), size, &RenderSettings::default(), &cancel, &pixels);
+        let count = |done: u64| {
+            pixels.fetch_add(done as usize, Ordering::Relaxed);
+        };
+        let image = render_image(&scene, &Prepared::new(&scene), size, &RenderSettings::default(), &cancel, &count);
         assert_eq!(image.map(|i| i.dimensions()), Ok((40, 20)));
         assert_eq!(pixels.load(Ordering::Relaxed), 800);
-    }
-
-    #[test]
-    fn a_visible_progress_does_not_delay_a_fast_job() {
-        let progress = Progress { visible: true, label: "test", total: 1 };
-        let started = Instant::now();
-        progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed));
-        assert!(started.elapsed() < PROGRESS_TICK, "took {:?}", started.elapsed());
-    }
-
-    #[test]
-    fn progress_runs_the_job_and_returns_its_result() {
-        let progress = Progress { visible: false, label: "test", total: 1 };
-        assert_eq!(progress.run(|counter| counter.fetch_add(1, Ordering::Relaxed) + 41), 41);
     }
 }
