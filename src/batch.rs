@@ -6,11 +6,11 @@ use std::collections::HashSet;
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 use std::time::Instant;
 
 use image::RgbImage;
 
+use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
@@ -250,12 +250,8 @@ fn render_frame(
 }
 
 /// Renders frames `--frames` (default all) of an animation of `count`
-/// frames, frame k with `time = k`, to numbered images or one GIF.
-///
-/// The first frame is evaluated in full. When nothing in the scene depends
-/// on `time`, that one image serves for every frame; otherwise later frames
-/// re-run the program keeping only what depends on `time`, and reuse the
-/// first frame's geometry (and its BVH) for the rest.
+/// frames, frame k with `time = k`, to numbered images or one GIF (see
+/// [`animation`] for what is computed once and what per frame).
 fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<(), String> {
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
@@ -268,44 +264,21 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     let options = render_options(cli);
     let per_frame = u64::from(options.width) * u64::from(options.height);
     let progress = Progress::new(per_frame * u64::from(frames.end() - frames.start() + 1), "animating");
-    let first = frontend.evaluate(f64::from(*frames.start()), false)?;
-    let first_prepared = Prepared::new(&first);
-    let static_part = Arc::clone(first_prepared.static_part());
+    let tick = |pixels: u64| progress.advance(pixels);
+    let control = RenderControl { progress: Some(&tick), cancel: None };
     let mut frames_out = FrameSink::new(output, count as usize);
-    let mut total = RenderStats::default();
-    let mut still_image: Option<RgbImage> = None;
-    for k in frames.clone() {
-        let image = if let Some(image) = &still_image {
-            progress.advance(per_frame);
-            image.clone()
-        } else if k == *frames.start() {
-            let (image, stats) = render_frame(&first, &first_prepared, &options, &progress);
-            add_stats(&mut total, &stats);
-            if !first.depends_on_time() {
-                still_image = Some(image.clone());
-            }
-            image
-        } else {
-            let scene = frontend.evaluate(f64::from(k), true)?;
-            let prepared = Prepared::with_static(Arc::clone(&static_part), &scene.timed_primitives);
-            let (image, stats) = render_frame(&scene, &prepared, &options, &progress);
-            add_stats(&mut total, &stats);
-            image
-        };
-        frames_out.add(k as usize, image).map_err(|e| format!("rayrepl: {e}"))?;
-    }
+    let evaluate = |k: u32, skip_static: bool| frontend.evaluate(f64::from(k), skip_static);
+    let sink = |k: u32, image: RgbImage| frames_out.add(k as usize, image).map_err(|e| format!("rayrepl: {e}"));
+    let total = match render_animation(frames.clone(), evaluate, &options, &control, sink) {
+        Ok(total) => total,
+        Err(AnimationError::Failed(message)) => return Err(message),
+        Err(AnimationError::Cancelled) => unreachable!("a batch render is never cancelled"),
+    };
     progress.finish();
     if cli.stats {
         print_stats(&total, frames.count());
     }
     frames_out.finish().map(drop).map_err(|e| format!("rayrepl: {e}"))
-}
-
-/// Adds one frame's statistics to a running total.
-fn add_stats(total: &mut RenderStats, frame: &RenderStats) {
-    total.rays += frame.rays;
-    total.resumed_paths += frame.resumed_paths;
-    total.elapsed += frame.elapsed;
 }
 
 /// Prints `--stats`: rays of each kind, render time and throughput.

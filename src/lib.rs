@@ -5,6 +5,7 @@
 //! primitives ([`scene`]) → BVH ([`render::bvh`]) → rays and shading
 //! ([`render`]) → image file ([`output`]) or terminal preview ([`repl`]).
 
+pub mod animation;
 pub mod batch;
 pub mod cli;
 pub mod lang;

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::bvh::Bvh;
-use super::intersect::{Bounded, PlaneShape, Ray, ShapeClass};
+use super::intersect::{Aabb, Bounded, PlaneShape, Ray, ShapeClass};
 use crate::scene::{Material, Primitive, Scene};
 
 /// The primitives of one part of a scene, ready for ray queries.
@@ -48,6 +48,8 @@ pub struct SurfaceHit {
     pub normal: DVec3,
     /// The material of the object hit.
     pub material: Material,
+    /// Whether the object hit depends on `time` (is in [`Prepared::timed`]).
+    pub timed: bool,
 }
 
 impl Geometry {
@@ -128,7 +130,7 @@ impl Geometry {
 
     /// The surface data of a hit found by [`Geometry::closest_hit`].
     #[inline(always)]
-    fn surface(&self, ray: &Ray, hit: GeometryHit) -> SurfaceHit {
+    fn surface(&self, ray: &Ray, hit: GeometryHit, timed: bool) -> SurfaceHit {
         let point = ray.at(hit.t);
         let (normal, material) = match hit.object {
             ObjectId::Bounded(k) => {
@@ -137,8 +139,19 @@ impl Geometry {
             }
             ObjectId::Plane(k) => (self.planes[k as usize].normal(), self.plane_materials[k as usize]),
         };
-        SurfaceHit { t: hit.t, point, normal, material }
+        SurfaceHit { t: hit.t, point, normal, material, timed }
     }
+}
+
+/// What blocks a shadow ray ([`Prepared::blocker`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Blocker {
+    /// Nothing: the light is visible.
+    Nothing,
+    /// A primitive that does not depend on `time`.
+    Static,
+    /// Only primitives that depend on `time`.
+    Timed,
 }
 
 /// A scene's geometry split for animations: the static part (built once,
@@ -149,6 +162,18 @@ pub struct Prepared {
     timed: Geometry,
     /// Both parts in one flat list, when both are small.
     merged: Option<Geometry>,
+}
+
+impl ObjectId {
+    /// Whether, in the merged list of two geometries, this object comes
+    /// from the second one (`first` is the first one).
+    #[inline]
+    fn in_second(self, first: &Geometry) -> bool {
+        match self {
+            ObjectId::Bounded(k) => k as usize >= first.bvh.objects().len(),
+            ObjectId::Plane(k) => k as usize >= first.planes.len(),
+        }
+    }
 }
 
 impl Prepared {
@@ -187,16 +212,18 @@ impl Prepared {
     #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
         if let Some(merged) = &self.merged {
-            return merged.closest_hit(ray, f64::INFINITY).map(|h| merged.surface(ray, h));
+            return merged
+                .closest_hit(ray, f64::INFINITY)
+                .map(|h| merged.surface(ray, h, h.object.in_second(&self.static_part)));
         }
         let static_hit = self.static_part.closest_hit(ray, f64::INFINITY);
         if self.timed.is_empty() {
-            return static_hit.map(|h| self.static_part.surface(ray, h));
+            return static_hit.map(|h| self.static_part.surface(ray, h, false));
         }
         let t_max = static_hit.map_or(f64::INFINITY, |h| h.t);
         match self.timed.closest_hit(ray, t_max) {
-            Some(h) => Some(self.timed.surface(ray, h)),
-            None => static_hit.map(|h| self.static_part.surface(ray, h)),
+            Some(h) => Some(self.timed.surface(ray, h, true)),
+            None => static_hit.map(|h| self.static_part.surface(ray, h, false)),
         }
     }
 
@@ -229,5 +256,33 @@ impl Prepared {
             Some(merged) => merged.bvh.any_hit(ray, f64::INFINITY),
             None => self.static_part.bvh.any_hit(ray, f64::INFINITY) || self.timed.bvh.any_hit(ray, f64::INFINITY),
         }
+    }
+
+    /// [`Prepared::blocked`], saying which part blocks the ray (the static
+    /// part is asked first), for a scene whose timed part has no plane:
+    /// frame reuse needs to know whether the answer can change with `time`.
+    #[inline]
+    pub fn blocker(&self, ray: &Ray, planes: &[PlaneShape]) -> Blocker {
+        debug_assert!(self.timed.planes.is_empty(), "the blocking planes are taken as static");
+        if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift)
+            || self.static_part.bvh.any_hit(ray, f64::INFINITY)
+        {
+            Blocker::Static
+        } else if self.timed.bvh.any_hit(ray, f64::INFINITY) {
+            Blocker::Timed
+        } else {
+            Blocker::Nothing
+        }
+    }
+
+    /// Whether some primitive of the timed part is a plane (frame reuse
+    /// handles bounded moving objects only).
+    pub fn has_timed_planes(&self) -> bool {
+        !self.timed.planes.is_empty()
+    }
+
+    /// The bounding boxes of the timed part's bounded objects.
+    pub fn timed_bounds(&self) -> Vec<Aabb> {
+        self.timed.bvh.objects().iter().map(Bounded::bounds).collect()
     }
 }

@@ -40,7 +40,9 @@ pub mod bvh;
 pub mod camera;
 pub mod geometry;
 pub mod intersect;
+pub mod reuse;
 pub mod shade;
+pub mod sweep;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -52,8 +54,11 @@ use rayon::prelude::*;
 pub use camera::{PrimaryRays, Screen, sample_offsets};
 pub use geometry::{Geometry, Prepared, SurfaceHit};
 pub use intersect::Ray;
+use intersect::PlaneShape;
+pub use reuse::FrameReuse;
 pub use shade::RayCounts;
 use shade::{Lighting, Tracer};
+use sweep::Sweep;
 
 use crate::scene::Scene;
 
@@ -239,6 +244,15 @@ pub struct RenderStats {
     pub elapsed: Duration,
 }
 
+impl std::ops::AddAssign for RenderStats {
+    /// Sums two renders' counts and times (the frames of an animation).
+    fn add_assign(&mut self, other: RenderStats) {
+        self.rays += other.rays;
+        self.resumed_paths += other.resumed_paths;
+        self.elapsed += other.elapsed;
+    }
+}
+
 impl RenderStats {
     /// All rays traced.
     pub fn total_rays(&self) -> u64 {
@@ -265,35 +279,26 @@ pub fn render(
     control: &RenderControl,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
     let start = Instant::now();
-    let (width, height) = (options.width, options.height);
-    let mut buffer = vec![0u8; width as usize * height as usize * 3];
-    let blocking_planes: Vec<_> = scene.lights.iter().map(|l| prepared.planes_blocking(l.direction)).collect();
+    let mut image = RgbImage::new(options.width, options.height);
+    let blocking_planes = blocking_planes(scene, prepared);
     let adaptive = options.adaptive && options.samples > 1;
     let first_samples = if adaptive { 1 } else { options.samples };
-    let job = Job {
-        rays: PrimaryRays::new(&scene.camera, width, height, options.screen),
-        offsets: sample_offsets(first_samples),
-        lighting: Lighting {
-            ambient: scene.ambient,
-            lights: &scene.lights,
-            blocking_planes: &blocking_planes,
-            depth: options.depth,
-            skips: options.skips,
-        },
-        prepared,
-        width,
-        control,
-    };
+    let job = Job::new(scene, prepared, options, control, &blocking_planes, first_samples);
     let mut stats = RenderStats::default();
-    job.run(&mut buffer, None, &mut stats)?;
-    let mut image = RgbImage::from_raw(width, height, buffer).expect("the buffer has width * height * 3 bytes");
+    job.run(&mut image, None, &mut stats)?;
     if adaptive {
         let mask = refinement_mask(&image);
-        let refine = Job { offsets: sample_offsets(options.samples), ..job };
-        refine.run(&mut image, Some(&mask), &mut stats)?;
+        let refine = Job { offsets: sample_offsets(options.samples), report_all: false, ..job };
+        refine.run(&mut image, Some(Selection { flags: &mask, valid_until: None }), &mut stats)?;
     }
     stats.elapsed = start.elapsed();
     Ok((image, stats))
+}
+
+/// For each light of `scene`, the planes that can block rays towards it
+/// ([`Prepared::planes_blocking`]).
+fn blocking_planes(scene: &Scene, prepared: &Prepared) -> Vec<Vec<PlaneShape>> {
+    scene.lights.iter().map(|l| prepared.planes_blocking(l.direction)).collect()
 }
 
 /// Everything the pixel loop needs, shared by all threads.
@@ -304,26 +309,83 @@ struct Job<'a> {
     prepared: &'a Prepared,
     width: u32,
     control: &'a RenderControl<'a>,
+    /// Whether progress counts every pixel of a tile, or (a second pass
+    /// over pixels already counted) none.
+    report_all: bool,
+    /// Frame reuse: the frames' moving objects and the frame being
+    /// rendered (see [`sweep`]).
+    watch: Option<(&'a Sweep, u32)>,
 }
 
-impl Job<'_> {
+/// The pixels one pass renders, when not all of them.
+struct Selection<'a> {
+    /// One flag per pixel, row major: render it or keep its bytes.
+    flags: &'a [bool],
+    /// With frame reuse: for each pixel, the last frame its bytes hold for,
+    /// updated for the pixels rendered.
+    valid_until: Option<&'a mut [u32]>,
+}
+
+/// A band's share of a [`Selection`].
+struct BandSelection<'a> {
+    flags: &'a [bool],
+    valid_until: Option<&'a mut [u32]>,
+}
+
+impl<'a> Job<'a> {
+    /// The pass over every pixel of `scene` with `samples` samples each.
+    fn new(
+        scene: &'a Scene,
+        prepared: &'a Prepared,
+        options: &RenderOptions,
+        control: &'a RenderControl<'a>,
+        blocking_planes: &'a [Vec<PlaneShape>],
+        samples: u32,
+    ) -> Job<'a> {
+        Job {
+            rays: PrimaryRays::new(&scene.camera, options.width, options.height, options.screen),
+            offsets: sample_offsets(samples),
+            lighting: Lighting {
+                ambient: scene.ambient,
+                lights: &scene.lights,
+                blocking_planes,
+                depth: options.depth,
+                skips: options.skips,
+            },
+            prepared,
+            width: options.width,
+            control,
+            report_all: true,
+            watch: None,
+        }
+    }
+
     /// Renders the whole image into `buffer` (its RGB bytes, row major) in
-    /// parallel bands, or only the pixels flagged in `mask` if given, and
-    /// adds the bands' counts to `stats`.
-    fn run(&self, buffer: &mut [u8], mask: Option<&[bool]>, stats: &mut RenderStats) -> Result<(), Cancelled> {
+    /// parallel bands, or only the pixels of `selection` if given, and adds
+    /// the bands' counts to `stats`.
+    fn run(&self, buffer: &mut [u8], selection: Option<Selection>, stats: &mut RenderStats) -> Result<(), Cancelled> {
         let band_pixels = TILE as usize * self.width as usize;
         if band_pixels == 0 {
             return Ok(());
         }
-        let bands: Vec<BandStats> = buffer
+        let band_count = buffer.len().div_ceil(band_pixels * 3);
+        let selections: Vec<Option<BandSelection>> = match selection {
+            None => (0..band_count).map(|_| None).collect(),
+            Some(Selection { flags, valid_until }) => {
+                let mut valid_until = valid_until.map(|v| v.chunks_mut(band_pixels));
+                flags
+                    .chunks(band_pixels)
+                    .map(|flags| Some(BandSelection { flags, valid_until: valid_until.as_mut().and_then(Iterator::next) }))
+                    .collect()
+            }
+        };
+        let results: Vec<BandStats> = buffer
             .par_chunks_mut(band_pixels * 3)
+            .zip(selections)
             .enumerate()
-            .map(|(band, pixels)| {
-                let flags = mask.map(|m| &m[band * band_pixels..(band * band_pixels + pixels.len() / 3)]);
-                self.band(band as u32 * TILE, pixels, flags)
-            })
+            .map(|(band, (pixels, selection))| self.band(band as u32 * TILE, pixels, selection))
             .collect::<Result<_, Cancelled>>()?;
-        for band in bands {
+        for band in results {
             stats.rays += band.rays;
             stats.resumed_paths += band.resumed_paths;
         }
@@ -331,12 +393,15 @@ impl Job<'_> {
     }
 
     /// Renders the band of rows starting at `top` into `pixels` (its RGB
-    /// bytes), tile by tile; with `flags` (one per pixel of the band), only
-    /// the flagged pixels, and without reporting progress (the first pass
-    /// has already counted every pixel).
-    fn band(&self, top: u32, pixels: &mut [u8], flags: Option<&[bool]>) -> Result<BandStats, Cancelled> {
+    /// bytes), tile by tile; with `selection` (one entry per pixel of the
+    /// band), only the flagged pixels.
+    fn band(&self, top: u32, pixels: &mut [u8], mut selection: Option<BandSelection>) -> Result<BandStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
         let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
+        if let Some((sweep, frame)) = self.watch {
+            tracer = tracer.watching(sweep, frame);
+        }
+        let last_frame = self.watch.map_or(0, |(sweep, _)| sweep.frames() - 1);
         let mut left = 0;
         while left < self.width {
             if self.control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -346,14 +411,18 @@ impl Job<'_> {
             for row in 0..rows {
                 for i in left..right {
                     let index = row as usize * self.width as usize + i as usize;
-                    if flags.is_some_and(|f| !f[index]) {
+                    if selection.as_ref().is_some_and(|s| !s.flags[index]) {
                         continue;
                     }
+                    tracer.valid_until = last_frame;
                     let rgb = self.pixel(&mut tracer, i, top + row);
                     pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
+                    if let Some(valid_until) = selection.as_mut().and_then(|s| s.valid_until.as_deref_mut()) {
+                        valid_until[index] = tracer.valid_until;
+                    }
                 }
             }
-            if let (Some(progress), None) = (self.control.progress, flags) {
+            if let (Some(progress), true) = (self.control.progress, self.report_all) {
                 progress(u64::from((right - left) * rows));
             }
             left = right;

@@ -32,8 +32,9 @@
 use glam::DVec3;
 
 use super::Skips;
-use super::geometry::{Prepared, SurfaceHit};
+use super::geometry::{Blocker, Prepared, SurfaceHit};
 use super::intersect::{PlaneShape, Ray};
+use super::sweep::Sweep;
 use crate::scene::{Light, Material};
 
 /// Paths whose accumulated weight is below this stop (half an 8-bit level).
@@ -119,6 +120,12 @@ pub struct Tracer<'a> {
     pub resumed: u64,
     /// One path per sample slot (kept to resume it).
     paths: Vec<Path>,
+    /// Frame reuse, when on: the frames' moving objects and the frame
+    /// being traced.
+    watch: Option<(&'a Sweep, u32)>,
+    /// With frame reuse: the last frame for which the paths traced since it
+    /// was reset give the same colours (see [`super::sweep`]).
+    pub valid_until: u32,
 }
 
 impl<'a> Tracer<'a> {
@@ -126,7 +133,26 @@ impl<'a> Tracer<'a> {
     /// `slots` samples per pixel.
     pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a> {
         let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
-        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths }
+        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths, watch: None, valid_until: 0 }
+    }
+
+    /// The same tracer, also working out [`Tracer::valid_until`] for
+    /// frame `frame` of the frames of `sweep`. The geometry's timed part
+    /// must have no plane.
+    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a> {
+        Tracer { watch: Some((sweep, frame)), ..self }
+    }
+
+    /// Frame reuse: lowers [`Tracer::valid_until`] to the frame before the
+    /// first one whose moving objects could change what `ray` found in
+    /// `[0, t]`. A hit on a moving object (`timed`) holds for this frame only.
+    #[inline]
+    fn watch(&mut self, ray: &Ray, t: f64, timed: bool) {
+        let Some((sweep, frame)) = self.watch else { return };
+        if self.valid_until <= frame {
+            return;
+        }
+        self.valid_until = if timed { frame } else { self.valid_until.min(sweep.first_meeting(ray, t, frame) - 1) };
     }
 
     /// The colour seen along a primary ray, each component in [0, 1]
@@ -166,7 +192,9 @@ impl<'a> Tracer<'a> {
     fn follow(&mut self, levels: &mut Vec<Level>, mut ray: Ray, cutoff: bool) -> (Tail, Option<Ray>) {
         let mut weight: f64 = levels.iter().map(|l| l.ks).product();
         loop {
-            let Some(hit) = self.geometry.closest_hit(&ray) else {
+            let found = self.geometry.closest_hit(&ray);
+            self.watch(&ray, found.map_or(f64::INFINITY, |h| h.t), found.is_some_and(|h| h.timed));
+            let Some(hit) = found else {
                 return (Tail::Black, None);
             };
             let origin = offset_origin(hit.point, hit.normal);
@@ -189,6 +217,28 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// Whether nothing blocks the shadow ray `ray`, whose direction is the
+    /// one `planes` was made for. With frame reuse, the ray's answer is
+    /// watched: fixed if the static part blocks it, this frame's only if
+    /// just a moving object does, otherwise until a moving object may cross it.
+    #[inline(always)]
+    fn visible(&mut self, ray: &Ray, planes: &[PlaneShape]) -> bool {
+        if self.watch.is_none() {
+            return !self.geometry.blocked(ray, planes);
+        }
+        match self.geometry.blocker(ray, planes) {
+            Blocker::Static => false,
+            Blocker::Timed => {
+                self.watch(ray, f64::INFINITY, true);
+                false
+            }
+            Blocker::Nothing => {
+                self.watch(ray, f64::INFINITY, false);
+                true
+            }
+        }
+    }
+
     /// Everything in SPEC 6's formula but the reflection term: the ambient
     /// part and, for each visible light on the front side, the diffuse and
     /// specular parts. Shadow rays start at `origin`, P moved off the surface.
@@ -208,7 +258,7 @@ impl<'a> Tracer<'a> {
                 continue;
             }
             self.counts.shadow += 1;
-            let visible = !self.geometry.blocked(&Ray::new(origin, l), planes);
+            let visible = self.visible(&Ray::new(origin, l), planes);
             if !visible || n_dot_l <= 0.0 {
                 continue;
             }

@@ -1,0 +1,112 @@
+//! Frame reuse: rendering a run of animation frames in order, tracing in
+//! each frame only the pixels that a moving object may have changed, and
+//! copying the others from the previous frame, byte for byte.
+//!
+//! It applies when the camera, the ambient light, the lights and the planes
+//! are the same in every frame, and only bounded objects (spheres, boxes)
+//! depend on `time` ([`FrameReuse::applies`]). A traced pixel records the
+//! last frame its bytes hold for ([`super::sweep`] says why that is exact);
+//! it is traced again in the frame after that.
+//!
+//! ```no_run
+//! # use rayrepl::render::{FrameReuse, Prepared, RenderControl, RenderOptions};
+//! # fn demo(frames: &[(rayrepl::scene::Scene, Prepared)], options: &RenderOptions) {
+//! let mut reuse = FrameReuse::new(frames.iter().map(|(_, prepared)| prepared), options);
+//! for (scene, prepared) in frames {
+//!     let (image, _) = reuse.render(scene, prepared, &RenderControl::default()).expect("not cancelled");
+//! }
+//! # }
+//! ```
+
+use std::time::Instant;
+
+use image::RgbImage;
+
+use super::sweep::Sweep;
+use super::{Cancelled, Job, Prepared, RenderControl, RenderOptions, RenderStats, Selection, blocking_planes};
+use crate::scene::Scene;
+
+/// The state carried from one frame of a run to the next.
+#[derive(Debug)]
+pub struct FrameReuse {
+    sweep: Sweep,
+    options: RenderOptions,
+    /// The frame [`FrameReuse::render`] renders next (0 for the first).
+    next: u32,
+    /// The previous frame's image.
+    image: Option<RgbImage>,
+    /// For each pixel, the last frame whose bytes it holds.
+    valid_until: Vec<u32>,
+}
+
+impl FrameReuse {
+    /// Whether frame reuse can render the frames of an animation whose
+    /// first frame is `scene` (prepared as `prepared`) with `options`:
+    /// nothing but bounded objects depends on `time`, and no adaptive
+    /// anti-aliasing (whose choice of pixels looks at their neighbours).
+    /// Each later frame must also pass [`FrameReuse::holds_for`].
+    pub fn applies(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> bool {
+        !(options.adaptive && options.samples > 1) && FrameReuse::holds_for(scene, prepared)
+    }
+
+    /// Whether one frame keeps the camera, ambient light, lights and planes
+    /// fixed.
+    pub fn holds_for(scene: &Scene, prepared: &Prepared) -> bool {
+        let time_use = scene.time_use;
+        !(time_use.camera || time_use.ambient || time_use.lights || prepared.has_timed_planes())
+    }
+
+    /// Frame reuse over the frames whose geometry is `frames`, in order,
+    /// rendered with `options`.
+    pub fn new<'a>(frames: impl IntoIterator<Item = &'a Prepared>, options: &RenderOptions) -> FrameReuse {
+        let bounds: Vec<_> = frames.into_iter().map(Prepared::timed_bounds).collect();
+        FrameReuse {
+            sweep: Sweep::new(bounds.iter().map(Vec::as_slice)),
+            options: *options,
+            next: 0,
+            image: None,
+            valid_until: Vec::new(),
+        }
+    }
+
+    /// Renders the next frame of the run: `scene`, whose geometry is
+    /// `prepared` (the frame given at that place to [`FrameReuse::new`]).
+    /// The image is byte-identical to [`super::render`]'s.
+    pub fn render(
+        &mut self,
+        scene: &Scene,
+        prepared: &Prepared,
+        control: &RenderControl,
+    ) -> Result<(RgbImage, RenderStats), Cancelled> {
+        let frame = self.next;
+        assert!(frame < self.sweep.frames(), "more frames rendered than given to FrameReuse::new");
+        let pixels = self.options.width as usize * self.options.height as usize;
+        let mut image = match self.image.take() {
+            Some(image) => image,
+            None => {
+                self.valid_until = vec![0; pixels];
+                RgbImage::new(self.options.width, self.options.height)
+            }
+        };
+        let stale: Vec<bool> = if frame == 0 {
+            vec![true; pixels]
+        } else {
+            self.valid_until.iter().map(|&last| last < frame).collect()
+        };
+        let start = Instant::now();
+        let blocking_planes = blocking_planes(scene, prepared);
+        let job = Job {
+            watch: Some((&self.sweep, frame)),
+            ..Job::new(scene, prepared, &self.options, control, &blocking_planes, self.options.samples)
+        };
+        let mut stats = RenderStats::default();
+        let selection = Selection { flags: &stale, valid_until: Some(&mut self.valid_until) };
+        let done = job.run(&mut image, Some(selection), &mut stats);
+        // A cancelled frame leaves `image` half new: start again from scratch.
+        done?;
+        stats.elapsed = start.elapsed();
+        self.image = Some(image.clone());
+        self.next += 1;
+        Ok((image, stats))
+    }
+}
