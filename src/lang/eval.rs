@@ -92,8 +92,6 @@ pub struct Interpreter {
     warnings: Vec<Diagnostic>,
     /// Spans already warned about: a spot warns once, however often it runs.
     warned: HashSet<Span>,
-    /// Whether a value depending on `time` was ever read.
-    time_read: bool,
     /// Whether to drop static primitives (later frames of an animation).
     skip_static: bool,
     /// Primitives created so far, against `limits.max_primitives`.
@@ -122,7 +120,6 @@ struct Snapshot {
     has_camera: bool,
     has_ambient: bool,
     time_use: TimeUse,
-    time_read: bool,
     created: usize,
     lights: usize,
     primitives: usize,
@@ -154,7 +151,6 @@ impl Interpreter {
             has_ambient: false,
             warnings: Vec::new(),
             warned: HashSet::new(),
-            time_read: false,
             skip_static: false,
             created: 0,
             context_tainted: false,
@@ -214,7 +210,7 @@ impl Interpreter {
     /// Whether evaluation read `time` at all. When it did not, every frame of
     /// an animation is the same picture.
     pub fn has_time_reads(&self) -> bool {
-        self.time_read
+        self.scene.time_use.read
     }
 
     /// The limits this interpreter enforces.
@@ -335,7 +331,6 @@ impl Interpreter {
             has_camera: self.has_camera,
             has_ambient: self.has_ambient,
             time_use: self.scene.time_use,
-            time_read: self.time_read,
             created: self.created,
             lights: self.scene.lights.len(),
             primitives: self.scene.primitives.len(),
@@ -353,7 +348,6 @@ impl Interpreter {
         self.has_camera = snapshot.has_camera;
         self.has_ambient = snapshot.has_ambient;
         self.scene.time_use = snapshot.time_use;
-        self.time_read = snapshot.time_read;
         self.created = snapshot.created;
         self.scene.lights.truncate(snapshot.lights);
         self.scene.primitives.truncate(snapshot.primitives);

@@ -264,8 +264,7 @@ impl Prepared {
     #[inline]
     pub fn blocker(&self, ray: &Ray, planes: &[PlaneShape]) -> Blocker {
         debug_assert!(self.timed.planes.is_empty(), "the blocking planes are taken as static");
-        if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift)
-            || self.static_part.bvh.any_hit(ray, f64::INFINITY)
+        if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift) || self.static_part.bvh.any_hit(ray, f64::INFINITY)
         {
             Blocker::Static
         } else if self.timed.bvh.any_hit(ray, f64::INFINITY) {

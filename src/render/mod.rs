@@ -53,8 +53,8 @@ use rayon::prelude::*;
 
 pub use camera::{PrimaryRays, Screen, sample_offsets};
 pub use geometry::{Geometry, Prepared, SurfaceHit};
-pub use intersect::Ray;
 use intersect::PlaneShape;
+pub use intersect::Ray;
 pub use reuse::FrameReuse;
 pub use shade::RayCounts;
 use shade::{Lighting, Tracer};
@@ -375,7 +375,9 @@ impl<'a> Job<'a> {
                 let mut valid_until = valid_until.map(|v| v.chunks_mut(band_pixels));
                 flags
                     .chunks(band_pixels)
-                    .map(|flags| Some(BandSelection { flags, valid_until: valid_until.as_mut().and_then(Iterator::next) }))
+                    .map(|flags| {
+                        Some(BandSelection { flags, valid_until: valid_until.as_mut().and_then(Iterator::next) })
+                    })
                     .collect()
             }
         };

@@ -88,11 +88,8 @@ impl FrameReuse {
                 RgbImage::new(self.options.width, self.options.height)
             }
         };
-        let stale: Vec<bool> = if frame == 0 {
-            vec![true; pixels]
-        } else {
-            self.valid_until.iter().map(|&last| last < frame).collect()
-        };
+        let stale: Vec<bool> =
+            if frame == 0 { vec![true; pixels] } else { self.valid_until.iter().map(|&last| last < frame).collect() };
         let start = Instant::now();
         let blocking_planes = blocking_planes(scene, prepared);
         let job = Job {

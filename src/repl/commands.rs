@@ -1,7 +1,6 @@
 //! The session's commands (`:render`, `:time`, `:save`, ...), one function each.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
@@ -11,14 +10,15 @@ use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
 use crate::output::{FrameSink, OutputError};
 use crate::progress::Progress;
-use crate::render::Prepared;
+use crate::render::{Prepared, RenderControl};
 use crate::scene::Scene;
 
 use super::console::Console;
 use super::help;
-use super::rendering::{ImageFormat, RenderError, RenderSettings, Size, render_image, write_image};
+use super::rendering::{ImageFormat, RenderError, RenderSettings, Size, render_image, render_options, write_image};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
+use crate::animation::{AnimationError, render_animation};
 
 /// Largest width or height accepted for an image.
 const MAX_IMAGE_SIDE: u32 = 16_384;
@@ -519,8 +519,8 @@ fn render_scene(
 }
 
 /// Renders frames 1..=`frames` of the animation, frame k with `time` = k,
-/// and hands each to `sink` with its number. The geometry that does not
-/// depend on `time` is built once, from frame 1.
+/// and hands each to `sink` with its number (see [`render_animation`] for
+/// what is computed once and what per frame).
 fn render_frames(
     session: &Session,
     frames: u32,
@@ -528,37 +528,27 @@ fn render_frames(
     console: &Console,
     sink: &mut dyn FnMut(usize, RgbImage) -> Result<(), CommandError>,
 ) -> Result<(), CommandError> {
-    let settings = *session.settings();
     let timed = session.depends_on_time();
-    let rendered_frames = if timed { frames as usize } else { 1 };
-    let total = rendered_frames * size.width as usize * size.height as usize;
-    let progress = Progress::in_session(total as u64, "animating", console.progress);
+    let total = u64::from(frames) * u64::from(size.width) * u64::from(size.height);
+    let progress = Progress::in_session(total, "animating", console.progress);
     let armed = console.cancel.map(|switch| switch.arm());
-    let never = AtomicBool::new(false);
-    let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
     let tick = |pixels: u64| progress.advance(pixels);
-    let render = |scene: &Scene, prepared: &Prepared| {
-        render_image(scene, prepared, size, &settings, cancel, &tick).map_err(render_failure)
-    };
-    if !timed {
-        // Nothing reads `time`: every frame is the same picture.
-        let scene = session.scene();
-        let image = render(scene, &Prepared::new(scene))?;
-        for frame in 1..=frames as usize {
-            sink(frame, image.clone())?;
+    let control = RenderControl { progress: Some(&tick), cancel: armed.as_ref().map(|armed| armed.flag()) };
+    let evaluate = |frame: u32, skip_static: bool| {
+        if !timed {
+            // Nothing reads `time`: the session's scene is every frame.
+            return Ok(session.scene().clone());
         }
-        return Ok(());
+        let replayed = session.replay_at(f64::from(frame), skip_static);
+        replayed.map(|interpreter| interpreter.into_scene()).map_err(|d| frame_failure(d, frame))
+    };
+    let options = render_options(size, session.settings());
+    let sink = |frame: u32, image: RgbImage| sink(frame as usize, image);
+    match render_animation(1..=frames, evaluate, &options, &control, sink) {
+        Ok(_) => Ok(()),
+        Err(AnimationError::Failed(error)) => Err(error),
+        Err(AnimationError::Cancelled) => Err(render_failure(RenderError::Cancelled)),
     }
-    let first = session.replay_at(1.0, false).map_err(|d| frame_failure(d, 1))?.into_scene();
-    let first_prepared = Prepared::new(&first);
-    sink(1, render(&first, &first_prepared)?)?;
-    for frame in 2..=frames {
-        let scene = session.replay_at(f64::from(frame), true).map_err(|d| frame_failure(d, frame))?.into_scene();
-        let static_part = Arc::clone(first_prepared.static_part());
-        let prepared = Prepared::with_static(static_part, &scene.timed_primitives);
-        sink(frame as usize, render(&scene, &prepared)?)?;
-    }
-    Ok(())
 }
 
 fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {

@@ -68,18 +68,23 @@ pub(crate) fn render_image(
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RgbImage, RenderError> {
-    let options = RenderOptions {
+    let options = render_options(size, settings);
+    let control = RenderControl { progress: Some(progress), cancel: Some(cancel) };
+    match render(scene, prepared, &options, &control) {
+        Ok((image, _stats)) => Ok(image),
+        Err(Cancelled) => Err(RenderError::Cancelled),
+    }
+}
+
+/// The renderer's options for an image of `size` with the session's settings.
+pub(crate) fn render_options(size: Size, settings: &RenderSettings) -> RenderOptions {
+    RenderOptions {
         width: size.width,
         height: size.height,
         depth: settings.depth,
         samples: settings.samples,
         screen: settings.screen,
         ..RenderOptions::default()
-    };
-    let control = RenderControl { progress: Some(progress), cancel: Some(cancel) };
-    match render(scene, prepared, &options, &control) {
-        Ok((image, _stats)) => Ok(image),
-        Err(Cancelled) => Err(RenderError::Cancelled),
     }
 }
 

@@ -86,6 +86,10 @@ pub struct TimeUse {
     pub ambient: bool,
     /// Some light depends on `time`.
     pub lights: bool,
+    /// Evaluation read `time` somewhere, even if nothing above nor any
+    /// primitive came out depending on it: at another time the program may
+    /// put other primitives (`if time > 5 then put ...`) or fail.
+    pub read: bool,
 }
 
 /// How many objects of each kind a scene holds.
@@ -140,8 +144,9 @@ impl Scene {
         counts
     }
 
-    /// Whether anything in the scene depends on `time`.
+    /// Whether the scene may be different at another `time`.
     pub fn depends_on_time(&self) -> bool {
-        self.time_use.camera || self.time_use.ambient || self.time_use.lights || !self.timed_primitives.is_empty()
+        let time_use = self.time_use;
+        time_use.read || time_use.camera || time_use.ambient || time_use.lights || !self.timed_primitives.is_empty()
     }
 }

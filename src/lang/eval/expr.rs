@@ -54,7 +54,7 @@ impl Interpreter {
             Some(value) => match value.kind {
                 Kind::Number(number) => {
                     let tainted = value.tainted;
-                    self.time_read |= tainted;
+                    self.scene.time_use.read |= tainted;
                     Ok(Num { value: number, tainted })
                 }
                 Kind::Object(_) => fail(wrong_kind(span, name, "an object", "a number")),

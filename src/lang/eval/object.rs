@@ -107,7 +107,7 @@ impl Interpreter {
             },
             None => return fail(self.unknown_variable(name, span)),
         };
-        self.time_read |= tainted;
+        self.scene.time_use.read |= tainted;
         self.count_primitives(primitives.len(), span)?;
         out.extend_from_slice(&primitives);
         Ok(tainted)
