@@ -385,7 +385,16 @@ impl<'a> Job<'a> {
             .par_chunks_mut(band_pixels * 3)
             .zip(selections)
             .enumerate()
-            .map(|(band, (pixels, selection))| self.band(band as u32 * TILE, pixels, selection))
+            .map(|(band, (pixels, selection))| {
+                let top = band as u32 * TILE;
+                // Frame reuse has its own build of the tracer, so that a still
+                // image pays nothing for it.
+                if self.watch.is_some() {
+                    self.band::<true>(top, pixels, selection)
+                } else {
+                    self.band::<false>(top, pixels, selection)
+                }
+            })
             .collect::<Result<_, Cancelled>>()?;
         for band in results {
             stats.rays += band.rays;
@@ -397,9 +406,14 @@ impl<'a> Job<'a> {
     /// Renders the band of rows starting at `top` into `pixels` (its RGB
     /// bytes), tile by tile; with `selection` (one entry per pixel of the
     /// band), only the flagged pixels.
-    fn band(&self, top: u32, pixels: &mut [u8], mut selection: Option<BandSelection>) -> Result<BandStats, Cancelled> {
+    fn band<const WATCH: bool>(
+        &self,
+        top: u32,
+        pixels: &mut [u8],
+        mut selection: Option<BandSelection>,
+    ) -> Result<BandStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
-        let mut tracer = Tracer::new(self.prepared, self.lighting, self.offsets.len());
+        let mut tracer = Tracer::<WATCH>::new(self.prepared, self.lighting, self.offsets.len());
         if let Some((sweep, frame)) = self.watch {
             tracer = tracer.watching(sweep, frame);
         }
@@ -436,7 +450,7 @@ impl<'a> Job<'a> {
     /// samples (SPEC 6). When the reflection-weight cutoff leaves the byte
     /// undecided, the paused paths are resumed (see [`shade`]).
     #[inline]
-    fn pixel(&self, tracer: &mut Tracer, i: u32, j: u32) -> [u8; 3] {
+    fn pixel<const WATCH: bool>(&self, tracer: &mut Tracer<WATCH>, i: u32, j: u32) -> [u8; 3] {
         let mut lo = DVec3::ZERO;
         let mut hi = DVec3::ZERO;
         let mut open = false;

@@ -111,7 +111,11 @@ pub struct Lighting<'a> {
 }
 
 /// Traces paths; holds the ray counts of one tile and reusable buffers.
-pub struct Tracer<'a> {
+///
+/// With `WATCH`, it also works out how long each pixel stays valid for
+/// frame reuse ([`Tracer::watching`]); the still-image tracer
+/// (`WATCH = false`) compiles without that bookkeeping.
+pub struct Tracer<'a, const WATCH: bool = false> {
     geometry: &'a Prepared,
     lighting: Lighting<'a>,
     /// Rays traced so far.
@@ -128,18 +132,18 @@ pub struct Tracer<'a> {
     pub valid_until: u32,
 }
 
-impl<'a> Tracer<'a> {
+impl<'a, const WATCH: bool> Tracer<'a, WATCH> {
     /// A tracer over `geometry` with the image constants `lighting`, for
     /// `slots` samples per pixel.
-    pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a> {
+    pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a, WATCH> {
         let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
         Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths, watch: None, valid_until: 0 }
     }
 
-    /// The same tracer, also working out [`Tracer::valid_until`] for
-    /// frame `frame` of the frames of `sweep`. The geometry's timed part
-    /// must have no plane.
-    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a> {
+    /// The same tracer, working out [`Tracer::valid_until`] for frame
+    /// `frame` of the frames of `sweep` (only with `WATCH`). The geometry's
+    /// timed part must have no plane.
+    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a, WATCH> {
         Tracer { watch: Some((sweep, frame)), ..self }
     }
 
@@ -193,7 +197,9 @@ impl<'a> Tracer<'a> {
         let mut weight: f64 = levels.iter().map(|l| l.ks).product();
         loop {
             let found = self.geometry.closest_hit(&ray);
-            self.watch(&ray, found.map_or(f64::INFINITY, |h| h.t), found.is_some_and(|h| h.timed));
+            if WATCH {
+                self.watch(&ray, found.map_or(f64::INFINITY, |h| h.t), found.is_some_and(|h| h.timed));
+            }
             let Some(hit) = found else {
                 return (Tail::Black, None);
             };
@@ -223,7 +229,7 @@ impl<'a> Tracer<'a> {
     /// just a moving object does, otherwise until a moving object may cross it.
     #[inline(always)]
     fn visible(&mut self, ray: &Ray, planes: &[PlaneShape]) -> bool {
-        if self.watch.is_none() {
+        if !WATCH {
             return !self.geometry.blocked(ray, planes);
         }
         match self.geometry.blocker(ray, planes) {
