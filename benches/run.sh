@@ -34,7 +34,7 @@ measure() {
     /usr/bin/time -f "%e %U %S %M" -o "$WORK/time" "$@" > /dev/null 2> "$WORK/stderr" || {
       echo "FAILED: $*" >&2; cat "$WORK/stderr" >&2; return 1; }
     read -r t u k m < "$WORK/time"
-    times+=("$t"); cpus+=("$(echo "$u + $k" | bc)"); rss+=("$m")
+    times+=("$t"); cpus+=("$(awk -v u="$u" -v k="$k" 'BEGIN { printf "%.2f", u + k }')"); rss+=("$m")
   done
   local mid=$((RUNS / 2))
   local t c m

@@ -216,6 +216,24 @@ fn a_gif_animation_has_every_frame() {
 }
 
 #[test]
+fn a_failing_frame_keeps_the_frames_before_it() {
+    // Frame 4 divides by zero; frames 1 to 3 are written first.
+    let (dir, path) = scene(&format!("{MOVING}let bad = 1 / (time - 4)\n"));
+    let out = dir.path().join("f.png");
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "8", "--height", "8", "--anim", "6", "-o"])
+        .arg(&out)
+        .assert()
+        .failure()
+        .stderr(contains("division by zero").and(contains("scene.ray:6:")));
+    let mut names: Vec<String> =
+        std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["f0001.png", "f0002.png", "f0003.png", "scene.ray"]);
+}
+
+#[test]
 fn a_static_animation_repeats_one_image() {
     let (dir, path) = scene(SPHERE);
     let out = dir.path().join("s.png");
