@@ -8,9 +8,9 @@ use std::fmt;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use image::codecs::gif::{GifEncoder, Repeat};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{Delay, Frame, ImageEncoder, RgbImage, RgbaImage};
+use image::{ImageEncoder, RgbImage};
+use rayon::prelude::*;
 
 /// An image format that [`write_image`] can produce.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -119,24 +119,43 @@ pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult
 }
 
 /// Writes `frames` as an animated GIF looping forever, each frame shown for
-/// `delay_ms` milliseconds, atomically.
+/// `delay_ms` milliseconds (in steps of 10 ms, GIF's unit), atomically.
+///
+/// Reducing each frame to a 256-colour palette is most of the work, so the
+/// frames are quantised in parallel (rayon) before the file is written.
 pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), OutputError> {
-    if frames.is_empty() {
+    let Some(first) = frames.first() else {
         return Err(OutputError::NoFrames { path: path.to_owned() });
-    }
+    };
+    let too_large = || OutputError::Io {
+        path: path.to_owned(),
+        source: io::Error::new(io::ErrorKind::InvalidInput, "a GIF is at most 65535 pixels wide and high"),
+    };
+    let width = u16::try_from(first.width()).map_err(|_| too_large())?;
+    let height = u16::try_from(first.height()).map_err(|_| too_large())?;
+    let delay = u16::try_from(delay_ms / 10).unwrap_or(u16::MAX);
+    let quantised: Vec<gif::Frame> = frames
+        .par_iter()
+        .map(|frame| {
+            let mut frame = gif::Frame::from_rgb_speed(width, height, frame.as_raw(), GIF_QUANTISATION_SPEED);
+            frame.delay = delay;
+            frame
+        })
+        .collect();
     write_atomically(path, |writer| {
-        // Speed 10 of 1..=30: quantising each frame at the default speed 1
-        // takes seconds for a few hundred frames, for little visible gain.
-        let mut encoder = GifEncoder::new_with_speed(writer, 10);
-        encoder.set_repeat(Repeat::Infinite).map_err(|e| encode_error(path, e))?;
-        let delay = Delay::from_numer_denom_ms(delay_ms, 1);
-        for frame in frames {
-            let rgba: RgbaImage = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
-            encoder.encode_frame(Frame::from_parts(rgba, 0, 0, delay)).map_err(|e| encode_error(path, e))?;
+        let gif_error = |e| gif_encode_error(path, e);
+        let mut encoder = gif::Encoder::new(writer, width, height, &[]).map_err(gif_error)?;
+        encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?;
+        for frame in &quantised {
+            encoder.write_frame(frame).map_err(gif_error)?;
         }
         Ok(())
     })
 }
+
+/// The NeuQuant speed for GIF palettes, 1 (best) to 30 (fastest): at the
+/// default 1, a few hundred frames take seconds each for little visible gain.
+pub const GIF_QUANTISATION_SPEED: i32 = 10;
 
 /// How long each frame of an animated GIF is shown: 25 frames a second.
 pub const GIF_FRAME_DELAY_MS: u32 = 40;
@@ -236,6 +255,17 @@ fn temp_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
 
 fn io_error(path: &Path, source: io::Error) -> OutputError {
     OutputError::Io { path: path.to_owned(), source }
+}
+
+fn gif_encode_error(path: &Path, source: gif::EncodingError) -> OutputError {
+    match source {
+        gif::EncodingError::Io(source) => io_error(path, source),
+        other => {
+            let hint = image::error::ImageFormatHint::Exact(image::ImageFormat::Gif);
+            let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, other));
+            OutputError::Encode { path: path.to_owned(), source }
+        }
+    }
 }
 
 fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
