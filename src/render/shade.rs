@@ -280,11 +280,23 @@ impl<'a, const WATCH: bool> Tracer<'a, WATCH> {
             // max(0, N·H)^n is exactly 0 for N·H <= 0 (n > 0, SPEC 3), and
             // adding +0 changes nothing: no need for the power.
             if n_dot_h > 0.0 || phong <= 0.0 {
-                c += color * (ks * n_dot_h.max(0.0).powf(phong) * light.intensity);
+                c += color * (ks * phong_power(n_dot_h.max(0.0), phong) * light.intensity);
             }
         }
         c
     }
+}
+
+/// `x^n` for the Phong term, `x` in [0, 1]. A whole exponent (the usual
+/// case) is raised by repeated squaring: a handful of multiplications
+/// instead of a general `pow`, which took a fifth of the render time. Its
+/// relative error stays below about `n` units in the last place (`pow` is
+/// within one); on the term, at most 1 in value, that is far below half an
+/// 8-bit level, and the renders of every scene in the repository came out
+/// byte-identical to the `pow` ones.
+#[inline]
+fn phong_power(x: f64, n: f64) -> f64 {
+    if n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX) { x.powi(n as i32) } else { x.powf(n) }
 }
 
 /// Folds a path back up: `c = clamp(local + ks * c_next)` from the last
@@ -368,6 +380,18 @@ mod tests {
         assert_eq!(offset_origin(DVec3::ZERO, DVec3::Y), DVec3::new(0.0, 1e-9, 0.0));
         let far = offset_origin(DVec3::new(50_000.0, 0.0, 0.0), DVec3::Y);
         assert!((far.y - 5e-5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn phong_power_agrees_with_powf() {
+        for n in [1.0, 2.0, 7.0, 20.0, 50.0, 80.0, 333.0, 10_000.0, 0.5, 12.75] {
+            for k in 0..=1000 {
+                let x = f64::from(k) / 1000.0;
+                let (ours, general) = (phong_power(x, n), x.powf(n));
+                let tolerance = (n + 4.0) * f64::EPSILON * general + f64::MIN_POSITIVE;
+                assert!((ours - general).abs() <= tolerance, "{x}^{n}: {ours} against {general}");
+            }
+        }
     }
 
     #[test]
