@@ -285,7 +285,7 @@ fn arb_moving() -> impl Strategy<Value = Moving> {
     (
         prop::collection::vec(arb_bounded(), 0..6),
         planes,
-        prop::collection::vec((arb_bounded(), prop::array::uniform3(-0.6..0.6f64)), 1..3),
+        prop::collection::vec((arb_bounded(), prop::array::uniform3(-0.6..0.6f64)), 1..9),
     )
         .prop_map(|(mut fixed, planes, moving)| {
             for (normal, shift, m) in planes {
