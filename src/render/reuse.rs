@@ -37,7 +37,18 @@ pub struct FrameReuse {
     image: Option<RgbImage>,
     /// For each pixel, the last frame whose bytes it holds.
     valid_until: Vec<u32>,
+    /// Whether frames are still traced with the bookkeeping (see
+    /// [`GIVE_UP_SHARE`]); once off, each frame is rendered in full.
+    watching: bool,
 }
+
+/// When a frame after the first has to trace more than this share of its
+/// pixels again, the rest of the run is rendered frame by frame: the
+/// bookkeeping (a query per ray) costs about as much as tracing, so it
+/// only pays when most pixels are copied. Measured on
+/// `scenarios/spiral.ray`, whose 250 spheres all move: about half the
+/// pixels traced again per frame, and no time saved.
+pub const GIVE_UP_SHARE: f64 = 0.5;
 
 impl FrameReuse {
     /// Whether frame reuse can render the frames of an animation whose
@@ -66,6 +77,7 @@ impl FrameReuse {
             next: 0,
             image: None,
             valid_until: Vec::new(),
+            watching: true,
         }
     }
 
@@ -80,6 +92,10 @@ impl FrameReuse {
     ) -> Result<(RgbImage, RenderStats), Cancelled> {
         let frame = self.next;
         assert!(frame < self.sweep.frames(), "more frames rendered than given to FrameReuse::new");
+        self.next += 1;
+        if !self.watching {
+            return super::render(scene, prepared, &self.options, control);
+        }
         let pixels = self.options.width as usize * self.options.height as usize;
         let mut image = match self.image.take() {
             Some(image) => image,
@@ -90,6 +106,11 @@ impl FrameReuse {
         };
         let stale: Vec<bool> =
             if frame == 0 { vec![true; pixels] } else { self.valid_until.iter().map(|&last| last < frame).collect() };
+        let traced = stale.iter().filter(|&&s| s).count();
+        if frame > 0 && traced as f64 > GIVE_UP_SHARE * pixels as f64 {
+            self.watching = false;
+            return super::render(scene, prepared, &self.options, control);
+        }
         let start = Instant::now();
         let blocking_planes = blocking_planes(scene, prepared);
         let job = Job {
@@ -100,10 +121,12 @@ impl FrameReuse {
         let selection = Selection { flags: &stale, valid_until: Some(&mut self.valid_until) };
         let done = job.run(&mut image, Some(selection), &mut stats);
         // A cancelled frame leaves `image` half new: start again from scratch.
+        if done.is_err() {
+            self.next -= 1;
+        }
         done?;
         stats.elapsed = start.elapsed();
         self.image = Some(image.clone());
-        self.next += 1;
         Ok((image, stats))
     }
 }
