@@ -158,10 +158,11 @@ fn report(name: &str, elapsed: Duration, stats: &RenderStats) {
     );
 }
 
-/// f32 against f64 node tests on the box field's primary rays (closest
-/// hit only, one thread): time and number of rays whose answer differs.
+/// f32 against f64 traversal and intersection tests ([`BvhF32`]) on the
+/// box field's primary rays (closest hit only, one thread): time and number
+/// of rays whose answer differs.
 fn f32_experiment() {
-    use rayrepl::render::bvh::{Bvh, NodesF32};
+    use rayrepl::render::bvh::{Bvh, BvhF32};
     use rayrepl::render::intersect::ShapeClass;
     use rayrepl::render::{PrimaryRays, Screen};
     let scene = box_field();
@@ -174,7 +175,7 @@ fn f32_experiment() {
         })
         .collect();
     let (bvh, _) = Bvh::build(&objects);
-    let nodes32 = NodesF32::new(&bvh);
+    let bvh32 = BvhF32::new(&bvh);
     let (w, h) = (1920, 1080);
     let cameras = PrimaryRays::new(&scene.camera, w, h, Screen::Centered);
     let rays: Vec<_> = (0..h)
@@ -189,13 +190,13 @@ fn f32_experiment() {
         let a: Vec<_> = rays.iter().map(|r| bvh.closest_hit(r, f64::INFINITY)).collect();
         t64 = t64.min(start.elapsed().as_secs_f64());
         let start = Instant::now();
-        let b: Vec<_> = rays.iter().map(|r| nodes32.closest_hit(&bvh, r, f64::INFINITY)).collect();
+        let b: Vec<_> = rays.iter().map(|r| bvh32.closest_hit(r, f64::INFINITY)).collect();
         t32 = t32.min(start.elapsed().as_secs_f64());
         differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
     }
     let n = rays.len() as f64;
     println!(
-        "closest hit, {n} primary rays, best of 7: f64 nodes {t64:.3} s ({:.1} Mrays/s), f32 nodes {t32:.3} s ({:.1} Mrays/s), {differ} answers differ",
+        "closest hit, {n} primary rays, best of 7: f64 {t64:.3} s ({:.1} Mrays/s), f32 {t32:.3} s ({:.1} Mrays/s), {differ} answers differ",
         n / t64 / 1e6,
         n / t32 / 1e6,
     );

@@ -17,7 +17,7 @@ use std::time::Duration;
 use image::RgbImage;
 use plotters::prelude::*;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{Prepared, RenderControl, RenderOptions, Skips, render};
+use rayrepl::render::{Precision, Prepared, RenderControl, RenderOptions, Skips, render};
 use rayrepl::scene::Scene;
 
 /// The benchmark scenes measured (sponge5, 3.2 million boxes, is left out:
@@ -34,10 +34,11 @@ enum Family {
     Adaptive,
     Skips,
     Depth,
+    Precision,
 }
 
 impl Family {
-    const ALL: [Family; 4] = [Family::Samples, Family::Adaptive, Family::Skips, Family::Depth];
+    const ALL: [Family; 5] = [Family::Samples, Family::Adaptive, Family::Skips, Family::Depth, Family::Precision];
 
     fn name(self) -> &'static str {
         match self {
@@ -45,6 +46,7 @@ impl Family {
             Family::Adaptive => "adaptive samples",
             Family::Skips => "skips (4 samples)",
             Family::Depth => "depth (1 sample)",
+            Family::Precision => "precision",
         }
     }
 
@@ -54,6 +56,7 @@ impl Family {
             Family::Adaptive => RGBColor(214, 39, 40),
             Family::Skips => RGBColor(44, 160, 44),
             Family::Depth => RGBColor(148, 103, 189),
+            Family::Precision => RGBColor(255, 127, 14),
         }
     }
 }
@@ -85,6 +88,9 @@ struct Row {
     /// Primary rays per pixel (shows how many pixels adaptive sampling refined).
     rays_per_pixel: f64,
     error: Error,
+    /// For an f32 row: its error against the f64 render of the same setting
+    /// (what the f32 mode itself changes).
+    against_f64: Option<Error>,
 }
 
 fn main() {
@@ -106,9 +112,22 @@ fn main() {
         let reference_options = RenderOptions { samples: 256, skips: Skips::none(), ..base };
         let (reference, reference_time, _) = render_once(&scene, &prepared, &reference_options);
         eprintln!("{name}: reference in {:.2} s", reference_time.as_secs_f64());
+        let mut f64_images = Vec::new();
         for setting in settings(base) {
             let (image, time, rays_per_pixel) = render_median(&scene, &prepared, &setting.options);
             let error = compare(&image, &reference);
+            let against_f64 = match setting.options.precision {
+                Precision::F32 => f64_images
+                    .iter()
+                    .find(|(o, _): &&(RenderOptions, RgbImage)| {
+                        RenderOptions { precision: Precision::F32, ..*o } == setting.options
+                    })
+                    .map(|(_, f64_image)| compare(&image, f64_image)),
+                Precision::F64 => None,
+            };
+            if setting.family == Family::Precision && setting.options.precision == Precision::F64 {
+                f64_images.push((setting.options, image.clone()));
+            }
             eprintln!(
                 "{name:12} {:28} {:9.4} s  rmse {:7.3}  >1 {:6.2}%  >2 {:6.2}%",
                 setting.label,
@@ -117,7 +136,15 @@ fn main() {
                 100.0 * error.over1,
                 100.0 * error.over2
             );
-            rows.push(Row { scene: name, family: setting.family, label: setting.label, time, rays_per_pixel, error });
+            rows.push(Row {
+                scene: name,
+                family: setting.family,
+                label: setting.label,
+                time,
+                rays_per_pixel,
+                error,
+                against_f64,
+            });
         }
     }
     let table = markdown(&rows, width, height);
@@ -180,6 +207,15 @@ fn settings(base: RenderOptions) -> Vec<Setting> {
             label: format!("depth {depth}"),
             options: RenderOptions { depth, ..base },
         });
+    }
+    for samples in [1, 16] {
+        for (name, precision) in [("f64", Precision::F64), ("f32", Precision::F32)] {
+            all.push(Setting {
+                family: Family::Precision,
+                label: format!("{name} ({samples} sample{})", if samples == 1 { "" } else { "s" }),
+                options: RenderOptions { samples, precision, ..base },
+            });
+        }
     }
     all
 }
@@ -266,10 +302,14 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
         s,
         "Measured by `cargo run --release --example tradeoff` on {} ({} cores by `nproc`, {threads} rayon threads), \
          {}. Images are {width}x{height}. Each scene is evaluated once; each setting is rendered {RUNS} times and \
-         the median wall-clock time is shown (other work shared the machine, so small times are noisy).\n",
+         the median wall-clock time is shown (other work shared the machine, so small times are noisy; load \
+         average at the end of the run: {}).\n",
         cpu_model(),
         command_output("nproc", &[]),
         command_output("date", &["-u", "+%Y-%m-%d %H:%M UTC"]),
+        std::fs::read_to_string("/proc/loadavg")
+            .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+            .unwrap_or_default(),
     );
     let _ = writeln!(
         s,
@@ -284,8 +324,11 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
          samples so that the times are long enough to compare.\n\
          - **Depth** rows are compared with the same depth-5 reference: depth above 5 is a different image from \
          the one SPEC 6 asks for, so its \"error\" measures how much deeper reflections still change.\n\
-         - **f32**: the renderer has no f32 mode; the only f32 code is the BVH node-bounds experiment in \
-         `src/render/bvh.rs` (`NodesF32`), which is not reachable from `RenderOptions`, so there is no f32 row.\n\
+         - **Precision** rows render the same setting with the intersection tests (BVH traversal, sphere, box and \
+         plane tests) in f64 (`--precision f64`, the default) and in f32 (`--precision f32`: rays rounded to f32, \
+         hit distances back in f64, shading in f64, secondary rays moved off the surface by `1e-4 * |P|` instead \
+         of `1e-9 * |P|`). The f64 rows repeat the \"1 samples\" and \"16 samples\" settings, measured next to \
+         the f32 ones so that their times are comparable.\n\
          - **Adaptive N** (`--samples N --adaptive`) renders every pixel at its centre, then renders again with N \
          samples only the pixels that differ from one of their 8 neighbours by more than 2 levels in a channel.\n"
     );
@@ -309,6 +352,34 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
         }
     }
     let _ = writeln!(s, "\n\"Met\" means at most half the time and an RMSE at most 5% above uniform 16's.\n");
+    let _ = writeln!(s, "### f32 against f64 intersection tests\n");
+    let _ = writeln!(
+        s,
+        "Time and error of `--precision f32` against the default f64, at 1 and 16 samples. \"f32 vs f64 >2\" \
+         compares the f32 image with the f64 image of the same setting (the contract's tolerance: at most 0.5% of \
+         pixels more than 2 levels off); the RMSE columns are against the reference.\n\n\
+         | scene | samples | time f32 / f64 | RMSE f64 | RMSE f32 | f32 vs f64 >2 | f32 vs f64 RMSE |\n\
+         |---|---:|---:|---:|---:|---:|---:|"
+    );
+    for scene in SCENES {
+        for samples in ["1 sample)", "16 samples)"] {
+            let find = |p: &str| rows.iter().find(|r| r.scene == scene && r.label == format!("{p} ({samples}"));
+            if let (Some(a), Some(b)) = (find("f64"), find("f32")) {
+                let against = b.against_f64.expect("an f32 row is compared with its f64 row");
+                let _ = writeln!(
+                    s,
+                    "| {scene} | {} | {:.2} | {:.3} | {:.3} | {:.2}% | {:.3} |",
+                    samples.trim_end_matches(|c: char| !c.is_ascii_digit()),
+                    b.time.as_secs_f64() / a.time.as_secs_f64(),
+                    a.error.rmse,
+                    b.error.rmse,
+                    100.0 * against.over2,
+                    against.rmse
+                );
+            }
+        }
+    }
+    let _ = writeln!(s);
     let _ = writeln!(s, "### All settings\n");
     let _ = writeln!(
         s,

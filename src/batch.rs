@@ -208,6 +208,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
         samples: cli.samples,
         screen: cli.screen.screen(),
         adaptive: cli.adaptive,
+        precision: cli.precision.precision(),
         ..RenderOptions::default()
     }
 }

@@ -52,7 +52,7 @@ use image::RgbImage;
 use rayon::prelude::*;
 
 pub use camera::{PrimaryRays, Screen, sample_offsets};
-pub use geometry::{Geometry, Prepared, SurfaceHit};
+pub use geometry::{Geometry, Intersector, Prepared, PreparedF32, SurfaceHit};
 use intersect::PlaneShape;
 pub use intersect::Ray;
 pub use reuse::FrameReuse;
@@ -100,6 +100,23 @@ impl Default for Skips {
     }
 }
 
+/// The float type of the intersection tests (BVH traversal and the
+/// sphere, box and plane tests).
+///
+/// Only the intersection tests change precision: the hit distance comes
+/// back as f64 and the hit point, normal, shading and secondary rays are
+/// f64 in both modes (see [`PreparedF32`] for why). The f32 data is built
+/// at the start of each render that asks for it, so the default f64 path
+/// neither stores nor builds anything for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// f64 throughout (the default, and the reference).
+    #[default]
+    F64,
+    /// Intersection tests in f32, rays rounded to f32.
+    F32,
+}
+
 /// How to render an image.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderOptions {
@@ -121,6 +138,8 @@ pub struct RenderOptions {
     /// [`refinement_mask`] on the 1-sample image get `samples` samples; the
     /// others keep their centre sample. Off by default.
     pub adaptive: bool,
+    /// The float type of the intersection tests (default f64).
+    pub precision: Precision,
 }
 
 /// Samples per pixel of [`RenderOptions::reference`]: a 16 x 16 stratified grid.
@@ -130,7 +149,7 @@ impl RenderOptions {
     /// The ground truth for error measurements (`--reference`): 256
     /// stratified samples per pixel (a 16 x 16 grid, [`sample_offsets`]), no
     /// work-saving shortcut at all ([`Skips::none`]), and f64 arithmetic
-    /// throughout (the renderer has no lower-precision path).
+    /// throughout ([`Precision::F64`]).
     ///
     /// Every field is spelt out rather than taken from the default, so that
     /// a new option (say, adaptive sampling) must be decided on here.
@@ -143,6 +162,7 @@ impl RenderOptions {
             screen: Screen::Centered,
             skips: Skips::none(),
             adaptive: false,
+            precision: Precision::F64,
         }
     }
 }
@@ -157,6 +177,7 @@ impl Default for RenderOptions {
             screen: Screen::Centered,
             skips: Skips::all(),
             adaptive: false,
+            precision: Precision::F64,
         }
     }
 }
@@ -283,7 +304,9 @@ pub fn render(
     let blocking_planes = blocking_planes(scene, prepared);
     let adaptive = options.adaptive && options.samples > 1;
     let first_samples = if adaptive { 1 } else { options.samples };
-    let job = Job::new(scene, prepared, options, control, &blocking_planes, first_samples);
+    let f32_geometry = (options.precision == Precision::F32).then(|| PreparedF32::new(prepared));
+    let mut job = Job::new(scene, prepared, options, control, &blocking_planes, first_samples);
+    job.f32_geometry = f32_geometry.as_ref();
     let mut stats = RenderStats::default();
     job.run(&mut image, None, &mut stats)?;
     if adaptive {
@@ -307,6 +330,8 @@ struct Job<'a> {
     offsets: Vec<DVec2>,
     lighting: Lighting<'a>,
     prepared: &'a Prepared,
+    /// With [`Precision::F32`]: the geometry the intersection tests use.
+    f32_geometry: Option<&'a PreparedF32<'a>>,
     width: u32,
     control: &'a RenderControl<'a>,
     /// Whether progress counts every pixel of a tile, or (a second pass
@@ -353,6 +378,7 @@ impl<'a> Job<'a> {
                 skips: options.skips,
             },
             prepared,
+            f32_geometry: None,
             width: options.width,
             control,
             report_all: true,
@@ -387,12 +413,13 @@ impl<'a> Job<'a> {
             .enumerate()
             .map(|(band, (pixels, selection))| {
                 let top = band as u32 * TILE;
-                // Frame reuse has its own build of the tracer, so that a still
-                // image pays nothing for it.
-                if self.watch.is_some() {
-                    self.band::<true>(top, pixels, selection)
-                } else {
-                    self.band::<false>(top, pixels, selection)
+                // Frame reuse and each precision have their own build of the
+                // tracer, so that a default still image pays nothing for them.
+                match (self.watch.is_some(), self.f32_geometry) {
+                    (false, None) => self.band::<false, _>(self.prepared, top, pixels, selection),
+                    (true, None) => self.band::<true, _>(self.prepared, top, pixels, selection),
+                    (false, Some(g)) => self.band::<false, _>(g, top, pixels, selection),
+                    (true, Some(g)) => self.band::<true, _>(g, top, pixels, selection),
                 }
             })
             .collect::<Result<_, Cancelled>>()?;
@@ -404,16 +431,17 @@ impl<'a> Job<'a> {
     }
 
     /// Renders the band of rows starting at `top` into `pixels` (its RGB
-    /// bytes), tile by tile; with `selection` (one entry per pixel of the
-    /// band), only the flagged pixels.
-    fn band<const WATCH: bool>(
+    /// bytes), tile by tile, intersecting rays with `geometry`; with
+    /// `selection` (one entry per pixel of the band), only the flagged pixels.
+    fn band<const WATCH: bool, G: Intersector>(
         &self,
+        geometry: &G,
         top: u32,
         pixels: &mut [u8],
         mut selection: Option<BandSelection>,
     ) -> Result<BandStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
-        let mut tracer = Tracer::<WATCH>::new(self.prepared, self.lighting, self.offsets.len());
+        let mut tracer = Tracer::<WATCH, G>::new(geometry, self.lighting, self.offsets.len());
         if let Some((sweep, frame)) = self.watch {
             tracer = tracer.watching(sweep, frame);
         }
@@ -450,7 +478,7 @@ impl<'a> Job<'a> {
     /// samples (SPEC 6). When the reflection-weight cutoff leaves the byte
     /// undecided, the paused paths are resumed (see [`shade`]).
     #[inline]
-    fn pixel<const WATCH: bool>(&self, tracer: &mut Tracer<WATCH>, i: u32, j: u32) -> [u8; 3] {
+    fn pixel<const WATCH: bool, G: Intersector>(&self, tracer: &mut Tracer<WATCH, G>, i: u32, j: u32) -> [u8; 3] {
         let mut lo = DVec3::ZERO;
         let mut hi = DVec3::ZERO;
         let mut open = false;

@@ -23,7 +23,9 @@ use std::time::Instant;
 use image::RgbImage;
 
 use super::sweep::Sweep;
-use super::{Cancelled, Job, Prepared, RenderControl, RenderOptions, RenderStats, Selection, blocking_planes};
+use super::{
+    Cancelled, Job, Precision, Prepared, RenderControl, RenderOptions, RenderStats, Selection, blocking_planes,
+};
 use crate::scene::Scene;
 
 /// The state carried from one frame of a run to the next.
@@ -53,11 +55,13 @@ pub const GIVE_UP_SHARE: f64 = 0.5;
 impl FrameReuse {
     /// Whether frame reuse can render the frames of an animation whose
     /// first frame is `scene` (prepared as `prepared`) with `options`:
-    /// nothing but bounded objects depends on `time`, and no adaptive
-    /// anti-aliasing (whose choice of pixels looks at their neighbours).
-    /// Each later frame must also pass [`FrameReuse::holds_for`].
+    /// nothing but bounded objects depends on `time`, no adaptive
+    /// anti-aliasing (whose choice of pixels looks at their neighbours), and
+    /// f64 intersection tests (the padding of [`super::sweep`] is sized for
+    /// them). Each later frame must also pass [`FrameReuse::holds_for`].
     pub fn applies(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> bool {
-        !(options.adaptive && options.samples > 1) && FrameReuse::holds_for(scene, prepared)
+        let adaptive = options.adaptive && options.samples > 1;
+        !adaptive && options.precision == Precision::F64 && FrameReuse::holds_for(scene, prepared)
     }
 
     /// Whether one frame keeps the camera, ambient light, lights and planes

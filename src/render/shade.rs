@@ -32,7 +32,7 @@
 use glam::DVec3;
 
 use super::Skips;
-use super::geometry::{Blocker, Prepared, SurfaceHit};
+use super::geometry::{Blocker, Intersector, Prepared, SurfaceHit};
 use super::intersect::{PlaneShape, Ray};
 use super::sweep::Sweep;
 use crate::scene::{Light, Material};
@@ -114,9 +114,11 @@ pub struct Lighting<'a> {
 ///
 /// With `WATCH`, it also works out how long each pixel stays valid for
 /// frame reuse ([`Tracer::watching`]); the still-image tracer
-/// (`WATCH = false`) compiles without that bookkeeping.
-pub struct Tracer<'a, const WATCH: bool = false> {
-    geometry: &'a Prepared,
+/// (`WATCH = false`) compiles without that bookkeeping. `G` is the
+/// geometry in the precision of the intersection tests ([`Prepared`] for
+/// f64, [`super::geometry::PreparedF32`] for f32).
+pub struct Tracer<'a, const WATCH: bool = false, G: Intersector = Prepared> {
+    geometry: &'a G,
     lighting: Lighting<'a>,
     /// Rays traced so far.
     pub counts: RayCounts,
@@ -132,10 +134,10 @@ pub struct Tracer<'a, const WATCH: bool = false> {
     pub valid_until: u32,
 }
 
-impl<'a, const WATCH: bool> Tracer<'a, WATCH> {
+impl<'a, const WATCH: bool, G: Intersector> Tracer<'a, WATCH, G> {
     /// A tracer over `geometry` with the image constants `lighting`, for
     /// `slots` samples per pixel.
-    pub fn new(geometry: &'a Prepared, lighting: Lighting<'a>, slots: usize) -> Tracer<'a, WATCH> {
+    pub fn new(geometry: &'a G, lighting: Lighting<'a>, slots: usize) -> Tracer<'a, WATCH, G> {
         let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
         Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths, watch: None, valid_until: 0 }
     }
@@ -143,7 +145,7 @@ impl<'a, const WATCH: bool> Tracer<'a, WATCH> {
     /// The same tracer, working out [`Tracer::valid_until`] for frame
     /// `frame` of the frames of `sweep` (only with `WATCH`). The geometry's
     /// timed part must have no plane.
-    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a, WATCH> {
+    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a, WATCH, G> {
         Tracer { watch: Some((sweep, frame)), ..self }
     }
 
@@ -203,7 +205,7 @@ impl<'a, const WATCH: bool> Tracer<'a, WATCH> {
             let Some(hit) = found else {
                 return (Tail::Black, None);
             };
-            let origin = offset_origin(hit.point, hit.normal);
+            let origin = offset_by(hit.point, hit.normal, G::OFFSET_SCALE);
             let local = self.local_colour(&ray, &hit, origin);
             let ks = hit.material.ks;
             let level = levels.len() as u32;
@@ -346,8 +348,24 @@ pub const OFFSET_SCALE: f64 = 1e-9;
 /// scales with the magnitude of P's coordinates (see [`OFFSET_SCALE`]).
 #[inline]
 pub fn offset_origin(point: DVec3, normal: DVec3) -> DVec3 {
+    offset_by(point, normal, OFFSET_SCALE)
+}
+
+/// The offset of [`OFFSET_SCALE`] for f32 intersection tests
+/// ([`super::Precision::F32`]): the rays are rounded to f32 (relative error
+/// `6e-8`), and a hit distance computed in f32 is off by a few units in the
+/// last place of the coordinates involved, so the f64 offset (a billionth)
+/// would leave the secondary ray's origin inside the surface it starts from
+/// as often as not (shadow acne all over the solar scene's spheres). `1e-4`
+/// is about 800 f32 ulps: a thinner margin than f64's, which is why f32 gets
+/// shadows wrong where two surfaces are closer than `1e-4 * |P|`.
+pub const OFFSET_SCALE_F32: f64 = 1e-4;
+
+/// [`offset_origin`] with the relative offset `relative`.
+#[inline(always)]
+pub fn offset_by(point: DVec3, normal: DVec3, relative: f64) -> DVec3 {
     let scale = point.abs().max_element().max(1.0);
-    point + normal * (OFFSET_SCALE * scale)
+    point + normal * (relative * scale)
 }
 
 #[cfg(test)]
