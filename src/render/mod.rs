@@ -24,8 +24,9 @@
 //! # }
 //! ```
 //!
-//! The image is cut into bands of [`TILE`] rows, each band into tiles of
-//! [`TILE`] x [`TILE`] pixels; rayon spreads the bands over its threads.
+//! The image is cut into bands of [`TILE`] rows (one row for a pass over
+//! some pixels only), each band into tiles of [`TILE`] columns; rayon
+//! spreads the bands over its threads.
 //! Every pixel is computed on its own, so the bytes do not depend on the
 //! number of threads.
 //!
@@ -390,7 +391,11 @@ impl<'a> Job<'a> {
     /// parallel bands, or only the pixels of `selection` if given, and adds
     /// the bands' counts to `stats`.
     fn run(&self, buffer: &mut [u8], selection: Option<Selection>, stats: &mut RenderStats) -> Result<(), Cancelled> {
-        let band_pixels = TILE as usize * self.width as usize;
+        // A pass over some pixels only (adaptive refinement, frame reuse)
+        // finds them bunched in a few places, along edges or around what
+        // moves: bands of one row keep both threads busy to the end.
+        let band_rows = if selection.is_some() { 1 } else { TILE };
+        let band_pixels = band_rows as usize * self.width as usize;
         if band_pixels == 0 {
             return Ok(());
         }
@@ -412,7 +417,7 @@ impl<'a> Job<'a> {
             .zip(selections)
             .enumerate()
             .map(|(band, (pixels, selection))| {
-                let top = band as u32 * TILE;
+                let top = band as u32 * band_rows;
                 // Frame reuse and each precision have their own build of the
                 // tracer, so that a default still image pays nothing for them.
                 match (self.watch.is_some(), self.f32_geometry) {
