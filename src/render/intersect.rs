@@ -54,59 +54,43 @@ pub trait Real:
     fn min_element(v: Self::Vec) -> Self;
 }
 
-impl Real for f64 {
-    type Vec = DVec3;
-    type Mat = DMat3;
-    const ZERO: f64 = 0.0;
-    const INFINITY: f64 = f64::INFINITY;
-    #[inline(always)]
-    fn sqrt(self) -> f64 {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn dot(a: DVec3, b: DVec3) -> f64 {
-        a.dot(b)
-    }
-    #[inline(always)]
-    fn min_max(a: DVec3, b: DVec3) -> (DVec3, DVec3) {
-        (DVec3::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z)), DVec3::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z)))
-    }
-    #[inline(always)]
-    fn max_element(v: DVec3) -> f64 {
-        v.max_element()
-    }
-    #[inline(always)]
-    fn min_element(v: DVec3) -> f64 {
-        v.min_element()
-    }
+/// [`Real`] for a float type and its glam vector and matrix types: the
+/// same body for both precisions.
+macro_rules! impl_real {
+    ($real:ident, $vec:ident, $mat:ident) => {
+        impl Real for $real {
+            type Vec = $vec;
+            type Mat = $mat;
+            const ZERO: $real = 0.0;
+            const INFINITY: $real = $real::INFINITY;
+            #[inline(always)]
+            fn sqrt(self) -> $real {
+                $real::sqrt(self)
+            }
+            #[inline(always)]
+            fn dot(a: $vec, b: $vec) -> $real {
+                a.dot(b)
+            }
+            #[inline(always)]
+            fn min_max(a: $vec, b: $vec) -> ($vec, $vec) {
+                let min = $vec::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z));
+                let max = $vec::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z));
+                (min, max)
+            }
+            #[inline(always)]
+            fn max_element(v: $vec) -> $real {
+                v.max_element()
+            }
+            #[inline(always)]
+            fn min_element(v: $vec) -> $real {
+                v.min_element()
+            }
+        }
+    };
 }
 
-impl Real for f32 {
-    type Vec = Vec3A;
-    type Mat = Mat3A;
-    const ZERO: f32 = 0.0;
-    const INFINITY: f32 = f32::INFINITY;
-    #[inline(always)]
-    fn sqrt(self) -> f32 {
-        f32::sqrt(self)
-    }
-    #[inline(always)]
-    fn dot(a: Vec3A, b: Vec3A) -> f32 {
-        a.dot(b)
-    }
-    #[inline(always)]
-    fn min_max(a: Vec3A, b: Vec3A) -> (Vec3A, Vec3A) {
-        (Vec3A::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z)), Vec3A::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z)))
-    }
-    #[inline(always)]
-    fn max_element(v: Vec3A) -> f32 {
-        v.max_element()
-    }
-    #[inline(always)]
-    fn min_element(v: Vec3A) -> f32 {
-        v.min_element()
-    }
-}
+impl_real!(f64, DVec3, DMat3);
+impl_real!(f32, Vec3A, Mat3A);
 
 /// A ray `origin + t * dir`.
 #[derive(Debug, Clone, Copy, PartialEq)]
