@@ -121,8 +121,10 @@ pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult
 /// Writes `frames` as an animated GIF looping forever, each frame shown for
 /// `delay_ms` milliseconds (in steps of 10 ms, GIF's unit), atomically.
 ///
-/// Reducing each frame to a 256-colour palette is most of the work, so the
-/// frames are quantised in parallel (rayon) before the file is written.
+/// All frames share one 256-colour palette, learnt (NeuQuant) from pixels
+/// spread over every frame: an animation's frames mostly show the same
+/// colours, and learning a palette per frame took most of the time of a
+/// 100-frame GIF. Each frame is then mapped to the palette in parallel.
 pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), OutputError> {
     let Some(first) = frames.first() else {
         return Err(OutputError::NoFrames { path: path.to_owned() });
@@ -134,28 +136,44 @@ pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), 
     let width = u16::try_from(first.width()).map_err(|_| too_large())?;
     let height = u16::try_from(first.height()).map_err(|_| too_large())?;
     let delay = u16::try_from(delay_ms / 10).unwrap_or(u16::MAX);
-    let quantised: Vec<gif::Frame> = frames
+    let palette = learn_palette(frames);
+    let indexed: Vec<Vec<u8>> = frames
         .par_iter()
-        .map(|frame| {
-            let mut frame = gif::Frame::from_rgb_speed(width, height, frame.as_raw(), GIF_QUANTISATION_SPEED);
-            frame.delay = delay;
-            frame
-        })
+        .map(|frame| frame.pixels().map(|p| palette.index_of(&[p[0], p[1], p[2], 0xFF]) as u8).collect())
         .collect();
     write_atomically(path, |writer| {
         let gif_error = |e| gif_encode_error(path, e);
-        let mut encoder = gif::Encoder::new(writer, width, height, &[]).map_err(gif_error)?;
+        let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
         encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?;
-        for frame in &quantised {
-            encoder.write_frame(frame).map_err(gif_error)?;
+        for pixels in indexed {
+            let mut frame = gif::Frame::from_indexed_pixels(width, height, pixels, None);
+            frame.delay = delay;
+            encoder.write_frame(&frame).map_err(gif_error)?;
         }
         Ok(())
     })
 }
 
-/// The NeuQuant speed for GIF palettes, 1 (best) to 30 (fastest): at the
-/// default 1, a few hundred frames take seconds each for little visible gain.
+/// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
+/// (fastest).
 pub const GIF_QUANTISATION_SPEED: i32 = 10;
+
+/// About how many pixels the GIF palette is learnt from, taken evenly from
+/// all frames (as many as in two 800x600 frames).
+const GIF_PALETTE_SAMPLE: usize = 960_000;
+
+/// A 256-colour palette for all of `frames` (at least one, all the same size).
+fn learn_palette(frames: &[RgbImage]) -> color_quant::NeuQuant {
+    let pixels = frames.len() * frames[0].width() as usize * frames[0].height() as usize;
+    let stride = pixels.div_ceil(GIF_PALETTE_SAMPLE).max(1);
+    let mut sample = Vec::with_capacity(4 * pixels.div_ceil(stride));
+    for (k, p) in frames.iter().flat_map(|f| f.pixels()).enumerate() {
+        if k % stride == 0 {
+            sample.extend_from_slice(&[p[0], p[1], p[2], 0xFF]);
+        }
+    }
+    color_quant::NeuQuant::new(GIF_QUANTISATION_SPEED, 256, &sample)
+}
 
 /// How long each frame of an animated GIF is shown: 25 frames a second.
 pub const GIF_FRAME_DELAY_MS: u32 = 40;
@@ -348,5 +366,36 @@ mod tests {
         let file = std::io::BufReader::new(std::fs::File::open(&path).expect("open"));
         let decoder = image::codecs::gif::GifDecoder::new(file).expect("decode");
         assert_eq!(decoder.into_frames().count(), 3);
+    }
+
+    #[test]
+    fn one_gif_palette_keeps_the_colours_of_every_frame() {
+        use image::AnimationDecoder;
+        // Three frames of quite different colours, with a gradient each.
+        let frame = |base: [u8; 3]| {
+            RgbImage::from_fn(64, 48, |x, _| {
+                let shade = (x * 2) as u8;
+                image::Rgb([
+                    base[0].saturating_add(shade),
+                    base[1].saturating_add(shade),
+                    base[2].saturating_add(shade),
+                ])
+            })
+        };
+        let frames = [frame([200, 10, 10]), frame([10, 10, 180]), frame([10, 150, 10])];
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("colours.gif");
+        write_gif(&path, &frames, 40).expect("write gif");
+        let file = std::io::BufReader::new(std::fs::File::open(&path).expect("open"));
+        let decoded = image::codecs::gif::GifDecoder::new(file).expect("decode").into_frames().collect_frames();
+        let decoded = decoded.expect("frames decode");
+        assert_eq!(decoded.len(), 3);
+        for (original, decoded) in frames.iter().zip(&decoded) {
+            assert_eq!(decoded.delay().numer_denom_ms(), (40, 1));
+            for (a, b) in original.pixels().zip(decoded.buffer().pixels()) {
+                let off = (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0);
+                assert!(off <= 8, "{a:?} became {b:?}");
+            }
+        }
     }
 }
