@@ -67,7 +67,7 @@ pub fn render_animation<E>(
         let (image, stats) = render::render(&first, &first_prepared, options, control)?;
         sink(start, image.clone()).map_err(AnimationError::Failed)?;
         let per_frame = u64::from(options.width) * u64::from(options.height);
-        for k in start + 1..=end {
+        for k in (start..=end).skip(1) {
             if let Some(progress) = control.progress {
                 progress(per_frame);
             }
@@ -78,7 +78,9 @@ pub fn render_animation<E>(
     let reuse = FrameReuse::applies(&first, &first_prepared, options);
     let static_part = Arc::clone(first_prepared.static_part());
     let mut pending = Some((start, first, first_prepared));
-    let mut next = start + 1;
+    // The next frame to evaluate; u64 so that it can pass the last u32.
+    let mut next = u64::from(start) + 1;
+    let end = u64::from(end);
     loop {
         // Gather a window: frames that frame reuse can take together, or a
         // single frame that it cannot.
@@ -90,11 +92,11 @@ pub fn render_animation<E>(
             let (k, scene, prepared) = match pending.take() {
                 Some(frame) => frame,
                 None if next > end => break,
-                None => match evaluate(next, true) {
+                None => match evaluate(next as u32, true) {
                     Ok(scene) => {
-                        next += 1;
                         let prepared = Prepared::with_static(Arc::clone(&static_part), &scene.timed_primitives);
-                        (next - 1, scene, prepared)
+                        next += 1;
+                        ((next - 1) as u32, scene, prepared)
                     }
                     Err(e) => {
                         failure = Some(e);
