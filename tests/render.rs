@@ -529,19 +529,37 @@ proptest! {
         objects in prop::collection::vec(bounded_strategy(), 0..120),
         rays in prop::collection::vec(ray_strategy(), 1..20),
     ) {
-        let (bvh, order) = Bvh::build(&objects);
-        for ray in &rays {
-            let brute = objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
-            let (t, index) = bvh.closest_hit(ray, f64::INFINITY);
-            if brute == f64::INFINITY {
-                prop_assert_eq!(index, u32::MAX);
-            } else {
-                prop_assert_eq!(t, brute);
-                prop_assert_eq!(objects[order[index as usize] as usize].hit(ray), t);
-            }
-            prop_assert_eq!(bvh.any_hit(ray, f64::INFINITY), brute < f64::INFINITY);
-        }
+        bvh_agrees_with_brute_force(&objects, &rays, false)?;
     }
+}
+
+/// Checks the BVH over `objects` against testing every object, for the
+/// closest hit (distance and object) and the any-hit answer of each ray;
+/// with `secondary`, also for a ray leaving each hit along its normal, the
+/// way shading starts them.
+fn bvh_agrees_with_brute_force(objects: &[Bounded], rays: &[Ray], secondary: bool) -> Result<(), TestCaseError> {
+    let (bvh, order) = Bvh::build(objects);
+    let brute_force = |ray: &Ray| objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
+    for ray in rays {
+        let brute = brute_force(ray);
+        let (t, index) = bvh.closest_hit(ray, f64::INFINITY);
+        if brute == f64::INFINITY {
+            prop_assert_eq!(index, u32::MAX);
+        } else {
+            prop_assert_eq!(t, brute);
+            let hit = &objects[order[index as usize] as usize];
+            prop_assert_eq!(hit.hit(ray), t);
+            if secondary {
+                let n = hit.normal(ray, t);
+                let out = Ray::new(ray.at(t) + n * 1e-9, n);
+                let brute_out = brute_force(&out);
+                prop_assert_eq!(bvh.closest_hit(&out, f64::INFINITY).0, brute_out);
+                prop_assert_eq!(bvh.any_hit(&out, f64::INFINITY), brute_out < f64::INFINITY);
+            }
+        }
+        prop_assert_eq!(bvh.any_hit(ray, f64::INFINITY), brute < f64::INFINITY);
+    }
+    Ok(())
 }
 
 /// Boxes that all share one turned frame (the renderer groups them in that
@@ -570,26 +588,7 @@ proptest! {
         objects in shared_axes_boxes(),
         rays in prop::collection::vec(ray_strategy(), 1..20),
     ) {
-        let (bvh, order) = Bvh::build(&objects);
-        for ray in &rays {
-            let brute = objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
-            let (t, index) = bvh.closest_hit(ray, f64::INFINITY);
-            if brute == f64::INFINITY {
-                prop_assert_eq!(index, u32::MAX);
-            } else {
-                prop_assert_eq!(t, brute);
-                prop_assert_eq!(objects[order[index as usize] as usize].hit(ray), t);
-                // A secondary ray from the hit (the way shading starts them).
-                let hit = &objects[order[index as usize] as usize];
-                let n = hit.normal(ray, t);
-                let p = ray.at(t) + n * 1e-9;
-                let out = Ray::new(p, n);
-                let brute_out = objects.iter().map(|o| o.hit(&out)).fold(f64::INFINITY, f64::min);
-                prop_assert_eq!(bvh.closest_hit(&out, f64::INFINITY).0, brute_out);
-                prop_assert_eq!(bvh.any_hit(&out, f64::INFINITY), brute_out < f64::INFINITY);
-            }
-            prop_assert_eq!(bvh.any_hit(ray, f64::INFINITY), brute < f64::INFINITY);
-        }
+        bvh_agrees_with_brute_force(&objects, &rays, true)?;
     }
 }
 
