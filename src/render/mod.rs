@@ -282,13 +282,6 @@ impl RenderStats {
     }
 }
 
-/// What one band of rows produced besides its pixels.
-#[derive(Debug, Clone, Copy, Default)]
-struct BandStats {
-    rays: RayCounts,
-    resumed_paths: u64,
-}
-
 /// Renders `scene` (whose geometry is `prepared`) into an image of
 /// `options.width` x `options.height` pixels (SPEC 5, 6).
 ///
@@ -412,7 +405,7 @@ impl<'a> Job<'a> {
                     .collect()
             }
         };
-        let results: Vec<BandStats> = buffer
+        let bands: Vec<RenderStats> = buffer
             .par_chunks_mut(band_pixels * 3)
             .zip(selections)
             .enumerate()
@@ -428,9 +421,8 @@ impl<'a> Job<'a> {
                 }
             })
             .collect::<Result<_, Cancelled>>()?;
-        for band in results {
-            stats.rays += band.rays;
-            stats.resumed_paths += band.resumed_paths;
+        for band in bands {
+            *stats += band;
         }
         Ok(())
     }
@@ -444,7 +436,7 @@ impl<'a> Job<'a> {
         top: u32,
         pixels: &mut [u8],
         mut selection: Option<BandSelection>,
-    ) -> Result<BandStats, Cancelled> {
+    ) -> Result<RenderStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
         let mut tracer = Tracer::<WATCH, G>::new(geometry, self.lighting, self.offsets.len());
         if let Some((sweep, frame)) = self.watch {
@@ -476,7 +468,8 @@ impl<'a> Job<'a> {
             }
             left = right;
         }
-        Ok(BandStats { rays: tracer.counts, resumed_paths: tracer.resumed })
+        // A band's time is not measured: the render's whole time is.
+        Ok(RenderStats { rays: tracer.counts, resumed_paths: tracer.resumed, elapsed: Duration::ZERO })
     }
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
