@@ -282,7 +282,8 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     frames_out.finish().map(drop).map_err(|e| format!("rayrepl: {e}"))
 }
 
-/// Prints `--stats`: rays of each kind, render time and throughput.
+/// Prints `--stats`: rays of each kind, render time and throughput, and
+/// what adaptive anti-aliasing refined.
 fn print_stats(stats: &RenderStats, frames: usize) {
     let seconds = stats.elapsed.as_secs_f64();
     let threads = rayon::current_num_threads();
@@ -295,4 +296,10 @@ fn print_stats(stats: &RenderStats, frames: usize) {
         stats.rays.reflection,
         mrays / threads as f64,
     );
+    if stats.refined_pixels > 0 {
+        eprintln!(
+            "adaptive: {} pixels refined, {} of them given more samples",
+            stats.refined_pixels, stats.escalated_pixels
+        );
+    }
 }

@@ -34,8 +34,12 @@
 //! image has edges: a first pass renders every pixel at its centre, then
 //! [`refinement_mask`] flags the pixels that differ from a neighbour by more
 //! than [`ADAPTIVE_THRESHOLD`] levels, and a second pass renders just those
-//! with all `samples` samples. A refined pixel gets exactly the bytes of the
-//! uniform `samples` render; any other keeps the bytes of the 1-sample one.
+//! with all `samples` samples. A third pass gives the refined pixels whose
+//! samples still disagree most ([`escalation_mask`]) four times as many
+//! more ([`escalation_offsets`]), within a budget of rays. A refined pixel
+//! gets exactly the bytes of the uniform `samples` render, an escalated one
+//! those of the `5 * samples` pattern; any other keeps the bytes of the
+//! 1-sample render.
 
 pub mod bvh;
 pub mod camera;
@@ -52,7 +56,7 @@ use glam::{DVec2, DVec3};
 use image::RgbImage;
 use rayon::prelude::*;
 
-pub use camera::{PrimaryRays, Screen, sample_offsets};
+pub use camera::{PrimaryRays, Screen, escalation_offsets, sample_offsets};
 pub use geometry::{Geometry, Intersector, Prepared, PreparedF32, SurfaceHit};
 use intersect::PlaneShape;
 pub use intersect::Ray;
@@ -223,6 +227,49 @@ pub fn refinement_mask(image: &RgbImage) -> Vec<bool> {
     mask
 }
 
+/// A pixel refined by adaptive anti-aliasing is a candidate for more samples
+/// when the standard deviation of its samples, in 8-bit levels, exceeds this
+/// in one channel: its `samples` samples leave its byte uncertain by a few
+/// levels (about the deviation over `samples^0.75` on an edge).
+pub const ESCALATION_SPREAD: f64 = 24.0;
+
+/// The third pass of adaptive anti-aliasing may trace at most this share of
+/// the rays the first two traced, so that a scene where every pixel is
+/// uncertain (detail smaller than a pixel) costs at most 10% more.
+pub const ESCALATION_BUDGET: f64 = 0.1;
+
+/// How much the samples of one pixel disagree, and what the pixel cost.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SampleSpread {
+    /// Standard deviation of the samples' colours, in 8-bit levels, in the
+    /// channel where it is largest.
+    pub levels: f64,
+    /// Rays traced for the pixel.
+    pub rays: u64,
+}
+
+/// The refined pixels (`refined`, with their `spread`) that adaptive
+/// anti-aliasing renders a third time with [`escalation_offsets`]: those
+/// spreading more than [`ESCALATION_SPREAD`], the most spread first, as long
+/// as their projected cost (5 times the rays of their `samples` samples) fits
+/// in `budget_rays`. Ties go to the earlier pixel, so the choice is
+/// deterministic.
+pub fn escalation_mask(refined: &[bool], spread: &[SampleSpread], budget_rays: u64) -> Vec<bool> {
+    let mut candidates: Vec<usize> =
+        (0..refined.len()).filter(|&k| refined[k] && spread[k].levels > ESCALATION_SPREAD).collect();
+    candidates.sort_by(|&a, &b| spread[b].levels.total_cmp(&spread[a].levels).then(a.cmp(&b)));
+    let mut mask = vec![false; refined.len()];
+    let mut spent = 0u64;
+    for k in candidates {
+        spent += 5 * spread[k].rays;
+        if spent > budget_rays {
+            break;
+        }
+        mask[k] = true;
+    }
+    mask
+}
+
 /// Progress reporting and cancellation for one render.
 #[derive(Clone, Copy, Default)]
 pub struct RenderControl<'a> {
@@ -262,6 +309,11 @@ pub struct RenderStats {
     /// Paths paused by the reflection-weight cutoff and then followed to
     /// their end because the cutoff could have changed their pixel's byte.
     pub resumed_paths: u64,
+    /// Adaptive anti-aliasing: pixels rendered again with all samples.
+    pub refined_pixels: u64,
+    /// Adaptive anti-aliasing: pixels rendered a third time with
+    /// [`escalation_offsets`].
+    pub escalated_pixels: u64,
     /// Wall-clock time of the render.
     pub elapsed: Duration,
 }
@@ -271,6 +323,8 @@ impl std::ops::AddAssign for RenderStats {
     fn add_assign(&mut self, other: RenderStats) {
         self.rays += other.rays;
         self.resumed_paths += other.resumed_paths;
+        self.refined_pixels += other.refined_pixels;
+        self.escalated_pixels += other.escalated_pixels;
         self.elapsed += other.elapsed;
     }
 }
@@ -278,7 +332,7 @@ impl std::ops::AddAssign for RenderStats {
 impl RenderStats {
     /// All rays traced.
     pub fn total_rays(&self) -> u64 {
-        self.rays.primary + self.rays.shadow + self.rays.reflection
+        self.rays.total()
     }
 }
 
@@ -304,9 +358,17 @@ pub fn render(
     let mut stats = RenderStats::default();
     job.run(&mut image, None, &mut stats)?;
     if adaptive {
-        let mask = refinement_mask(&image);
+        let refined = refinement_mask(&image);
+        let mut spread = vec![SampleSpread::default(); refined.len()];
         let refine = Job { offsets: sample_offsets(options.samples), report_all: false, ..job };
-        refine.run(&mut image, Some(Selection { flags: &mask, valid_until: None }), &mut stats)?;
+        let selection = Selection { flags: &refined, valid_until: None, spread: Some(&mut spread) };
+        refine.run(&mut image, Some(selection), &mut stats)?;
+        let budget = (ESCALATION_BUDGET * stats.total_rays() as f64) as u64;
+        let escalated = escalation_mask(&refined, &spread, budget);
+        let escalate = Job { offsets: escalation_offsets(options.samples), ..refine };
+        escalate.run(&mut image, Some(Selection { flags: &escalated, valid_until: None, spread: None }), &mut stats)?;
+        stats.refined_pixels = refined.iter().filter(|&&f| f).count() as u64;
+        stats.escalated_pixels = escalated.iter().filter(|&&f| f).count() as u64;
     }
     stats.elapsed = start.elapsed();
     Ok((image, stats))
@@ -343,12 +405,16 @@ struct Selection<'a> {
     /// With frame reuse: for each pixel, the last frame its bytes hold for,
     /// updated for the pixels rendered.
     valid_until: Option<&'a mut [u32]>,
+    /// With adaptive anti-aliasing: for each pixel, how much its samples
+    /// disagree, written for the pixels rendered.
+    spread: Option<&'a mut [SampleSpread]>,
 }
 
 /// A band's share of a [`Selection`].
 struct BandSelection<'a> {
     flags: &'a [bool],
     valid_until: Option<&'a mut [u32]>,
+    spread: Option<&'a mut [SampleSpread]>,
 }
 
 impl<'a> Job<'a> {
@@ -395,12 +461,17 @@ impl<'a> Job<'a> {
         let band_count = buffer.len().div_ceil(band_pixels * 3);
         let selections: Vec<Option<BandSelection>> = match selection {
             None => (0..band_count).map(|_| None).collect(),
-            Some(Selection { flags, valid_until }) => {
+            Some(Selection { flags, valid_until, spread }) => {
                 let mut valid_until = valid_until.map(|v| v.chunks_mut(band_pixels));
+                let mut spread = spread.map(|v| v.chunks_mut(band_pixels));
                 flags
                     .chunks(band_pixels)
                     .map(|flags| {
-                        Some(BandSelection { flags, valid_until: valid_until.as_mut().and_then(Iterator::next) })
+                        Some(BandSelection {
+                            flags,
+                            valid_until: valid_until.as_mut().and_then(Iterator::next),
+                            spread: spread.as_mut().and_then(Iterator::next),
+                        })
                     })
                     .collect()
             }
@@ -456,10 +527,14 @@ impl<'a> Job<'a> {
                         continue;
                     }
                     tracer.valid_until = last_frame;
-                    let rgb = self.pixel(&mut tracer, i, top + row);
+                    let rays_before = tracer.counts.total();
+                    let (rgb, levels) = self.pixel(&mut tracer, i, top + row);
                     pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
                     if let Some(valid_until) = selection.as_mut().and_then(|s| s.valid_until.as_deref_mut()) {
                         valid_until[index] = tracer.valid_until;
+                    }
+                    if let Some(spread) = selection.as_mut().and_then(|s| s.spread.as_deref_mut()) {
+                        spread[index] = SampleSpread { levels, rays: tracer.counts.total() - rays_before };
                     }
                 }
             }
@@ -469,30 +544,40 @@ impl<'a> Job<'a> {
             left = right;
         }
         // A band's time is not measured: the render's whole time is.
-        Ok(RenderStats { rays: tracer.counts, resumed_paths: tracer.resumed, elapsed: Duration::ZERO })
+        Ok(RenderStats { rays: tracer.counts, resumed_paths: tracer.resumed, ..RenderStats::default() })
     }
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
-    /// samples (SPEC 6). When the reflection-weight cutoff leaves the byte
-    /// undecided, the paused paths are resumed (see [`shade`]).
+    /// samples (SPEC 6), and the [`SampleSpread::levels`] of those samples
+    /// (of their lower bounds). When the reflection-weight cutoff leaves the
+    /// byte undecided, the paused paths are resumed (see [`shade`]).
     #[inline]
-    fn pixel<const WATCH: bool, G: Intersector>(&self, tracer: &mut Tracer<WATCH, G>, i: u32, j: u32) -> [u8; 3] {
+    fn pixel<const WATCH: bool, G: Intersector>(
+        &self,
+        tracer: &mut Tracer<WATCH, G>,
+        i: u32,
+        j: u32,
+    ) -> ([u8; 3], f64) {
         let mut lo = DVec3::ZERO;
         let mut hi = DVec3::ZERO;
+        let mut squares = DVec3::ZERO;
         let mut open = false;
         for (slot, &offset) in self.offsets.iter().enumerate() {
             let b = tracer.trace(slot, &self.rays.ray(i, j, offset));
             lo += b.lo;
             hi += b.hi;
+            squares += b.lo * b.lo;
             open |= b.lo != b.hi;
         }
-        let bytes = to_bytes(self.average(lo));
+        let mean = self.average(lo);
+        let levels = 255.0 * (self.average(squares) - mean * mean).max_element().max(0.0).sqrt();
+        let bytes = to_bytes(mean);
         if !open || bytes == to_bytes(self.average(hi)) {
-            return bytes;
+            return (bytes, levels);
         }
         // The same sum in the same order as without the cutoff.
         let exact = (0..self.offsets.len()).fold(DVec3::ZERO, |sum, slot| sum + tracer.resume(slot));
-        to_bytes(self.average(exact))
+        (to_bytes(self.average(exact)), levels)
     }
 
     /// The average of a sum of sample colours.
@@ -527,5 +612,86 @@ mod tests {
         assert_eq!(to_byte(f64::NAN), 0);
         assert_eq!(to_byte(-3.0), 0);
         assert_eq!(to_byte(7.0), 255);
+    }
+
+    fn spread(levels: f64, rays: u64) -> SampleSpread {
+        SampleSpread { levels, rays }
+    }
+
+    #[test]
+    fn escalation_takes_the_most_spread_pixels_that_fit_the_budget() {
+        let refined = [true, true, false, true, true, true];
+        let spreads = [
+            spread(30.0, 10),  // candidate
+            spread(90.0, 10),  // the most spread: first
+            spread(200.0, 1),  // not refined
+            spread(24.0, 1),   // not above the threshold
+            spread(30.0, 10),  // ties with pixel 0, which comes first
+            spread(60.0, 100), // fits only a large budget
+        ];
+        let chosen = |budget| escalation_mask(&refined, &spreads, budget);
+        assert_eq!(chosen(0), [false; 6]);
+        assert_eq!(chosen(50), [false, true, false, false, false, false]);
+        // Pixel 5 (cost 500) comes second and does not fit: the choice stops.
+        assert_eq!(chosen(549), [false, true, false, false, false, false]);
+        assert_eq!(chosen(599), [false, true, false, false, false, true]);
+        assert_eq!(chosen(600), [true, true, false, false, false, true]);
+        assert_eq!(chosen(650), [true, true, false, false, true, true]);
+    }
+
+    /// A small scene in the language: spheres against a black sky, a floor.
+    fn scene() -> Scene {
+        let text = "camera distance 10 angle 0.9 end\n\
+                    ambient 0.2\n\
+                    light vector 0.5, 1, 0.6 intensity 0.8 end\n\
+                    put sphere center 0, 0, 0 radius 2 kd 0.8 ks 0.3 phong 20 color 250, 200, 40 end\n\
+                    put sphere center 2.5, 1, 1 radius 0.6 kd 0.8 ks 0 phong 1 color 40, 90, 250 end\n\
+                    put plane rotation 0, 0, 0 shift -2 kd 0.6 ks 0.4 phong 10 color 150, 150, 150 end\n";
+        let mut sources = crate::lang::source::SourceMap::new();
+        let id = sources.add("test.ray".to_owned(), text.to_owned(), 0);
+        let program = crate::lang::parse_file(id, text).expect("parses");
+        let mut interpreter = crate::lang::Interpreter::new(0.0, crate::lang::Limits::default());
+        interpreter.run(&program).expect("runs");
+        interpreter.into_scene()
+    }
+
+    /// Every pixel with the sample pattern `offsets`.
+    fn render_pattern(scene: &Scene, options: &RenderOptions, offsets: Vec<DVec2>) -> RgbImage {
+        let prepared = Prepared::new(scene);
+        let planes = blocking_planes(scene, &prepared);
+        let control = RenderControl::default();
+        let job = Job { offsets, ..Job::new(scene, &prepared, options, &control, &planes, 1) };
+        let mut image = RgbImage::new(options.width, options.height);
+        job.run(&mut image, None, &mut RenderStats::default()).expect("not cancelled");
+        image
+    }
+
+    /// Each pixel of an adaptive render holds the bytes of the last pass
+    /// that rendered it: the centre, the `samples` grid, or the escalation
+    /// pattern, and the escalated pixels are the most spread refined ones.
+    #[test]
+    fn adaptive_pixels_hold_the_bytes_of_their_last_pass() {
+        let s = scene();
+        let options = RenderOptions { width: 80, height: 60, samples: 4, adaptive: true, ..RenderOptions::default() };
+        let one = render_pattern(&s, &options, sample_offsets(1));
+        let uniform = render_pattern(&s, &options, sample_offsets(4));
+        let escalated = render_pattern(&s, &options, escalation_offsets(4));
+        let (adaptive, stats) = render(&s, &Prepared::new(&s), &options, &RenderControl::default()).expect("runs");
+        let refined = refinement_mask(&one);
+        let (mut from_uniform, mut from_escalation) = (0, 0);
+        for (k, &refine) in refined.iter().enumerate() {
+            let (x, y) = ((k % 80) as u32, (k / 80) as u32);
+            let got = adaptive.get_pixel(x, y);
+            if !refine {
+                assert_eq!(got, one.get_pixel(x, y), "pixel ({x}, {y})");
+            } else if got == uniform.get_pixel(x, y) {
+                from_uniform += 1;
+            } else {
+                assert_eq!(got, escalated.get_pixel(x, y), "pixel ({x}, {y})");
+                from_escalation += 1;
+            }
+        }
+        assert_eq!(stats.refined_pixels, from_uniform + from_escalation);
+        assert!(0 < from_escalation && from_escalation <= stats.escalated_pixels, "{stats:?}");
     }
 }

@@ -51,6 +51,13 @@ pub struct RayCounts {
     pub reflection: u64,
 }
 
+impl RayCounts {
+    /// All rays, of every kind.
+    pub fn total(&self) -> u64 {
+        self.primary + self.shadow + self.reflection
+    }
+}
+
 impl std::ops::AddAssign for RayCounts {
     fn add_assign(&mut self, other: RayCounts) {
         self.primary += other.primary;
