@@ -52,7 +52,8 @@ pub struct Cli {
     pub samples: u32,
 
     /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges
-    /// (differing from a neighbour by more than 2 levels).
+    /// (differing from a neighbour by more than 2 levels), and 4N more to the edge pixels whose samples disagree
+    /// most (within 10% more rays).
     #[arg(long)]
     pub adaptive: bool,
 

@@ -351,10 +351,11 @@ fn adaptive_sampling_is_accepted() {
     let out = dir.path().join("out.ppm");
     rayrepl()
         .arg(&path)
-        .args(["--width", "32", "--height", "24", "--samples", "4", "--adaptive", "-o"])
+        .args(["--width", "32", "--height", "24", "--samples", "4", "--adaptive", "--stats", "-o"])
         .arg(&out)
         .assert()
-        .success();
+        .success()
+        .stderr(contains("adaptive: ").and(contains(" pixels refined, ")));
     assert!(out.exists());
 }
 

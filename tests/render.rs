@@ -647,7 +647,10 @@ fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
         let flagged = mask.iter().filter(|&&f| f).count();
         assert!(0 < flagged && flagged < mask.len(), "{name}: {flagged} pixels flagged");
         assert_eq!(stats.refined_pixels, flagged as u64, "{name}");
-        assert!(0 < stats.escalated_pixels && stats.escalated_pixels < stats.refined_pixels / 4, "{name}: {stats:?}");
+        // The random scene is nearly all edges: it has spent half a uniform
+        // render before the third pass, which then gets no budget.
+        let escalated = if name == "solar" { 1..stats.refined_pixels / 4 } else { 0..1 };
+        assert!(escalated.contains(&stats.escalated_pixels), "{name}: {stats:?}");
         let mut not_uniform = 0;
         for (k, &refine) in mask.iter().enumerate() {
             let (x, y) = ((k % 96) as u32, (k / 96) as u32);

@@ -36,7 +36,8 @@
 //! than [`ADAPTIVE_THRESHOLD`] levels, and a second pass renders just those
 //! with all `samples` samples. A third pass gives the refined pixels whose
 //! samples still disagree most ([`escalation_mask`]) four times as many
-//! more ([`escalation_offsets`]), within a budget of rays. A refined pixel
+//! more ([`escalation_offsets`]), within a budget of rays
+//! ([`escalation_budget`]). A refined pixel
 //! gets exactly the bytes of the uniform `samples` render, an escalated one
 //! those of the `5 * samples` pattern; any other keeps the bytes of the
 //! 1-sample render.
@@ -234,9 +235,19 @@ pub fn refinement_mask(image: &RgbImage) -> Vec<bool> {
 pub const ESCALATION_SPREAD: f64 = 24.0;
 
 /// The third pass of adaptive anti-aliasing may trace at most this share of
-/// the rays the first two traced, so that a scene where every pixel is
-/// uncertain (detail smaller than a pixel) costs at most 10% more.
+/// the rays the first two traced, and never more than what keeps the whole
+/// render within half the rays of a uniform one (estimated as `samples`
+/// times the first pass's): see [`escalation_budget`].
 pub const ESCALATION_BUDGET: f64 = 0.1;
+
+/// The rays the third pass of adaptive anti-aliasing may trace, when the
+/// first pass (one sample per pixel) traced `first_rays` and the first two
+/// `spent`. A scene whose detail is smaller than a pixel, where nearly every
+/// pixel was refined, has already spent half a uniform render and gets none.
+pub fn escalation_budget(samples: u32, first_rays: u64, spent: u64) -> u64 {
+    let half_uniform = first_rays.saturating_mul(u64::from(samples)) / 2;
+    ((ESCALATION_BUDGET * spent as f64) as u64).min(half_uniform.saturating_sub(spent))
+}
 
 /// How much the samples of one pixel disagree, and what the pixel cost.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -358,12 +369,13 @@ pub fn render(
     let mut stats = RenderStats::default();
     job.run(&mut image, None, &mut stats)?;
     if adaptive {
+        let first_rays = stats.total_rays();
         let refined = refinement_mask(&image);
         let mut spread = vec![SampleSpread::default(); refined.len()];
         let refine = Job { offsets: sample_offsets(options.samples), report_all: false, ..job };
         let selection = Selection { flags: &refined, valid_until: None, spread: Some(&mut spread) };
         refine.run(&mut image, Some(selection), &mut stats)?;
-        let budget = (ESCALATION_BUDGET * stats.total_rays() as f64) as u64;
+        let budget = escalation_budget(options.samples, first_rays, stats.total_rays());
         let escalated = escalation_mask(&refined, &spread, budget);
         let escalate = Job { offsets: escalation_offsets(options.samples), ..refine };
         escalate.run(&mut image, Some(Selection { flags: &escalated, valid_until: None, spread: None }), &mut stats)?;
@@ -619,6 +631,16 @@ mod tests {
     }
 
     #[test]
+    fn escalation_budget_is_a_tenth_of_the_spent_rays_within_half_a_uniform_render() {
+        // 16 samples on a first pass of 1000 rays: a uniform render ~16000.
+        assert_eq!(escalation_budget(16, 1000, 3000), 300);
+        assert_eq!(escalation_budget(16, 1000, 7800), 200);
+        assert_eq!(escalation_budget(16, 1000, 8000), 0);
+        assert_eq!(escalation_budget(16, 1000, 15_000), 0);
+        assert_eq!(escalation_budget(4, u64::MAX, 10), 1);
+    }
+
+    #[test]
     fn escalation_takes_the_most_spread_pixels_that_fit_the_budget() {
         let refined = [true, true, false, true, true, true];
         let spreads = [
@@ -672,10 +694,10 @@ mod tests {
     #[test]
     fn adaptive_pixels_hold_the_bytes_of_their_last_pass() {
         let s = scene();
-        let options = RenderOptions { width: 80, height: 60, samples: 4, adaptive: true, ..RenderOptions::default() };
+        let options = RenderOptions { width: 80, height: 60, samples: 16, adaptive: true, ..RenderOptions::default() };
         let one = render_pattern(&s, &options, sample_offsets(1));
-        let uniform = render_pattern(&s, &options, sample_offsets(4));
-        let escalated = render_pattern(&s, &options, escalation_offsets(4));
+        let uniform = render_pattern(&s, &options, sample_offsets(16));
+        let escalated = render_pattern(&s, &options, escalation_offsets(16));
         let (adaptive, stats) = render(&s, &Prepared::new(&s), &options, &RenderControl::default()).expect("runs");
         let refined = refinement_mask(&one);
         let (mut from_uniform, mut from_escalation) = (0, 0);
