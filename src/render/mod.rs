@@ -539,14 +539,19 @@ impl<'a> Job<'a> {
                         continue;
                     }
                     tracer.valid_until = last_frame;
-                    let rays_before = tracer.counts.total();
-                    let (rgb, levels) = self.pixel(&mut tracer, i, top + row);
+                    // Adaptive refinement measures its pixels' spread (it
+                    // never runs with frame reuse's `valid_until`).
+                    if let Some(spread) = selection.as_mut().and_then(|s| s.spread.as_deref_mut()) {
+                        let rays_before = tracer.counts.total();
+                        let (rgb, levels) = self.pixel::<_, _, true>(&mut tracer, i, top + row);
+                        pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
+                        spread[index] = SampleSpread { levels, rays: tracer.counts.total() - rays_before };
+                        continue;
+                    }
+                    let (rgb, _) = self.pixel::<_, _, false>(&mut tracer, i, top + row);
                     pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
                     if let Some(valid_until) = selection.as_mut().and_then(|s| s.valid_until.as_deref_mut()) {
                         valid_until[index] = tracer.valid_until;
-                    }
-                    if let Some(spread) = selection.as_mut().and_then(|s| s.spread.as_deref_mut()) {
-                        spread[index] = SampleSpread { levels, rays: tracer.counts.total() - rays_before };
                     }
                 }
             }
@@ -560,11 +565,12 @@ impl<'a> Job<'a> {
     }
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
-    /// samples (SPEC 6), and the [`SampleSpread::levels`] of those samples
-    /// (of their lower bounds). When the reflection-weight cutoff leaves the
-    /// byte undecided, the paused paths are resumed (see [`shade`]).
+    /// samples (SPEC 6), and with `SPREAD` the [`SampleSpread::levels`] of
+    /// those samples (of their lower bounds; 0 without). When the
+    /// reflection-weight cutoff leaves the byte undecided, the paused paths
+    /// are resumed (see [`shade`]).
     #[inline]
-    fn pixel<const WATCH: bool, G: Intersector>(
+    fn pixel<const WATCH: bool, G: Intersector, const SPREAD: bool>(
         &self,
         tracer: &mut Tracer<WATCH, G>,
         i: u32,
@@ -578,11 +584,14 @@ impl<'a> Job<'a> {
             let b = tracer.trace(slot, &self.rays.ray(i, j, offset));
             lo += b.lo;
             hi += b.hi;
-            squares += b.lo * b.lo;
+            if SPREAD {
+                squares += b.lo * b.lo;
+            }
             open |= b.lo != b.hi;
         }
         let mean = self.average(lo);
-        let levels = 255.0 * (self.average(squares) - mean * mean).max_element().max(0.0).sqrt();
+        let levels =
+            if SPREAD { 255.0 * (self.average(squares) - mean * mean).max_element().max(0.0).sqrt() } else { 0.0 };
         let bytes = to_bytes(mean);
         if !open || bytes == to_bytes(self.average(hi)) {
             return (bytes, levels);
