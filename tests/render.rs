@@ -425,16 +425,22 @@ fn negligible_reflection_cutoff_saves_rays_and_resumes_boundary_pixels() {
     assert!(stats_all.resumed_paths > 0, "the resume path was not exercised");
 }
 
-#[test]
-fn same_bytes_with_one_and_two_threads() {
-    let s = random_scene(11, 300);
-    let o = RenderOptions { samples: 2, ..options(120, 90) };
-    let prepared = Prepared::new(&s);
+/// Renders `s` with `o` on pools of 1 and of 2 threads: the bytes must match.
+fn assert_same_bytes_with_one_and_two_threads(s: &Scene, o: &RenderOptions) {
+    let prepared = Prepared::new(s);
     let run = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
-        pool.install(|| render(&s, &prepared, &o, &RenderControl::default()).expect("no cancel").0)
+        pool.install(|| render(s, &prepared, o, &RenderControl::default()).expect("no cancel").0)
     };
     assert!(run(1) == run(2));
+}
+
+#[test]
+fn same_bytes_with_one_and_two_threads() {
+    assert_same_bytes_with_one_and_two_threads(
+        &random_scene(11, 300),
+        &RenderOptions { samples: 2, ..options(120, 90) },
+    );
 }
 
 #[test]
@@ -679,14 +685,8 @@ fn adaptive_on_a_flat_image_is_the_one_sample_image() {
 
 #[test]
 fn adaptive_gives_the_same_bytes_with_one_and_two_threads() {
-    let s = random_scene(11, 300);
     let o = RenderOptions { samples: 4, adaptive: true, ..options(120, 90) };
-    let prepared = Prepared::new(&s);
-    let run = |threads| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
-        pool.install(|| render(&s, &prepared, &o, &RenderControl::default()).expect("no cancel").0)
-    };
-    assert!(run(1) == run(2));
+    assert_same_bytes_with_one_and_two_threads(&random_scene(11, 300), &o);
 }
 
 /// Paths are followed iteratively: a huge depth between two perfect mirrors

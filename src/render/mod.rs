@@ -539,16 +539,15 @@ impl<'a> Job<'a> {
                         continue;
                     }
                     tracer.valid_until = last_frame;
-                    // Adaptive refinement measures its pixels' spread (it
-                    // never runs with frame reuse's `valid_until`).
-                    if let Some(spread) = selection.as_mut().and_then(|s| s.spread.as_deref_mut()) {
-                        let rays_before = tracer.counts.total();
-                        let (rgb, levels) = self.pixel::<_, _, true>(&mut tracer, i, top + row);
-                        pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
-                        spread[index] = SampleSpread { levels, rays: tracer.counts.total() - rays_before };
-                        continue;
-                    }
-                    let (rgb, _) = self.pixel::<_, _, false>(&mut tracer, i, top + row);
+                    let rgb = match selection.as_mut().and_then(|s| s.spread.as_deref_mut()) {
+                        Some(spread) => {
+                            let rays_before = tracer.counts.total();
+                            let (rgb, levels) = self.pixel::<_, _, true>(&mut tracer, i, top + row);
+                            spread[index] = SampleSpread { levels, rays: tracer.counts.total() - rays_before };
+                            rgb
+                        }
+                        None => self.pixel::<_, _, false>(&mut tracer, i, top + row).0,
+                    };
                     pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
                     if let Some(valid_until) = selection.as_mut().and_then(|s| s.valid_until.as_deref_mut()) {
                         valid_until[index] = tracer.valid_until;
