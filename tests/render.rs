@@ -12,7 +12,8 @@ use proptest::prelude::*;
 use rayrepl::render::bvh::Bvh;
 use rayrepl::render::intersect::{Bounded, BoxShape, SphereShape};
 use rayrepl::render::{
-    Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, refinement_mask, render,
+    Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, glimpse_pass, refinement_mask,
+    render,
 };
 use rayrepl::scene::{Light, Material, Primitive, Scene, Shape};
 
@@ -646,10 +647,10 @@ proptest! {
 fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
     for (name, s) in [("solar", solar()), ("random", random_scene(5, 200))] {
         let base = options(96, 72);
-        let (one, _) = render_with(&s, &base);
+        let (one, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &base);
         let (uniform, _) = render_with(&s, &RenderOptions { samples: 9, ..base });
         let (adaptive, stats) = render_with(&s, &RenderOptions { samples: 9, adaptive: true, ..base });
-        let mask = refinement_mask(&one);
+        let mask = refinement_mask(&one, &glimpses);
         let flagged = mask.iter().filter(|&&f| f).count();
         assert!(0 < flagged && flagged < mask.len(), "{name}: {flagged} pixels flagged");
         assert_eq!(stats.refined_pixels, flagged as u64, "{name}");
@@ -676,8 +677,8 @@ fn adaptive_on_a_flat_image_is_the_one_sample_image() {
     let wall = plane([0.0, 0.0, 1.0], -5.0, material([0.8, 0.4, 0.2], 0.9, 0.0, 1.0));
     let s = scene(10.0, 0.8, 0.2, vec![light([0.2, 0.5, 1.0], 0.7)], vec![wall]);
     let base = options(40, 30);
-    let (one, _) = render_with(&s, &base);
-    assert!(refinement_mask(&one).iter().all(|&f| !f));
+    let (one, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &base);
+    assert!(refinement_mask(&one, &glimpses).iter().all(|&f| !f));
     let (adaptive, stats) = render_with(&s, &RenderOptions { samples: 16, adaptive: true, ..base });
     assert!(adaptive == one);
     assert_eq!(stats.rays.primary, 40 * 30);

@@ -50,6 +50,17 @@ pub struct SurfaceHit {
     pub material: Material,
     /// Whether the object hit depends on `time` (is in [`Prepared::timed`]).
     pub timed: bool,
+    /// Which object was hit: equal for two hits of one render exactly when
+    /// they are on the same object.
+    pub surface: u64,
+    /// How wide the object looks from the ray, in world units: a sphere's
+    /// diameter; for a box, its middle size foreshortened by the angle of
+    /// the face hit; infinite for a plane. Over `t` it is the angle the
+    /// object spans (see [`super::adaptive::Glimpse::finest`]).
+    pub width: f64,
+    /// The curvature of the surface at the hit: 1 / radius for a sphere, 0
+    /// for a flat face.
+    pub curvature: f64,
 }
 
 impl Geometry {
@@ -132,14 +143,27 @@ impl Geometry {
     #[inline(always)]
     fn surface(&self, ray: &Ray, hit: GeometryHit, timed: bool) -> SurfaceHit {
         let point = ray.at(hit.t);
-        let (normal, material) = match hit.object {
+        let key = match hit.object {
+            ObjectId::Bounded(k) => u64::from(k) << 2,
+            ObjectId::Plane(k) => u64::from(k) << 2 | 1,
+        };
+        let surface = key | u64::from(timed) << 1;
+        match hit.object {
             ObjectId::Bounded(k) => {
                 let object: &Bounded = &self.bvh.objects()[k as usize];
-                (object.normal(ray, hit.t), self.bounded_materials[k as usize])
+                let normal = object.normal(ray, hit.t);
+                let (width, curvature) = match object {
+                    Bounded::Sphere(s) => (2.0 * s.radius, 1.0 / s.radius),
+                    Bounded::Box(b) => (2.0 * b.middle_half_size() * normal.dot(ray.dir).abs(), 0.0),
+                };
+                let material = self.bounded_materials[k as usize];
+                SurfaceHit { t: hit.t, point, normal, material, timed, surface, width, curvature }
             }
-            ObjectId::Plane(k) => (self.planes[k as usize].normal(), self.plane_materials[k as usize]),
-        };
-        SurfaceHit { t: hit.t, point, normal, material, timed }
+            ObjectId::Plane(k) => {
+                let (normal, material) = (self.planes[k as usize].normal(), self.plane_materials[k as usize]);
+                SurfaceHit { t: hit.t, point, normal, material, timed, surface, width: f64::INFINITY, curvature: 0.0 }
+            }
+        }
     }
 }
 

@@ -283,6 +283,13 @@ impl BoxShape {
         if d > 0.0 { -e } else { e }
     }
 
+    /// The middle one of the three half sizes: half the width of the box's
+    /// narrower side on its broadest faces.
+    pub fn middle_half_size(&self) -> f64 {
+        let h = self.half;
+        h.x.min(h.y).max(h.x.max(h.y).min(h.z))
+    }
+
     /// An axis-aligned box enclosing the oriented box: `C ± |A| h` where `|A|`
     /// is the axes matrix with absolute entries.
     pub fn bounds(&self) -> Aabb {

@@ -42,6 +42,7 @@
 //! those of the `5 * samples` pattern; any other keeps the bytes of the
 //! 1-sample render.
 
+pub mod adaptive;
 pub mod bvh;
 pub mod camera;
 pub mod geometry;
@@ -57,6 +58,10 @@ use glam::{DVec2, DVec3};
 use image::RgbImage;
 use rayon::prelude::*;
 
+pub use adaptive::{
+    ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, ESCALATION_BUDGET, ESCALATION_SPREAD, FINE_DETAIL, Glimpse, SampleSpread,
+    escalation_budget, escalation_mask, refinement_mask,
+};
 pub use camera::{PrimaryRays, Screen, escalation_offsets, sample_offsets};
 pub use geometry::{Geometry, Intersector, Prepared, PreparedF32, SurfaceHit};
 use intersect::PlaneShape;
@@ -188,99 +193,6 @@ impl Default for RenderOptions {
     }
 }
 
-/// Adaptive anti-aliasing refines a pixel when one of its channels differs
-/// by more than this many 8-bit levels from the same channel of one of its 8
-/// neighbours in the 1-sample image.
-pub const ADAPTIVE_THRESHOLD: u8 = 2;
-
-/// The pixels adaptive anti-aliasing renders again with all samples (row
-/// major, one flag per pixel): those of `image` (a 1-sample render) with a
-/// channel more than [`ADAPTIVE_THRESHOLD`] levels away from that channel
-/// of one of their 8 neighbours.
-///
-/// Both pixels of a differing pair are flagged, so an edge is refined on both
-/// of its sides.
-pub fn refinement_mask(image: &RgbImage) -> Vec<bool> {
-    let (width, height) = (image.width() as usize, image.height() as usize);
-    let raw = image.as_raw();
-    let at = |x: usize, y: usize| &raw[(y * width + x) * 3..(y * width + x) * 3 + 3];
-    let differ = |a: &[u8], b: &[u8]| a.iter().zip(b).any(|(&p, &q)| p.abs_diff(q) > ADAPTIVE_THRESHOLD);
-    let mut mask = vec![false; width * height];
-    for y in 0..height {
-        for x in 0..width {
-            let here = at(x, y);
-            // Each unordered pair once: the right, lower-left, lower and
-            // lower-right neighbours.
-            let later = [(1, 0), (-1, 1), (0, 1), (1, 1)];
-            for (dx, dy) in later {
-                let (nx, ny) = (x as isize + dx, y + dy);
-                if nx < 0 || nx as usize >= width || ny >= height {
-                    continue;
-                }
-                let nx = nx as usize;
-                if differ(here, at(nx, ny)) {
-                    mask[y * width + x] = true;
-                    mask[ny * width + nx] = true;
-                }
-            }
-        }
-    }
-    mask
-}
-
-/// A pixel refined by adaptive anti-aliasing is a candidate for more samples
-/// when the standard deviation of its samples, in 8-bit levels, exceeds this
-/// in one channel: its `samples` samples leave its byte uncertain by a few
-/// levels (about the deviation over `samples^0.75` on an edge).
-pub const ESCALATION_SPREAD: f64 = 24.0;
-
-/// The third pass of adaptive anti-aliasing may trace at most this share of
-/// the rays the first two traced, and never more than what keeps the whole
-/// render within half the rays of a uniform one (estimated as `samples`
-/// times the first pass's): see [`escalation_budget`].
-pub const ESCALATION_BUDGET: f64 = 0.1;
-
-/// The rays the third pass of adaptive anti-aliasing may trace, when the
-/// first pass (one sample per pixel) traced `first_rays` and the first two
-/// `spent`. A scene whose detail is smaller than a pixel, where nearly every
-/// pixel was refined, has already spent half a uniform render and gets none.
-pub fn escalation_budget(samples: u32, first_rays: u64, spent: u64) -> u64 {
-    let half_uniform = first_rays.saturating_mul(u64::from(samples)) / 2;
-    ((ESCALATION_BUDGET * spent as f64) as u64).min(half_uniform.saturating_sub(spent))
-}
-
-/// How much the samples of one pixel disagree, and what the pixel cost.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SampleSpread {
-    /// Standard deviation of the samples' colours, in 8-bit levels, in the
-    /// channel where it is largest.
-    pub levels: f64,
-    /// Rays traced for the pixel.
-    pub rays: u64,
-}
-
-/// The refined pixels (`refined`, with their `spread`) that adaptive
-/// anti-aliasing renders a third time with [`escalation_offsets`]: those
-/// spreading more than [`ESCALATION_SPREAD`], the most spread first, as long
-/// as their projected cost (5 times the rays of their `samples` samples) fits
-/// in `budget_rays`. Ties go to the earlier pixel, so the choice is
-/// deterministic.
-pub fn escalation_mask(refined: &[bool], spread: &[SampleSpread], budget_rays: u64) -> Vec<bool> {
-    let mut candidates: Vec<usize> =
-        (0..refined.len()).filter(|&k| refined[k] && spread[k].levels > ESCALATION_SPREAD).collect();
-    candidates.sort_by(|&a, &b| spread[b].levels.total_cmp(&spread[a].levels).then(a.cmp(&b)));
-    let mut mask = vec![false; refined.len()];
-    let mut spent = 0u64;
-    for k in candidates {
-        spent += 5 * spread[k].rays;
-        if spent > budget_rays {
-            break;
-        }
-        mask[k] = true;
-    }
-    mask
-}
-
 /// Progress reporting and cancellation for one render.
 #[derive(Clone, Copy, Default)]
 pub struct RenderControl<'a> {
@@ -367,23 +279,38 @@ pub fn render(
     let mut job = Job::new(scene, prepared, options, control, &blocking_planes, first_samples);
     job.f32_geometry = f32_geometry.as_ref();
     let mut stats = RenderStats::default();
-    job.run(&mut image, None, &mut stats)?;
-    if adaptive {
+    if !adaptive {
+        job.run(&mut image, Selection::default(), &mut stats)?;
+    } else {
+        let glimpses = job.glimpse_pass(&mut image, &mut stats)?;
         let first_rays = stats.total_rays();
-        let refined = refinement_mask(&image);
+        let refined = refinement_mask(&image, &glimpses);
         let mut spread = vec![SampleSpread::default(); refined.len()];
         let refine = Job { offsets: sample_offsets(options.samples), report_all: false, ..job };
-        let selection = Selection { flags: &refined, valid_until: None, spread: Some(&mut spread) };
-        refine.run(&mut image, Some(selection), &mut stats)?;
+        let selection = Selection { flags: Some(&refined), spread: Some(&mut spread), ..Selection::default() };
+        refine.run(&mut image, selection, &mut stats)?;
         let budget = escalation_budget(options.samples, first_rays, stats.total_rays());
         let escalated = escalation_mask(&refined, &spread, budget);
         let escalate = Job { offsets: escalation_offsets(options.samples), ..refine };
-        escalate.run(&mut image, Some(Selection { flags: &escalated, valid_until: None, spread: None }), &mut stats)?;
+        escalate.run(&mut image, Selection { flags: Some(&escalated), ..Selection::default() }, &mut stats)?;
         stats.refined_pixels = refined.iter().filter(|&&f| f).count() as u64;
         stats.escalated_pixels = escalated.iter().filter(|&&f| f).count() as u64;
     }
     stats.elapsed = start.elapsed();
     Ok((image, stats))
+}
+
+/// Adaptive anti-aliasing's first pass alone: every pixel of `scene`
+/// rendered at its centre, and the [`Glimpse`] of each pixel's ray (row
+/// major). [`refinement_mask`] of the two gives the pixels the second pass
+/// renders again.
+pub fn glimpse_pass(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> (RgbImage, Vec<Glimpse>) {
+    let blocking_planes = blocking_planes(scene, prepared);
+    let control = RenderControl::default();
+    let job = Job::new(scene, prepared, options, &control, &blocking_planes, 1);
+    let mut image = RgbImage::new(options.width, options.height);
+    let glimpses = job.glimpse_pass(&mut image, &mut RenderStats::default()).expect("no cancel flag: never cancelled");
+    (image, glimpses)
 }
 
 /// For each light of `scene`, the planes that can block rays towards it
@@ -410,23 +337,22 @@ struct Job<'a> {
     watch: Option<(&'a Sweep, u32)>,
 }
 
-/// The pixels one pass renders, when not all of them.
+/// The pixels one pass renders, and what it records of them besides their
+/// bytes.
+#[derive(Default)]
 struct Selection<'a> {
-    /// One flag per pixel, row major: render it or keep its bytes.
-    flags: &'a [bool],
+    /// One flag per pixel, row major: render it or keep its bytes (all
+    /// pixels when `None`).
+    flags: Option<&'a [bool]>,
     /// With frame reuse: for each pixel, the last frame its bytes hold for,
     /// updated for the pixels rendered.
     valid_until: Option<&'a mut [u32]>,
     /// With adaptive anti-aliasing: for each pixel, how much its samples
     /// disagree, written for the pixels rendered.
     spread: Option<&'a mut [SampleSpread]>,
-}
-
-/// A band's share of a [`Selection`].
-struct BandSelection<'a> {
-    flags: &'a [bool],
-    valid_until: Option<&'a mut [u32]>,
-    spread: Option<&'a mut [SampleSpread]>,
+    /// With adaptive anti-aliasing's first pass (one sample per pixel): for
+    /// each pixel, the [`Glimpse`] of its ray.
+    glimpse: Option<&'a mut [Glimpse]>,
 }
 
 impl<'a> Job<'a> {
@@ -439,8 +365,9 @@ impl<'a> Job<'a> {
         blocking_planes: &'a [Vec<PlaneShape>],
         samples: u32,
     ) -> Job<'a> {
+        let rays = PrimaryRays::new(&scene.camera, options.width, options.height, options.screen);
         Job {
-            rays: PrimaryRays::new(&scene.camera, options.width, options.height, options.screen),
+            rays,
             offsets: sample_offsets(samples),
             lighting: Lighting {
                 ambient: scene.ambient,
@@ -448,6 +375,7 @@ impl<'a> Job<'a> {
                 blocking_planes,
                 depth: options.depth,
                 skips: options.skips,
+                pixel_angle: rays.pixel_angle(),
             },
             prepared,
             f32_geometry: None,
@@ -458,49 +386,57 @@ impl<'a> Job<'a> {
         }
     }
 
+    /// Renders every pixel into `buffer`, as [`Job::run`] does, and returns
+    /// the [`Glimpse`] of each pixel's last ray.
+    fn glimpse_pass(&self, buffer: &mut [u8], stats: &mut RenderStats) -> Result<Vec<Glimpse>, Cancelled> {
+        let mut glimpses = vec![Glimpse::start(0.0); buffer.len() / 3];
+        self.run(buffer, Selection { glimpse: Some(&mut glimpses), ..Selection::default() }, stats)?;
+        Ok(glimpses)
+    }
+
     /// Renders the whole image into `buffer` (its RGB bytes, row major) in
     /// parallel bands, or only the pixels of `selection` if given, and adds
     /// the bands' counts to `stats`.
-    fn run(&self, buffer: &mut [u8], selection: Option<Selection>, stats: &mut RenderStats) -> Result<(), Cancelled> {
+    fn run(&self, buffer: &mut [u8], selection: Selection, stats: &mut RenderStats) -> Result<(), Cancelled> {
         // A pass over some pixels only (adaptive refinement, frame reuse)
         // finds them bunched in a few places, along edges or around what
         // moves: bands of one row keep both threads busy to the end.
-        let band_rows = if selection.is_some() { 1 } else { TILE };
+        let band_rows = if selection.flags.is_some() { 1 } else { TILE };
         let band_pixels = band_rows as usize * self.width as usize;
         if band_pixels == 0 {
             return Ok(());
         }
         let band_count = buffer.len().div_ceil(band_pixels * 3);
-        let selections: Vec<Option<BandSelection>> = match selection {
-            None => (0..band_count).map(|_| None).collect(),
-            Some(Selection { flags, valid_until, spread }) => {
-                let mut valid_until = valid_until.map(|v| v.chunks_mut(band_pixels));
-                let mut spread = spread.map(|v| v.chunks_mut(band_pixels));
-                flags
-                    .chunks(band_pixels)
-                    .map(|flags| {
-                        Some(BandSelection {
-                            flags,
-                            valid_until: valid_until.as_mut().and_then(Iterator::next),
-                            spread: spread.as_mut().and_then(Iterator::next),
-                        })
-                    })
-                    .collect()
-            }
-        };
+        let Selection { flags, valid_until, spread, glimpse } = selection;
+        let mut flags = flags.map(|v| v.chunks(band_pixels));
+        let mut valid_until = valid_until.map(|v| v.chunks_mut(band_pixels));
+        let mut spread = spread.map(|v| v.chunks_mut(band_pixels));
+        let mut glimpse = glimpse.map(|v| v.chunks_mut(band_pixels));
+        let selections: Vec<Selection> = (0..band_count)
+            .map(|_| Selection {
+                flags: flags.as_mut().and_then(Iterator::next),
+                valid_until: valid_until.as_mut().and_then(Iterator::next),
+                spread: spread.as_mut().and_then(Iterator::next),
+                glimpse: glimpse.as_mut().and_then(Iterator::next),
+            })
+            .collect();
         let bands: Vec<RenderStats> = buffer
             .par_chunks_mut(band_pixels * 3)
             .zip(selections)
             .enumerate()
             .map(|(band, (pixels, selection))| {
                 let top = band as u32 * band_rows;
-                // Frame reuse and each precision have their own build of the
-                // tracer, so that a default still image pays nothing for them.
-                match (self.watch.is_some(), self.f32_geometry) {
-                    (false, None) => self.band::<false, _>(self.prepared, top, pixels, selection),
-                    (true, None) => self.band::<true, _>(self.prepared, top, pixels, selection),
-                    (false, Some(g)) => self.band::<false, _>(g, top, pixels, selection),
-                    (true, Some(g)) => self.band::<true, _>(g, top, pixels, selection),
+                // Frame reuse, glimpses and each precision have their own
+                // build of the tracer, so that a default still image pays
+                // nothing for them. Frame reuse never asks for glimpses.
+                let (watch, glimpse) = (self.watch.is_some(), selection.glimpse.is_some());
+                match (watch, glimpse, self.f32_geometry) {
+                    (false, false, None) => self.band::<false, false, _>(self.prepared, top, pixels, selection),
+                    (false, true, None) => self.band::<false, true, _>(self.prepared, top, pixels, selection),
+                    (true, _, None) => self.band::<true, false, _>(self.prepared, top, pixels, selection),
+                    (false, false, Some(g)) => self.band::<false, false, _>(g, top, pixels, selection),
+                    (false, true, Some(g)) => self.band::<false, true, _>(g, top, pixels, selection),
+                    (true, _, Some(g)) => self.band::<true, false, _>(g, top, pixels, selection),
                 }
             })
             .collect::<Result<_, Cancelled>>()?;
@@ -511,17 +447,17 @@ impl<'a> Job<'a> {
     }
 
     /// Renders the band of rows starting at `top` into `pixels` (its RGB
-    /// bytes), tile by tile, intersecting rays with `geometry`; with
-    /// `selection` (one entry per pixel of the band), only the flagged pixels.
-    fn band<const WATCH: bool, G: Intersector>(
+    /// bytes), tile by tile, intersecting rays with `geometry`: the pixels
+    /// `selection` (the band's share of it) flags, recording what it asks.
+    fn band<const WATCH: bool, const GLIMPSE: bool, G: Intersector>(
         &self,
         geometry: &G,
         top: u32,
         pixels: &mut [u8],
-        mut selection: Option<BandSelection>,
+        mut selection: Selection,
     ) -> Result<RenderStats, Cancelled> {
         let rows = (pixels.len() / (self.width as usize * 3)) as u32;
-        let mut tracer = Tracer::<WATCH, G>::new(geometry, self.lighting, self.offsets.len());
+        let mut tracer = Tracer::<WATCH, GLIMPSE, G>::new(geometry, self.lighting, self.offsets.len());
         if let Some((sweep, frame)) = self.watch {
             tracer = tracer.watching(sweep, frame);
         }
@@ -535,22 +471,25 @@ impl<'a> Job<'a> {
             for row in 0..rows {
                 for i in left..right {
                     let index = row as usize * self.width as usize + i as usize;
-                    if selection.as_ref().is_some_and(|s| !s.flags[index]) {
+                    if selection.flags.is_some_and(|f| !f[index]) {
                         continue;
                     }
                     tracer.valid_until = last_frame;
-                    let rgb = match selection.as_mut().and_then(|s| s.spread.as_deref_mut()) {
+                    let rgb = match selection.spread.as_deref_mut() {
                         Some(spread) => {
                             let rays_before = tracer.counts.total();
-                            let (rgb, levels) = self.pixel::<_, _, true>(&mut tracer, i, top + row);
+                            let (rgb, levels) = self.pixel::<_, _, _, true>(&mut tracer, i, top + row);
                             spread[index] = SampleSpread { levels, rays: tracer.counts.total() - rays_before };
                             rgb
                         }
-                        None => self.pixel::<_, _, false>(&mut tracer, i, top + row).0,
+                        None => self.pixel::<_, _, _, false>(&mut tracer, i, top + row).0,
                     };
                     pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
-                    if let Some(valid_until) = selection.as_mut().and_then(|s| s.valid_until.as_deref_mut()) {
+                    if let Some(valid_until) = selection.valid_until.as_deref_mut() {
                         valid_until[index] = tracer.valid_until;
+                    }
+                    if let (true, Some(glimpse)) = (GLIMPSE, selection.glimpse.as_deref_mut()) {
+                        glimpse[index] = tracer.glimpse;
                     }
                 }
             }
@@ -569,9 +508,9 @@ impl<'a> Job<'a> {
     /// reflection-weight cutoff leaves the byte undecided, the paused paths
     /// are resumed (see [`shade`]).
     #[inline]
-    fn pixel<const WATCH: bool, G: Intersector, const SPREAD: bool>(
+    fn pixel<const WATCH: bool, const GLIMPSE: bool, G: Intersector, const SPREAD: bool>(
         &self,
-        tracer: &mut Tracer<WATCH, G>,
+        tracer: &mut Tracer<WATCH, GLIMPSE, G>,
         i: u32,
         j: u32,
     ) -> ([u8; 3], f64) {
@@ -634,41 +573,6 @@ mod tests {
         assert_eq!(to_byte(7.0), 255);
     }
 
-    fn spread(levels: f64, rays: u64) -> SampleSpread {
-        SampleSpread { levels, rays }
-    }
-
-    #[test]
-    fn escalation_budget_is_a_tenth_of_the_spent_rays_within_half_a_uniform_render() {
-        // 16 samples on a first pass of 1000 rays: a uniform render ~16000.
-        assert_eq!(escalation_budget(16, 1000, 3000), 300);
-        assert_eq!(escalation_budget(16, 1000, 7800), 200);
-        assert_eq!(escalation_budget(16, 1000, 8000), 0);
-        assert_eq!(escalation_budget(16, 1000, 15_000), 0);
-        assert_eq!(escalation_budget(4, u64::MAX, 10), 1);
-    }
-
-    #[test]
-    fn escalation_takes_the_most_spread_pixels_that_fit_the_budget() {
-        let refined = [true, true, false, true, true, true];
-        let spreads = [
-            spread(30.0, 10),  // candidate
-            spread(90.0, 10),  // the most spread: first
-            spread(200.0, 1),  // not refined
-            spread(24.0, 1),   // not above the threshold
-            spread(30.0, 10),  // ties with pixel 0, which comes first
-            spread(60.0, 100), // fits only a large budget
-        ];
-        let chosen = |budget| escalation_mask(&refined, &spreads, budget);
-        assert_eq!(chosen(0), [false; 6]);
-        assert_eq!(chosen(50), [false, true, false, false, false, false]);
-        // Pixel 5 (cost 500) comes second and does not fit: the choice stops.
-        assert_eq!(chosen(549), [false, true, false, false, false, false]);
-        assert_eq!(chosen(599), [false, true, false, false, false, true]);
-        assert_eq!(chosen(600), [true, true, false, false, false, true]);
-        assert_eq!(chosen(650), [true, true, false, false, true, true]);
-    }
-
     /// A small scene in the language: spheres against a black sky, a floor.
     fn scene() -> Scene {
         let text = "camera distance 10 angle 0.9 end\n\
@@ -692,7 +596,7 @@ mod tests {
         let control = RenderControl::default();
         let job = Job { offsets, ..Job::new(scene, &prepared, options, &control, &planes, 1) };
         let mut image = RgbImage::new(options.width, options.height);
-        job.run(&mut image, None, &mut RenderStats::default()).expect("not cancelled");
+        job.run(&mut image, Selection::default(), &mut RenderStats::default()).expect("not cancelled");
         image
     }
 
@@ -703,11 +607,12 @@ mod tests {
     fn adaptive_pixels_hold_the_bytes_of_their_last_pass() {
         let s = scene();
         let options = RenderOptions { width: 80, height: 60, samples: 16, adaptive: true, ..RenderOptions::default() };
-        let one = render_pattern(&s, &options, sample_offsets(1));
+        let (one, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options);
+        assert!(one == render_pattern(&s, &options, sample_offsets(1)));
         let uniform = render_pattern(&s, &options, sample_offsets(16));
         let escalated = render_pattern(&s, &options, escalation_offsets(16));
         let (adaptive, stats) = render(&s, &Prepared::new(&s), &options, &RenderControl::default()).expect("runs");
-        let refined = refinement_mask(&one);
+        let refined = refinement_mask(&one, &glimpses);
         let (mut from_uniform, mut from_escalation) = (0, 0);
         for (k, &refine) in refined.iter().enumerate() {
             let (x, y) = ((k % 80) as u32, (k / 80) as u32);

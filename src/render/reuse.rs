@@ -122,8 +122,9 @@ impl FrameReuse {
             ..Job::new(scene, prepared, &self.options, control, &blocking_planes, self.options.samples)
         };
         let mut stats = RenderStats::default();
-        let selection = Selection { flags: &stale, valid_until: Some(&mut self.valid_until), spread: None };
-        let done = job.run(&mut image, Some(selection), &mut stats);
+        let selection =
+            Selection { flags: Some(&stale), valid_until: Some(&mut self.valid_until), ..Selection::default() };
+        let done = job.run(&mut image, selection, &mut stats);
         // A cancelled frame leaves `image` half new: start again from scratch.
         if done.is_err() {
             self.next -= 1;

@@ -32,6 +32,7 @@
 use glam::DVec3;
 
 use super::Skips;
+use super::adaptive::Glimpse;
 use super::geometry::{Blocker, Intersector, Prepared, SurfaceHit};
 use super::intersect::{PlaneShape, Ray};
 use super::sweep::Sweep;
@@ -115,16 +116,20 @@ pub struct Lighting<'a> {
     pub depth: u32,
     /// Which work-saving shortcuts are on.
     pub skips: Skips,
+    /// The angle one pixel spans (radians): how fast the beam of rays
+    /// through a pixel widens, for [`Glimpse::finest`].
+    pub pixel_angle: f64,
 }
 
 /// Traces paths; holds the ray counts of one tile and reusable buffers.
 ///
 /// With `WATCH`, it also works out how long each pixel stays valid for
 /// frame reuse ([`Tracer::watching`]); the still-image tracer
-/// (`WATCH = false`) compiles without that bookkeeping. `G` is the
-/// geometry in the precision of the intersection tests ([`Prepared`] for
-/// f64, [`super::geometry::PreparedF32`] for f32).
-pub struct Tracer<'a, const WATCH: bool = false, G: Intersector = Prepared> {
+/// (`WATCH = false`) compiles without that bookkeeping. With `GLIMPSE`, it
+/// records a [`Glimpse`] of each path for adaptive anti-aliasing's first
+/// pass. `G` is the geometry in the precision of the intersection tests
+/// ([`Prepared`] for f64, [`super::geometry::PreparedF32`] for f32).
+pub struct Tracer<'a, const WATCH: bool = false, const GLIMPSE: bool = false, G: Intersector = Prepared> {
     geometry: &'a G,
     lighting: Lighting<'a>,
     /// Rays traced so far.
@@ -139,20 +144,31 @@ pub struct Tracer<'a, const WATCH: bool = false, G: Intersector = Prepared> {
     /// With frame reuse: the last frame for which the paths traced since it
     /// was reset give the same colours (see [`super::sweep`]).
     pub valid_until: u32,
+    /// With `GLIMPSE`: what the last path traced met.
+    pub glimpse: Glimpse,
 }
 
-impl<'a, const WATCH: bool, G: Intersector> Tracer<'a, WATCH, G> {
+impl<'a, const WATCH: bool, const GLIMPSE: bool, G: Intersector> Tracer<'a, WATCH, GLIMPSE, G> {
     /// A tracer over `geometry` with the image constants `lighting`, for
     /// `slots` samples per pixel.
-    pub fn new(geometry: &'a G, lighting: Lighting<'a>, slots: usize) -> Tracer<'a, WATCH, G> {
+    pub fn new(geometry: &'a G, lighting: Lighting<'a>, slots: usize) -> Tracer<'a, WATCH, GLIMPSE, G> {
         let paths = (0..slots.max(1)).map(|_| Path { levels: Vec::with_capacity(8), paused: None }).collect();
-        Tracer { geometry, lighting, counts: RayCounts::default(), resumed: 0, paths, watch: None, valid_until: 0 }
+        Tracer {
+            geometry,
+            lighting,
+            counts: RayCounts::default(),
+            resumed: 0,
+            paths,
+            watch: None,
+            valid_until: 0,
+            glimpse: Glimpse::start(lighting.pixel_angle),
+        }
     }
 
     /// The same tracer, working out [`Tracer::valid_until`] for frame
     /// `frame` of the frames of `sweep` (only with `WATCH`). The geometry's
     /// timed part must have no plane.
-    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a, WATCH, G> {
+    pub fn watching(self, sweep: &'a Sweep, frame: u32) -> Tracer<'a, WATCH, GLIMPSE, G> {
         Tracer { watch: Some((sweep, frame)), ..self }
     }
 
@@ -173,6 +189,9 @@ impl<'a, const WATCH: bool, G: Intersector> Tracer<'a, WATCH, G> {
     /// [`Tracer::resume`] can finish it if the cutoff paused it.
     pub fn trace(&mut self, slot: usize, primary: &Ray) -> Bracket {
         self.counts.primary += 1;
+        if GLIMPSE {
+            self.glimpse = Glimpse::start(self.lighting.pixel_angle);
+        }
         let mut levels = std::mem::take(&mut self.paths[slot].levels);
         levels.clear();
         let (tail, paused) = self.follow(&mut levels, *primary, self.lighting.skips.negligible_reflection);
@@ -210,8 +229,14 @@ impl<'a, const WATCH: bool, G: Intersector> Tracer<'a, WATCH, G> {
                 self.watch(&ray, found.map_or(f64::INFINITY, |h| h.t), found.is_some_and(|h| h.timed));
             }
             let Some(hit) = found else {
+                if GLIMPSE {
+                    self.glimpse.miss();
+                }
                 return (Tail::Black, None);
             };
+            if GLIMPSE {
+                self.glimpse.hit(&ray, &hit, weight);
+            }
             let origin = offset_by(hit.point, hit.normal, G::OFFSET_SCALE);
             let local = self.local_colour(&ray, &hit, origin);
             let ks = hit.material.ks;
@@ -270,11 +295,17 @@ impl<'a, const WATCH: bool, G: Intersector> Tracer<'a, WATCH, G> {
             // The formula sums only lights with N·L > 0: for the others the
             // shadow ray cannot matter, and the skip avoids it.
             if skips.back_facing_light && n_dot_l <= 0.0 {
+                if GLIMPSE {
+                    self.glimpse.light(false);
+                }
                 continue;
             }
             self.counts.shadow += 1;
-            let visible = self.visible(&Ray::new(origin, l), planes);
-            if !visible || n_dot_l <= 0.0 {
+            let lit = self.visible(&Ray::new(origin, l), planes) && n_dot_l > 0.0;
+            if GLIMPSE {
+                self.glimpse.light(lit);
+            }
+            if !lit {
                 continue;
             }
             // kd * (N·L) * I * C

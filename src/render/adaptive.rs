@@ -1,0 +1,253 @@
+//! Where adaptive anti-aliasing spends its samples.
+//!
+//! A first pass traces one ray through the centre of each pixel and keeps,
+//! besides its colour, a [`Glimpse`] of what that ray met. [`refinement_mask`]
+//! then picks the pixels whose average may differ from their centre's
+//! colour: an edge between two neighbours that saw different things, a
+//! bend in the colour (a highlight), or an object small enough to hide
+//! between centres. Those get all the samples; [`escalation_mask`] picks,
+//! among them, those whose samples still disagree most for a third pass.
+
+use image::RgbImage;
+
+use super::geometry::SurfaceHit;
+use super::intersect::Ray;
+
+/// What adaptive anti-aliasing learns from a pixel's centre ray besides
+/// its colour, gathered along its path by the tracer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Glimpse {
+    /// A hash of what the path saw: each surface it hit (the object, and
+    /// the face of a flat one) and, at each, which lights reached it. Where
+    /// two rays have equal signatures the colour between them is a smooth
+    /// function of the position on the screen: it changes abruptly only
+    /// where the object, the face, a shadow or a reflected object changes.
+    pub signature: u64,
+    /// The apparent size, in pixels, of the smallest object the path met
+    /// while its weight (the product of the `ks` above it) was at least
+    /// [`FINE_WEIGHT`]; infinite if none. Objects of a pixel or two can hide
+    /// between the centres of neighbouring pixels.
+    pub finest: f64,
+    /// The width of the beam of rays through the pixel where the current
+    /// ray starts (world units), and the angle it spreads by (radians).
+    beam_width: f64,
+    beam_spread: f64,
+}
+
+/// Reflections weighing less than this (at most 5 levels of a pixel's
+/// byte) do not count for [`Glimpse::finest`].
+pub const FINE_WEIGHT: f64 = 0.02;
+
+impl Glimpse {
+    /// The glimpse of a path not yet traced, from a camera whose pixels
+    /// span `pixel_angle` radians.
+    pub fn start(pixel_angle: f64) -> Glimpse {
+        Glimpse { signature: 0, finest: f64::INFINITY, beam_width: 0.0, beam_spread: pixel_angle }
+    }
+
+    /// The path, along `ray` with weight `weight`, hit `hit`.
+    ///
+    /// The beam through the pixel widens along the ray by its spread; a
+    /// curved mirror spreads it further by twice the turn of the normal
+    /// across its footprint (a ray cone, as in texture filtering).
+    #[inline(always)]
+    pub fn hit(&mut self, ray: &Ray, hit: &SurfaceHit, weight: f64) {
+        self.signature = mix(self.signature, hit.surface);
+        if hit.curvature == 0.0 {
+            // A flat surface: planes have one normal, a box one per face.
+            let n = hit.normal;
+            self.signature =
+                mix(self.signature, n.x.to_bits() ^ n.y.to_bits().rotate_left(21) ^ n.z.to_bits().rotate_left(42));
+        }
+        let beam = self.beam_width + self.beam_spread * hit.t;
+        if weight >= FINE_WEIGHT {
+            self.finest = self.finest.min(hit.width / beam);
+        }
+        // The footprint stretches by 1 / |N·V| along the surface; past
+        // 20 times, the ray grazes the silhouette, an edge anyway.
+        let footprint = beam / hit.normal.dot(ray.dir).abs().max(0.05);
+        self.beam_spread += 2.0 * footprint * hit.curvature;
+        self.beam_width = beam;
+    }
+
+    /// The path left the scene.
+    #[inline(always)]
+    pub fn miss(&mut self) {
+        self.signature = mix(self.signature, u64::MAX);
+    }
+
+    /// At the current hit, the next light does (`lit`) or does not add its
+    /// diffuse and specular parts.
+    #[inline(always)]
+    pub fn light(&mut self, lit: bool) {
+        self.signature = mix(self.signature, u64::from(lit));
+    }
+}
+
+/// Mixes `value` into the hash `seed`: a multiply-rotate step, cheap, with
+/// a chance of about 2^-64 that two different inputs collide.
+#[inline(always)]
+fn mix(seed: u64, value: u64) -> u64 {
+    (seed ^ value).wrapping_mul(0x9E37_79B9_7F4A_7C15).rotate_left(29)
+}
+
+/// Adaptive anti-aliasing refines both pixels of a neighbouring pair whose
+/// centre rays have different [`Glimpse::signature`]s when one of their
+/// channels differs by more than this many 8-bit levels.
+pub const ADAPTIVE_THRESHOLD: u8 = 2;
+
+/// Adaptive anti-aliasing refines a pixel when, in one channel, the sum of
+/// the absolute second differences of the 1-sample image across it
+/// (horizontally and vertically) exceeds this many levels.
+///
+/// Where the colour `f` is smooth, its average over a pixel differs from its
+/// value at the centre by about `(f_xx + f_yy) / 24` (the mean of `x^2` over
+/// a unit square is 1/12): 6 levels of bend leave the centre a quarter of a
+/// level off. Rounding the bytes adds at most 4 levels to the measure.
+pub const CURVATURE_THRESHOLD: i32 = 6;
+
+/// Adaptive anti-aliasing refines a pixel whose centre ray met an object
+/// smaller than this many pixels ([`Glimpse::finest`]).
+pub const FINE_DETAIL: f64 = 2.0;
+
+/// The pixels adaptive anti-aliasing renders again with all samples (row
+/// major, one flag per pixel), from `image` (a 1-sample render) and the
+/// [`Glimpse`] of each pixel's ray:
+///
+/// - both pixels of a neighbouring pair (8-neighbours) whose signatures
+///   differ and whose colours differ by more than [`ADAPTIVE_THRESHOLD`]
+///   levels in a channel: an edge runs between their centres;
+/// - a pixel across which the colour bends by more than
+///   [`CURVATURE_THRESHOLD`]: a highlight, or detail between the centres;
+/// - a pixel whose ray met an object smaller than [`FINE_DETAIL`] pixels.
+///
+/// A smooth gradient, however steep, is left at one sample: its average
+/// over the pixel is its value at the centre.
+pub fn refinement_mask(image: &RgbImage, glimpses: &[Glimpse]) -> Vec<bool> {
+    let (width, height) = (image.width() as usize, image.height() as usize);
+    let raw = image.as_raw();
+    let at = |x: usize, y: usize| &raw[(y * width + x) * 3..(y * width + x) * 3 + 3];
+    let differ = |a: &[u8], b: &[u8]| a.iter().zip(b).any(|(&p, &q)| p.abs_diff(q) > ADAPTIVE_THRESHOLD);
+    let mut mask: Vec<bool> = glimpses.iter().map(|g| g.finest < FINE_DETAIL).collect();
+    for y in 0..height {
+        for x in 0..width {
+            let here = at(x, y);
+            let signature = glimpses[y * width + x].signature;
+            // Each unordered pair once: the right, lower-left, lower and
+            // lower-right neighbours.
+            for (dx, dy) in [(1, 0), (-1, 1), (0, 1), (1, 1)] {
+                let (nx, ny) = (x as isize + dx, y + dy);
+                if nx < 0 || nx as usize >= width || ny >= height {
+                    continue;
+                }
+                let nx = nx as usize;
+                if signature != glimpses[ny * width + nx].signature && differ(here, at(nx, ny)) {
+                    mask[y * width + x] = true;
+                    mask[ny * width + nx] = true;
+                }
+            }
+            let second =
+                |a: &[u8], b: &[u8], c: usize| (i32::from(a[c]) - 2 * i32::from(here[c]) + i32::from(b[c])).abs();
+            let bends = (0..3).any(|c| {
+                let across = if 0 < x && x + 1 < width { second(at(x - 1, y), at(x + 1, y), c) } else { 0 };
+                let down = if 0 < y && y + 1 < height { second(at(x, y - 1), at(x, y + 1), c) } else { 0 };
+                across + down > CURVATURE_THRESHOLD
+            });
+            mask[y * width + x] |= bends;
+        }
+    }
+    mask
+}
+
+/// A pixel refined by adaptive anti-aliasing is a candidate for more samples
+/// when the standard deviation of its samples, in 8-bit levels, exceeds this
+/// in one channel: its `samples` samples leave its byte uncertain by a few
+/// levels (about the deviation over `samples^0.75` on an edge).
+pub const ESCALATION_SPREAD: f64 = 24.0;
+
+/// The third pass of adaptive anti-aliasing may trace at most this share of
+/// the rays the first two traced, and never more than what keeps the whole
+/// render within half the rays of a uniform one (estimated as `samples`
+/// times the first pass's): see [`escalation_budget`].
+pub const ESCALATION_BUDGET: f64 = 0.1;
+
+/// The rays the third pass of adaptive anti-aliasing may trace, when the
+/// first pass (one sample per pixel) traced `first_rays` and the first two
+/// `spent`. A scene whose detail is smaller than a pixel, where nearly every
+/// pixel was refined, has already spent half a uniform render and gets none.
+pub fn escalation_budget(samples: u32, first_rays: u64, spent: u64) -> u64 {
+    let half_uniform = first_rays.saturating_mul(u64::from(samples)) / 2;
+    ((ESCALATION_BUDGET * spent as f64) as u64).min(half_uniform.saturating_sub(spent))
+}
+
+/// How much the samples of one pixel disagree, and what the pixel cost.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SampleSpread {
+    /// Standard deviation of the samples' colours, in 8-bit levels, in the
+    /// channel where it is largest.
+    pub levels: f64,
+    /// Rays traced for the pixel.
+    pub rays: u64,
+}
+
+/// The refined pixels (`refined`, with their `spread`) that adaptive
+/// anti-aliasing renders a third time with [`escalation_offsets`]: those
+/// spreading more than [`ESCALATION_SPREAD`], the most spread first, as long
+/// as their projected cost (5 times the rays of their `samples` samples) fits
+/// in `budget_rays`. Ties go to the earlier pixel, so the choice is
+/// deterministic.
+pub fn escalation_mask(refined: &[bool], spread: &[SampleSpread], budget_rays: u64) -> Vec<bool> {
+    let mut candidates: Vec<usize> =
+        (0..refined.len()).filter(|&k| refined[k] && spread[k].levels > ESCALATION_SPREAD).collect();
+    candidates.sort_by(|&a, &b| spread[b].levels.total_cmp(&spread[a].levels).then(a.cmp(&b)));
+    let mut mask = vec![false; refined.len()];
+    let mut spent = 0u64;
+    for k in candidates {
+        spent += 5 * spread[k].rays;
+        if spent > budget_rays {
+            break;
+        }
+        mask[k] = true;
+    }
+    mask
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spread(levels: f64, rays: u64) -> SampleSpread {
+        SampleSpread { levels, rays }
+    }
+
+    #[test]
+    fn escalation_budget_is_a_tenth_of_the_spent_rays_within_half_a_uniform_render() {
+        // 16 samples on a first pass of 1000 rays: a uniform render ~16000.
+        assert_eq!(escalation_budget(16, 1000, 3000), 300);
+        assert_eq!(escalation_budget(16, 1000, 7800), 200);
+        assert_eq!(escalation_budget(16, 1000, 8000), 0);
+        assert_eq!(escalation_budget(16, 1000, 15_000), 0);
+        assert_eq!(escalation_budget(4, u64::MAX, 10), 1);
+    }
+
+    #[test]
+    fn escalation_takes_the_most_spread_pixels_that_fit_the_budget() {
+        let refined = [true, true, false, true, true, true];
+        let spreads = [
+            spread(30.0, 10),  // candidate
+            spread(90.0, 10),  // the most spread: first
+            spread(200.0, 1),  // not refined
+            spread(24.0, 1),   // not above the threshold
+            spread(30.0, 10),  // ties with pixel 0, which comes first
+            spread(60.0, 100), // fits only a large budget
+        ];
+        let chosen = |budget| escalation_mask(&refined, &spreads, budget);
+        assert_eq!(chosen(0), [false; 6]);
+        assert_eq!(chosen(50), [false, true, false, false, false, false]);
+        // Pixel 5 (cost 500) comes second and does not fit: the choice stops.
+        assert_eq!(chosen(549), [false, true, false, false, false, false]);
+        assert_eq!(chosen(599), [false, true, false, false, false, true]);
+        assert_eq!(chosen(600), [true, true, false, false, false, true]);
+        assert_eq!(chosen(650), [true, true, false, false, true, true]);
+    }
+}
