@@ -671,6 +671,95 @@ fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
     }
 }
 
+/// The centre pixel of a 101x101 image looks down the camera's axis. A
+/// sphere of radius 1 at the origin, seen from distance 10, is hit at t = 9
+/// and spans 2 / 9 radians; a pixel spans 2 tan(angle / 2) / 101.
+#[test]
+fn a_glimpse_measures_the_apparent_size_of_what_it_hits() {
+    let ball = sphere([0.0, 0.0, 0.0], 1.0, material([1.0, 1.0, 1.0], 0.8, 0.0, 1.0));
+    let s = scene(10.0, 1.0, 0.2, vec![light([0.0, 0.0, 1.0], 0.8)], vec![ball]);
+    let (_, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options(101, 101));
+    let pixel_angle = 2.0 * 0.5f64.tan() / 101.0;
+    let expected = (2.0 / 9.0) / pixel_angle;
+    let centre = glimpses[50 * 101 + 50].finest;
+    assert!((centre - expected).abs() < 1e-9 * expected, "{centre} against {expected}");
+    // A ray that misses everything meets nothing.
+    assert_eq!(glimpses[0].finest, f64::INFINITY);
+}
+
+/// A convex mirror spreads the beam of a pixel: the centre ray hits a
+/// mirror sphere of radius 1 head-on at t = 9, where the beam is 9 pixel
+/// angles wide; the normal turns by 9 pixel angles across it, so the
+/// reflected beam spreads by 1 + 2 * 9 = 19 pixel angles. It goes back along
+/// +z to a sphere of radius 2 behind the camera (centre z = 20), 17 further:
+/// 9 + 19 * 17 = 332 pixel angles wide there, for a width of 4.
+#[test]
+fn a_glimpse_follows_the_beam_through_a_curved_mirror() {
+    let mirror = sphere([0.0, 0.0, 0.0], 1.0, material([1.0, 1.0, 1.0], 0.0, 0.9, 1.0));
+    let behind = sphere([0.0, 0.0, 20.0], 2.0, material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0));
+    let s = scene(10.0, 1.0, 0.5, vec![], vec![mirror, behind]);
+    let (_, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options(101, 101));
+    let pixel_angle = 2.0 * 0.5f64.tan() / 101.0;
+    let expected = 4.0 / (332.0 * pixel_angle);
+    let centre = glimpses[50 * 101 + 50].finest;
+    assert!((centre - expected).abs() < 1e-9 * expected, "{centre} against {expected}");
+}
+
+/// Pixels of one colour on one matt surface share a signature; a shadow, a
+/// box's other face, or another object changes it.
+#[test]
+fn glimpse_signatures_change_where_the_colour_may_jump() {
+    let matt = |c: [f64; 3]| material(c, 0.8, 0.0, 1.0);
+    let wall = plane([0.0, 0.0, 1.0], -4.0, matt([1.0, 1.0, 1.0]));
+    let turned = DMat3::from_rotation_y(FRAC_PI_6) * DMat3::from_rotation_x(FRAC_PI_8);
+    let block = cube([-2.0, 0.0, 0.0], [2.0, 2.0, 2.0], turned, matt([0.2, 0.6, 1.0]));
+    let ball = sphere([2.5, 1.0, 0.0], 1.0, matt([1.0, 0.3, 0.1]));
+    let s = scene(12.0, 1.0, 0.2, vec![light([0.3, 0.5, 1.0], 0.8)], vec![wall, block, ball]);
+    let (image, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options(160, 120));
+    // The wall and each face of the box are flat and matt: one colour each,
+    // in light or in shadow. The most frequent colours are the lit wall,
+    // the wall in the shadows, and the faces.
+    let mut by_colour: std::collections::HashMap<[u8; 3], Vec<u64>> = std::collections::HashMap::new();
+    for (pixel, glimpse) in image.pixels().zip(&glimpses) {
+        by_colour.entry(pixel.0).or_default().push(glimpse.signature);
+    }
+    let mut flat: Vec<(usize, u64)> = by_colour
+        .values()
+        .filter(|signatures| signatures.len() >= 100)
+        .map(|signatures| {
+            assert!(signatures.iter().all(|&s| s == signatures[0]), "one colour, one flat surface, one signature");
+            (signatures.len(), signatures[0])
+        })
+        .collect();
+    flat.sort();
+    assert!(flat.len() >= 4, "lit wall, shadowed wall, and at least two faces: {flat:?}");
+    let mut distinct: Vec<u64> = flat.iter().map(|&(_, s)| s).collect();
+    distinct.dedup();
+    assert_eq!(distinct.len(), flat.len(), "different colours, different signatures");
+    // The ball's pixels are no flat surface's.
+    let ball_pixel = glimpses[(120 / 2 - 10) * 160 + 160 / 2 + 25];
+    assert!(flat.iter().all(|&(_, s)| s != ball_pixel.signature));
+}
+
+/// Where the shading is smooth (a sphere filling the frame: no edge), adaptive
+/// sampling leaves most pixels at one sample, and no pixel ends more than
+/// one level from the uniform render. The two highlights (Phong 20,000) are a
+/// few pixels wide: without the bend test, their centres would be up to 8
+/// levels off.
+#[test]
+fn adaptive_leaves_smooth_shading_within_a_level_of_uniform() {
+    let ball = sphere([0.0, 0.0, 0.0], 2.0, material([1.0, 0.8, 0.6], 0.7, 0.3, 20_000.0));
+    let lights = vec![light([0.3, 0.3, 1.0], 0.6), light([-0.7, 0.2, 0.4], 0.3)];
+    let s = scene(10.0, 0.3, 0.2, lights, vec![ball]);
+    let base = options(120, 90);
+    let (uniform, _) = render_with(&s, &RenderOptions { samples: 16, ..base });
+    let (adaptive, stats) = render_with(&s, &RenderOptions { samples: 16, adaptive: true, ..base });
+    assert!(stats.refined_pixels < 120 * 90 / 4, "{stats:?}");
+    for (a, u) in adaptive.pixels().zip(uniform.pixels()) {
+        assert!(a.0.iter().zip(u.0).all(|(&p, q)| p.abs_diff(q) <= 1), "{a:?} against {u:?}");
+    }
+}
+
 #[test]
 fn adaptive_on_a_flat_image_is_the_one_sample_image() {
     // A matt wall filling the view: one colour everywhere, no edge.

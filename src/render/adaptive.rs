@@ -216,6 +216,55 @@ pub fn escalation_mask(refined: &[bool], spread: &[SampleSpread], budget_rays: u
 mod tests {
     use super::*;
 
+    /// A grey image from rows of levels.
+    fn grey(rows: &[&[u8]]) -> RgbImage {
+        let (width, height) = (rows[0].len() as u32, rows.len() as u32);
+        RgbImage::from_fn(width, height, |x, y| image::Rgb([rows[y as usize][x as usize]; 3]))
+    }
+
+    /// Glimpses with these signatures (row major) and no fine detail.
+    fn seen(signatures: &[u64]) -> Vec<Glimpse> {
+        signatures.iter().map(|&signature| Glimpse { signature, ..Glimpse::start(1e-3) }).collect()
+    }
+
+    #[test]
+    fn a_steep_gradient_on_one_surface_stays_at_one_sample() {
+        let row: &[u8] = &[0, 40, 80, 120, 160];
+        assert_eq!(refinement_mask(&grey(&[row, row, row]), &seen(&[7; 15])), [false; 15]);
+    }
+
+    #[test]
+    fn an_edge_between_different_surfaces_refines_both_sides() {
+        let step = grey(&[&[50, 200]]);
+        assert_eq!(refinement_mask(&step, &seen(&[1, 2])), [true, true]);
+        // The same surface (no bend measurable on two pixels): no edge.
+        assert_eq!(refinement_mask(&step, &seen(&[1, 1])), [false, false]);
+        // Different surfaces of nearly the same colour: nothing to smooth.
+        assert_eq!(refinement_mask(&grey(&[&[50, 52]]), &seen(&[1, 2])), [false, false]);
+        // Diagonal neighbours count too.
+        let diagonal = grey(&[&[50, 50], &[50, 200]]);
+        assert_eq!(refinement_mask(&diagonal, &seen(&[1, 1, 1, 2])), [true, true, true, true]);
+    }
+
+    #[test]
+    fn a_bend_refines_its_pixel() {
+        let bump = |centre| grey(&[&[100, 100, 100], &[100, centre, 100], &[100, 100, 100]]);
+        let centre_only = [false, false, false, false, true, false, false, false, false];
+        // Second differences 6 + 6 = 12 > 6 levels.
+        assert_eq!(refinement_mask(&bump(103), &seen(&[3; 9])), centre_only);
+        // 2 + 2: within rounding.
+        assert_eq!(refinement_mask(&bump(101), &seen(&[3; 9])), [false; 9]);
+    }
+
+    #[test]
+    fn an_object_under_two_pixels_refines_its_pixel() {
+        let flat = grey(&[&[90, 90, 90]]);
+        let mut glimpses = seen(&[5, 5, 5]);
+        glimpses[0].finest = 1.5;
+        glimpses[2].finest = 2.5;
+        assert_eq!(refinement_mask(&flat, &glimpses), [true, false, false]);
+    }
+
     fn spread(levels: f64, rays: u64) -> SampleSpread {
         SampleSpread { levels, rays }
     }
