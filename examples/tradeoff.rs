@@ -349,9 +349,11 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
          of `1e-9 * |P|`). The f64 rows repeat the \"1 samples\" and \"16 samples\" settings, measured next to \
          the f32 ones so that their times are comparable.\n\
          - **Adaptive N** (`--samples N --adaptive`) renders every pixel at its centre, then renders again with N \
-         samples only the pixels that differ from one of their 8 neighbours by more than 2 levels in a channel, \
-         then gives the refined pixels whose samples spread most (standard deviation above 24 levels) 4N more \
-         samples, within 10% of the rays already traced.\n"
+         samples only the pixels that may differ from their centre: on an edge (a neighbour's centre ray met other \
+         surfaces or lights, and its colour differs by more than 2 levels), on a bend of the colour (second \
+         differences above 6 levels), or on an object under 2 pixels wide; then it gives the refined pixels whose \
+         samples spread most (standard deviation above 24 levels) 4N more samples, within 10% of the rays already \
+         traced.\n"
     );
     let _ = writeln!(s, "### Adaptive 16 against uniform 16\n");
     let _ = writeln!(

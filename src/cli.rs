@@ -51,9 +51,9 @@ pub struct Cli {
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub samples: u32,
 
-    /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges
-    /// (differing from a neighbour by more than 2 levels), and 4N more to the edge pixels whose samples disagree
-    /// most (within 10% more rays).
+    /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges (where
+    /// the surfaces or lights seen change and the colour jumps by more than 2 levels), on sharp highlights, or on
+    /// objects under 2 pixels wide, and 4N more to those whose samples disagree most (within 10% more rays).
     #[arg(long)]
     pub adaptive: bool,
 

@@ -30,11 +30,14 @@
 //! Every pixel is computed on its own, so the bytes do not depend on the
 //! number of threads.
 //!
-//! With [`RenderOptions::adaptive`], anti-aliasing is spent only where the
-//! image has edges: a first pass renders every pixel at its centre, then
-//! [`refinement_mask`] flags the pixels that differ from a neighbour by more
-//! than [`ADAPTIVE_THRESHOLD`] levels, and a second pass renders just those
-//! with all `samples` samples. A third pass gives the refined pixels whose
+//! With [`RenderOptions::adaptive`], anti-aliasing is spent only where a
+//! pixel's average may differ from its centre's colour: a first pass renders
+//! every pixel at its centre, keeping a [`Glimpse`] of what each ray met;
+//! [`refinement_mask`] flags edges (neighbours that met different surfaces
+//! or lights and differ by more than [`ADAPTIVE_THRESHOLD`] levels), bends
+//! of the colour and objects too small to be seen by the centres (see
+//! [`adaptive`]), and a second pass renders just those with all `samples`
+//! samples. A third pass gives the refined pixels whose
 //! samples still disagree most ([`escalation_mask`]) four times as many
 //! more ([`escalation_offsets`]), within a budget of rays
 //! ([`escalation_budget`]). A refined pixel
