@@ -44,6 +44,11 @@ impl PrimaryRays {
         }
     }
 
+    /// The angle (radians) one pixel spans at the centre of the image.
+    pub fn pixel_angle(&self) -> f64 {
+        1.0 / self.focal
+    }
+
     /// The ray through the point `(i + u, j + v)` of the image (pixel `(i,
     /// j)`, offset `(u, v)` in 0..1 from its top-left corner).
     ///
@@ -51,11 +56,6 @@ impl PrimaryRays {
     /// in place of `H/2` for [`Screen::Bottom`]; `u = v = 0.5` is the pixel
     /// centre. A degenerate camera (zero direction) gives a zero direction,
     /// which hits nothing: the pixel is black, never NaN.
-    /// The angle (radians) one pixel spans at the centre of the image.
-    pub fn pixel_angle(&self) -> f64 {
-        1.0 / self.focal
-    }
-
     #[inline]
     pub fn ray(&self, i: u32, j: u32, offset: DVec2) -> Ray {
         let x = f64::from(i) + offset.x - self.half_width;

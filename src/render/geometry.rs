@@ -143,12 +143,7 @@ impl Geometry {
     #[inline(always)]
     fn surface(&self, ray: &Ray, hit: GeometryHit, timed: bool) -> SurfaceHit {
         let point = ray.at(hit.t);
-        let key = match hit.object {
-            ObjectId::Bounded(k) => u64::from(k) << 2,
-            ObjectId::Plane(k) => u64::from(k) << 2 | 1,
-        };
-        let surface = key | u64::from(timed) << 1;
-        match hit.object {
+        let (key, normal, material, width, curvature) = match hit.object {
             ObjectId::Bounded(k) => {
                 let object: &Bounded = &self.bvh.objects()[k as usize];
                 let normal = object.normal(ray, hit.t);
@@ -156,14 +151,15 @@ impl Geometry {
                     Bounded::Sphere(s) => (2.0 * s.radius, 1.0 / s.radius),
                     Bounded::Box(b) => (2.0 * b.middle_half_size() * normal.dot(ray.dir).abs(), 0.0),
                 };
-                let material = self.bounded_materials[k as usize];
-                SurfaceHit { t: hit.t, point, normal, material, timed, surface, width, curvature }
+                (u64::from(k) << 2, normal, self.bounded_materials[k as usize], width, curvature)
             }
             ObjectId::Plane(k) => {
                 let (normal, material) = (self.planes[k as usize].normal(), self.plane_materials[k as usize]);
-                SurfaceHit { t: hit.t, point, normal, material, timed, surface, width: f64::INFINITY, curvature: 0.0 }
+                (u64::from(k) << 2 | 1, normal, material, f64::INFINITY, 0.0)
             }
-        }
+        };
+        let surface = key | u64::from(timed) << 1;
+        SurfaceHit { t: hit.t, point, normal, material, timed, surface, width, curvature }
     }
 }
 

@@ -397,9 +397,9 @@ impl<'a> Job<'a> {
         Ok(glimpses)
     }
 
-    /// Renders the whole image into `buffer` (its RGB bytes, row major) in
-    /// parallel bands, or only the pixels of `selection` if given, and adds
-    /// the bands' counts to `stats`.
+    /// Renders into `buffer` (its RGB bytes, row major), in parallel bands,
+    /// the pixels `selection` flags (all of them without flags), records
+    /// what it asks for, and adds the bands' counts to `stats`.
     fn run(&self, buffer: &mut [u8], selection: Selection, stats: &mut RenderStats) -> Result<(), Cancelled> {
         // A pass over some pixels only (adaptive refinement, frame reuse)
         // finds them bunched in a few places, along edges or around what
