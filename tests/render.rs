@@ -13,7 +13,7 @@ use rayrepl::render::bvh::Bvh;
 use rayrepl::render::intersect::{Bounded, BoxShape, SphereShape};
 use rayrepl::render::{
     Cancelled, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, glimpse_pass, refinement_mask,
-    render,
+    render, render_refining,
 };
 use rayrepl::scene::{Light, Material, Primitive, Scene, Shape};
 
@@ -669,6 +669,29 @@ fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
         }
         assert!(not_uniform <= stats.escalated_pixels, "{name}: {not_uniform} refined pixels differ from uniform");
     }
+}
+
+/// Given the detector's own mask, `render_refining` is `render`; given other
+/// pixels, it refines exactly those (no pixel: the 1-sample image).
+#[test]
+fn render_refining_refines_the_pixels_given() {
+    let s = solar();
+    let prepared = Prepared::new(&s);
+    let o = RenderOptions { samples: 9, adaptive: true, ..options(96, 72) };
+    let refining = |flags: &[bool]| render_refining(&s, &prepared, &o, flags, &RenderControl::default()).unwrap();
+    let (one, glimpses) = glimpse_pass(&s, &prepared, &o);
+    let (adaptive, stats) = render_with(&s, &o);
+    let (given, given_stats) = refining(&refinement_mask(&one, &glimpses));
+    assert!(given == adaptive);
+    assert_eq!(given_stats.rays, stats.rays);
+    let (none, none_stats) = refining(&[false; 96 * 72]);
+    assert!(none == one);
+    assert_eq!((none_stats.refined_pixels, none_stats.rays.primary), (0, 96 * 72));
+    let mut corner = [false; 96 * 72];
+    corner[0] = true;
+    let (_, corner_stats) = refining(&corner);
+    assert_eq!(corner_stats.refined_pixels, 1);
+    assert_eq!(corner_stats.rays.primary, 96 * 72 + 9 + 45 * corner_stats.escalated_pixels);
 }
 
 /// The centre pixel of a 101x101 image looks down the camera's axis. A

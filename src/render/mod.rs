@@ -273,6 +273,39 @@ pub fn render(
     options: &RenderOptions,
     control: &RenderControl,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
+    render_with(scene, prepared, options, control, None)
+}
+
+/// [`render`] with adaptive anti-aliasing (`options.adaptive`, more than one
+/// sample) told which pixels to refine: `refined` (one flag per pixel, row
+/// major) replaces [`refinement_mask`]; the passes and their costs are
+/// otherwise the same. Benchmarks give it the pixels that an ideal
+/// detector, one that knew the reference image, would pick: the time of
+/// any detector's choice is bounded by it.
+///
+/// # Panics
+///
+/// If `refined` does not hold one flag per pixel.
+pub fn render_refining(
+    scene: &Scene,
+    prepared: &Prepared,
+    options: &RenderOptions,
+    refined: &[bool],
+    control: &RenderControl,
+) -> Result<(RgbImage, RenderStats), Cancelled> {
+    assert_eq!(refined.len(), options.width as usize * options.height as usize, "one flag per pixel");
+    render_with(scene, prepared, options, control, Some(refined))
+}
+
+/// [`render`], with the pixels adaptive anti-aliasing refines `given` or,
+/// when `None`, detected by [`refinement_mask`].
+fn render_with(
+    scene: &Scene,
+    prepared: &Prepared,
+    options: &RenderOptions,
+    control: &RenderControl,
+    given: Option<&[bool]>,
+) -> Result<(RgbImage, RenderStats), Cancelled> {
     let start = Instant::now();
     let mut image = RgbImage::new(options.width, options.height);
     let blocking_planes = blocking_planes(scene, prepared);
@@ -287,7 +320,10 @@ pub fn render(
     } else {
         let glimpses = job.glimpse_pass(&mut image, &mut stats)?;
         let first_rays = stats.total_rays();
-        let refined = refinement_mask(&image, &glimpses);
+        let refined = match given {
+            Some(flags) => flags.to_vec(),
+            None => refinement_mask(&image, &glimpses),
+        };
         let mut spread = vec![SampleSpread::default(); refined.len()];
         let refine = Job { offsets: sample_offsets(options.samples), report_all: false, ..job };
         let selection = Selection { flags: Some(&refined), spread: Some(&mut spread), ..Selection::default() };
