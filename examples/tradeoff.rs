@@ -277,8 +277,8 @@ const IDEAL: &str = "adaptive 16, ideal pixels";
 /// pixel: knowing the reference, it ranks the pixels by how much 16 samples
 /// lower their squared error against the 1-sample render (the first pass's
 /// bytes), and takes the fewest, best first, that bring the image's total
-/// down to uniform 16's. No detector that sees only the scene does better
-/// with the same passes; its time bounds what adaptive 16 can reach.
+/// down to uniform 16's. Its time shows how far a better detector alone
+/// could take adaptive 16.
 fn ideal_pixels(one_sample: &RgbImage, uniform16: &RgbImage, reference: &RgbImage) -> Vec<bool> {
     let squared = |image: &RgbImage| -> Vec<f64> {
         image
@@ -446,9 +446,9 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
         s,
         "\n\"Met\" means at most half the time and at most the RMSE of uniform 16. The last column is the same \
          adaptive 16 render with the pixels to refine chosen by an ideal detector that knows the reference: the \
-         fewest pixels, those whose error 16 samples lower most, that bring the image to uniform 16's error. No \
-         detector that sees only the scene picks better pixels for these passes, so a time above 0.5 there means \
-         no choice of pixels meets the goal on that scene.\n"
+         fewest pixels, those whose error 16 samples lower most, that bring the image to uniform 16's error. It \
+         shows what the detector leaves on the table: where this time is above 0.5 too, a better choice of pixels \
+         alone does not reach the goal.\n"
     );
     let _ = writeln!(s, "### f32 against f64 intersection tests\n");
     let _ = writeln!(

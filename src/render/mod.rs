@@ -280,8 +280,8 @@ pub fn render(
 /// sample) told which pixels to refine: `refined` (one flag per pixel, row
 /// major) replaces [`refinement_mask`]; the passes and their costs are
 /// otherwise the same. Benchmarks give it the pixels that an ideal
-/// detector, one that knew the reference image, would pick: the time of
-/// any detector's choice is bounded by it.
+/// detector, one that knew the reference image, would pick, to see how far
+/// a better detector alone could go.
 ///
 /// # Panics
 ///
