@@ -6,7 +6,9 @@
 //! stratified samples on a 16x16 grid, no skips, f64), then for every
 //! setting the median time of 3 renders and the error of its image against
 //! the reference: RMSE in 8-bit levels, and the share of pixels more than 1
-//! and more than 2 levels off (largest channel difference). It writes the
+//! and more than 2 levels off (largest channel difference); last, adaptive
+//! 16 with the pixels an ideal detector would refine ([`ideal_pixels`]),
+//! to show how far a better detector could go. It writes the
 //! tables into `BENCHMARKS.md` (between the markers [`BEGIN`] and [`END`])
 //! and the plot (RMSE against time, both logarithmic, with each scene's
 //! Pareto front and the adaptive goal) to `benches/tradeoff.png`.
