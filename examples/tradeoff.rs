@@ -57,7 +57,7 @@ impl Family {
             Family::Skips => "skips (4 samples)",
             Family::Depth => "depth (1 sample)",
             Family::Precision => "precision",
-            Family::Ideal => "adaptive 16, ideal pixels",
+            Family::Ideal => IDEAL,
         }
     }
 
