@@ -320,16 +320,20 @@ fn render_with(
     } else {
         let glimpses = job.glimpse_pass(&mut image, &mut stats)?;
         let first_rays = stats.total_rays();
+        let detected;
         let refined = match given {
-            Some(flags) => flags.to_vec(),
-            None => refinement_mask(&image, &glimpses),
+            Some(flags) => flags,
+            None => {
+                detected = refinement_mask(&image, &glimpses);
+                &detected
+            }
         };
         let mut spread = vec![SampleSpread::default(); refined.len()];
         let refine = Job { offsets: sample_offsets(options.samples), report_all: false, ..job };
-        let selection = Selection { flags: Some(&refined), spread: Some(&mut spread), ..Selection::default() };
+        let selection = Selection { flags: Some(refined), spread: Some(&mut spread), ..Selection::default() };
         refine.run(&mut image, selection, &mut stats)?;
         let budget = escalation_budget(options.samples, first_rays, stats.total_rays());
-        let escalated = escalation_mask(&refined, &spread, budget);
+        let escalated = escalation_mask(refined, &spread, budget);
         let escalate = Job { offsets: escalation_offsets(options.samples), ..refine };
         escalate.run(&mut image, Selection { flags: Some(&escalated), ..Selection::default() }, &mut stats)?;
         stats.refined_pixels = refined.iter().filter(|&&f| f).count() as u64;
