@@ -76,6 +76,14 @@ use sweep::Sweep;
 
 use crate::scene::Scene;
 
+/// The most reflections a render follows (`depth`), the same for every entry
+/// point: a path's colour is computed level by level, so its cost in time
+/// and stack grows with the depth, and past a few hundred reflections no
+/// scene changes by a visible level (each level is weighted by a further
+/// `ks`; two facing perfect mirrors are the exception, and they show the
+/// same colour at every depth beyond this).
+pub const MAX_DEPTH: u32 = 1000;
+
 /// Side of a square tile, in pixels; also the height of a band.
 pub const TILE: u32 = 16;
 
