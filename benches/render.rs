@@ -110,7 +110,6 @@ fn solar_animation(frames: u32, width: u32, height: u32) -> RenderStats {
         let prepared = Prepared::with_static(static_part.clone(), &scene.timed_primitives);
         let stats = render_once(&scene, &prepared, width, height);
         total.rays += stats.rays;
-        total.resumed_paths += stats.resumed_paths;
         total.elapsed += stats.elapsed;
     }
     total
@@ -147,66 +146,17 @@ fn report(name: &str, elapsed: Duration, stats: &RenderStats) {
     let cores = rayon::current_num_threads() as f64;
     let rays = stats.total_rays() as f64;
     println!(
-        "{name:<28} {:>8.3} s  {:>6.1} Mrays (primary {:.1} M, shadow {:.1} M, reflection {:.1} M, resumed {})  {:>6.1} Mrays/s/core on {cores} threads",
+        "{name:<28} {:>8.3} s  {:>6.1} Mrays (primary {:.1} M, shadow {:.1} M, reflection {:.1} M)  {:>6.1} Mrays/s/core on {cores} threads",
         elapsed.as_secs_f64(),
         rays / 1e6,
         stats.rays.primary as f64 / 1e6,
         stats.rays.shadow as f64 / 1e6,
         stats.rays.reflection as f64 / 1e6,
-        stats.resumed_paths,
         rays / 1e6 / elapsed.as_secs_f64() / cores,
     );
 }
 
-/// f32 against f64 traversal and intersection tests ([`BvhF32`]) on the
-/// box field's primary rays (closest hit only, one thread): time and number
-/// of rays whose answer differs.
-fn f32_experiment() {
-    use rayrepl::render::bvh::{Bvh, BvhF32};
-    use rayrepl::render::intersect::ShapeClass;
-    use rayrepl::render::{PrimaryRays, Screen};
-    let scene = box_field();
-    let objects: Vec<_> = scene
-        .primitives
-        .iter()
-        .filter_map(|p| match ShapeClass::from(&p.shape) {
-            ShapeClass::Bounded(b) => Some(b),
-            ShapeClass::Plane(_) => None,
-        })
-        .collect();
-    let (bvh, _) = Bvh::build(&objects);
-    let bvh32 = BvhF32::new(&bvh);
-    let (w, h) = (1920, 1080);
-    let cameras = PrimaryRays::new(&scene.camera, w, h, Screen::Centered);
-    let rays: Vec<_> = (0..h)
-        .flat_map(|j| (0..w).map(move |i| (i, j)))
-        .map(|(i, j)| cameras.ray(i, j, glam::DVec2::splat(0.5)))
-        .collect();
-    // Interleaved runs, the best of each: the machine may be shared.
-    let (mut t64, mut t32) = (f64::INFINITY, f64::INFINITY);
-    let mut differ = 0;
-    for _ in 0..7 {
-        let start = Instant::now();
-        let a: Vec<_> = rays.iter().map(|r| bvh.closest_hit(r, f64::INFINITY)).collect();
-        t64 = t64.min(start.elapsed().as_secs_f64());
-        let start = Instant::now();
-        let b: Vec<_> = rays.iter().map(|r| bvh32.closest_hit(r, f64::INFINITY)).collect();
-        t32 = t32.min(start.elapsed().as_secs_f64());
-        differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
-    }
-    let n = rays.len() as f64;
-    println!(
-        "closest hit, {n} primary rays, best of 7: f64 {t64:.3} s ({:.1} Mrays/s), f32 {t32:.3} s ({:.1} Mrays/s), {differ} answers differ",
-        n / t64 / 1e6,
-        n / t32 / 1e6,
-    );
-}
-
 fn run_report(which: &str) {
-    if which == "f32" {
-        f32_experiment();
-        return;
-    }
     if let Some(size) = which.strip_prefix("solar-") {
         // One frame of a given size, e.g. `solar-320x180` (for callgrind).
         let (w, h) = size.split_once('x').expect("solar-WxH");
@@ -230,7 +180,6 @@ fn run_report(which: &str) {
             ("all skips", Skips::all()),
             ("no back-facing skip", Skips { back_facing_light: false, ..Skips::all() }),
             ("no ks=0 skip", Skips { zero_ks: false, ..Skips::all() }),
-            ("no reflection cutoff", Skips { negligible_reflection: false, ..Skips::all() }),
             ("no skips", Skips::none()),
         ];
         for (name, skips) in variants {

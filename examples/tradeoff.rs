@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release --example tradeoff [WIDTH HEIGHT]` (default 320x240).
 //! For each benchmark scene (evaluated once) it renders a reference (256
-//! stratified samples on a 16x16 grid, no skips, f64), then for every
+//! stratified samples on a 16x16 grid, no skips), then for every
 //! setting the median time of 3 renders and the error of its image against
 //! the reference: RMSE in 8-bit levels, and the share of pixels more than 1
 //! and more than 2 levels off (largest channel difference); last, adaptive
@@ -20,7 +20,7 @@ use std::time::Duration;
 use image::RgbImage;
 use plotters::prelude::*;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{Precision, Prepared, RenderControl, RenderOptions, Skips, render, render_refining};
+use rayrepl::render::{Prepared, RenderControl, RenderOptions, Skips, render, render_refining};
 use rayrepl::scene::Scene;
 
 /// The benchmark scenes measured (sponge5, 3.2 million boxes, is left out:
@@ -42,13 +42,11 @@ enum Family {
     Adaptive,
     Skips,
     Depth,
-    Precision,
     Ideal,
 }
 
 impl Family {
-    const ALL: [Family; 6] =
-        [Family::Samples, Family::Adaptive, Family::Skips, Family::Depth, Family::Precision, Family::Ideal];
+    const ALL: [Family; 5] = [Family::Samples, Family::Adaptive, Family::Skips, Family::Depth, Family::Ideal];
 
     fn name(self) -> &'static str {
         match self {
@@ -56,7 +54,6 @@ impl Family {
             Family::Adaptive => "adaptive samples",
             Family::Skips => "skips (4 samples)",
             Family::Depth => "depth (1 sample)",
-            Family::Precision => "precision",
             Family::Ideal => IDEAL,
         }
     }
@@ -67,7 +64,6 @@ impl Family {
             Family::Adaptive => RGBColor(214, 39, 40),
             Family::Skips => RGBColor(44, 160, 44),
             Family::Depth => RGBColor(148, 103, 189),
-            Family::Precision => RGBColor(255, 127, 14),
             Family::Ideal => RGBColor(90, 90, 90),
         }
     }
@@ -100,9 +96,6 @@ struct Row {
     /// Primary rays per pixel (shows how many pixels adaptive sampling refined).
     rays_per_pixel: f64,
     error: Error,
-    /// For an f32 row: its error against the f64 render of the same setting
-    /// (what the f32 mode itself changes).
-    against_f64: Option<Error>,
 }
 
 fn main() {
@@ -124,37 +117,16 @@ fn main() {
         let reference_options = RenderOptions { samples: 256, skips: Skips::none(), ..base };
         let (reference, reference_time, _) = render_once(&scene, &prepared, &reference_options);
         eprintln!("{name}: reference in {:.2} s", reference_time.as_secs_f64());
-        let mut f64_images = Vec::new();
         let (mut one_sample, mut uniform16) = (None, None);
         for setting in settings(base) {
             let (image, time, rays_per_pixel) = median(|| render_once(&scene, &prepared, &setting.options));
             let error = compare(&image, &reference);
-            let against_f64 = match setting.options.precision {
-                Precision::F32 => f64_images
-                    .iter()
-                    .find(|(o, _): &&(RenderOptions, RgbImage)| {
-                        RenderOptions { precision: Precision::F32, ..*o } == setting.options
-                    })
-                    .map(|(_, f64_image)| compare(&image, f64_image)),
-                Precision::F64 => None,
-            };
-            if setting.family == Family::Precision && setting.options.precision == Precision::F64 {
-                f64_images.push((setting.options, image.clone()));
-            }
             match setting.label.as_str() {
                 "1 samples" => one_sample = Some(image),
                 "16 samples" => uniform16 = Some(image),
                 _ => {}
             }
-            rows.push(Row {
-                scene: name,
-                family: setting.family,
-                label: setting.label,
-                time,
-                rays_per_pixel,
-                error,
-                against_f64,
-            });
+            rows.push(Row { scene: name, family: setting.family, label: setting.label, time, rays_per_pixel, error });
         }
         let (one_sample, uniform16) = (one_sample.expect("measured"), uniform16.expect("measured"));
         let ideal = ideal_pixels(&one_sample, &uniform16, &reference);
@@ -165,15 +137,7 @@ fn main() {
             (image, stats.elapsed, stats.rays.primary as f64 / ideal.len() as f64)
         });
         let error = compare(&image, &reference);
-        rows.push(Row {
-            scene: name,
-            family: Family::Ideal,
-            label: IDEAL.to_string(),
-            time,
-            rays_per_pixel,
-            error,
-            against_f64: None,
-        });
+        rows.push(Row { scene: name, family: Family::Ideal, label: IDEAL.to_string(), time, rays_per_pixel, error });
         for row in rows.iter().filter(|r| r.scene == name) {
             eprintln!(
                 "{name:12} {:28} {:9.4} s  rmse {:7.3}  >1 {:6.2}%  >2 {:6.2}%",
@@ -244,7 +208,6 @@ fn settings(base: RenderOptions) -> Vec<Setting> {
         ("all skips off", Skips::none()),
         ("back_facing_light off", Skips { back_facing_light: false, ..all_on }),
         ("zero_ks off", Skips { zero_ks: false, ..all_on }),
-        ("negligible_reflection off", Skips { negligible_reflection: false, ..all_on }),
     ];
     for (label, skips) in skips {
         all.push(Setting {
@@ -259,15 +222,6 @@ fn settings(base: RenderOptions) -> Vec<Setting> {
             label: format!("depth {depth}"),
             options: RenderOptions { depth, ..base },
         });
-    }
-    for samples in [1, 16] {
-        for (name, precision) in [("f64", Precision::F64), ("f32", Precision::F32)] {
-            all.push(Setting {
-                family: Family::Precision,
-                label: format!("{name} ({samples} sample{})", if samples == 1 { "" } else { "s" }),
-                options: RenderOptions { samples, precision, ..base },
-            });
-        }
     }
     all
 }
@@ -401,7 +355,7 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
     let _ = writeln!(
         s,
         "The reference of each scene is rendered with 256 stratified samples per pixel (16x16 grid), every skip \
-         off, in f64, at the default depth 5. Error is against it: **RMSE** over all channels in 8-bit levels, and \
+         off, at the default depth 5. Error is against it: **RMSE** over all channels in 8-bit levels, and \
          the share of pixels whose largest channel difference is more than 1 (**>1**) and more than 2 (**>2**) \
          levels. Unless the row says otherwise: depth 5, all skips on, 1 sample.\n"
     );
@@ -411,17 +365,10 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
          samples so that the times are long enough to compare.\n\
          - **Depth** rows are compared with the same depth-5 reference: depth above 5 is a different image from \
          the one SPEC 6 asks for, so its \"error\" measures how much deeper reflections still change.\n\
-         - **Precision** rows render the same setting with the intersection tests (BVH traversal, sphere, box and \
-         plane tests) in f64 (`--precision f64`, the default) and in f32 (`--precision f32`: rays rounded to f32, \
-         hit distances back in f64, shading in f64, secondary rays moved off the surface by `1e-4 * |P|` instead \
-         of `1e-9 * |P|`). The f64 rows repeat the \"1 samples\" and \"16 samples\" settings, measured next to \
-         the f32 ones so that their times are comparable.\n\
          - **Adaptive N** (`--samples N --adaptive`) renders every pixel at its centre, then renders again with N \
          samples only the pixels that may differ from their centre: on an edge (a neighbour's centre ray met other \
          surfaces or lights, and its colour differs by more than 2 levels), on a bend of the colour (second \
-         differences above 6 levels), or on an object under 2 pixels wide; then it gives the refined pixels whose \
-         samples spread most (standard deviation above 24 levels) 4N more samples, within 10% of the rays already \
-         traced.\n"
+         differences above 6 levels), or on an object under 2 pixels wide.\n"
     );
     let _ = writeln!(s, "### Adaptive 16 against uniform 16\n");
     let _ = writeln!(
@@ -452,34 +399,6 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
          shows what the detector leaves on the table: where this time is above 0.5 too, a better choice of pixels \
          alone does not reach the goal.\n"
     );
-    let _ = writeln!(s, "### f32 against f64 intersection tests\n");
-    let _ = writeln!(
-        s,
-        "Time and error of `--precision f32` against the default f64, at 1 and 16 samples. \"f32 vs f64 >2\" \
-         compares the f32 image with the f64 image of the same setting (the contract's tolerance: at most 0.5% of \
-         pixels more than 2 levels off); the RMSE columns are against the reference.\n\n\
-         | scene | samples | time f32 / f64 | RMSE f64 | RMSE f32 | f32 vs f64 >2 | f32 vs f64 RMSE |\n\
-         |---|---:|---:|---:|---:|---:|---:|"
-    );
-    for scene in SCENES {
-        for samples in ["1 sample)", "16 samples)"] {
-            let find = |p: &str| rows.iter().find(|r| r.scene == scene && r.label == format!("{p} ({samples}"));
-            if let (Some(a), Some(b)) = (find("f64"), find("f32")) {
-                let against = b.against_f64.expect("an f32 row is compared with its f64 row");
-                let _ = writeln!(
-                    s,
-                    "| {scene} | {} | {:.2} | {:.3} | {:.3} | {:.2}% | {:.3} |",
-                    samples.trim_end_matches(|c: char| !c.is_ascii_digit()),
-                    b.time.as_secs_f64() / a.time.as_secs_f64(),
-                    a.error.rmse,
-                    b.error.rmse,
-                    100.0 * against.over2,
-                    against.rmse
-                );
-            }
-        }
-    }
-    let _ = writeln!(s);
     let _ = writeln!(s, "### All settings\n");
     let _ = writeln!(
         s,

@@ -208,7 +208,6 @@ fn render_options(cli: &Cli) -> RenderOptions {
         samples: cli.samples,
         screen: cli.screen.screen(),
         adaptive: cli.adaptive,
-        precision: cli.precision.precision(),
         ..RenderOptions::default()
     }
 }
@@ -297,9 +296,6 @@ fn print_stats(stats: &RenderStats, frames: usize) {
         mrays / threads as f64,
     );
     if stats.refined_pixels > 0 {
-        eprintln!(
-            "adaptive: {} pixels refined, {} of them given more samples",
-            stats.refined_pixels, stats.escalated_pixels
-        );
+        eprintln!("adaptive: {} pixels refined", stats.refined_pixels);
     }
 }

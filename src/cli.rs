@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
 
-use crate::render::{Precision, Screen};
+use crate::render::Screen;
 
 /// rayrepl: an interpreter and ray tracer for the `.ray` scene language.
 ///
@@ -53,17 +53,13 @@ pub struct Cli {
 
     /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges (where
     /// the surfaces or lights seen change and the colour jumps by more than 2 levels), on sharp highlights, or on
-    /// objects under 2 pixels wide, and 4N more to those whose samples disagree most (within 10% more rays).
+    /// objects under 2 pixels wide.
     #[arg(long)]
     pub adaptive: bool,
 
-    /// Ground-truth render for error measurements: 256 stratified samples per pixel, no shortcuts, f64 (whatever --precision says).
+    /// Ground-truth render for error measurements: 256 stratified samples per pixel, no shortcuts.
     #[arg(long, conflicts_with_all = ["samples", "adaptive"])]
     pub reference: bool,
-
-    /// Float type of the intersection tests (shading is always f64); f32 is an experiment, see BENCHMARKS.md.
-    #[arg(long, value_enum, default_value_t = PrecisionArg::F64)]
-    pub precision: PrecisionArg,
 
     /// Where the z axis meets the screen: its centre (default) or the middle of its bottom edge.
     #[arg(long, value_enum, default_value_t = ScreenArg::Centered)]
@@ -117,25 +113,6 @@ impl ScreenArg {
         match self {
             ScreenArg::Centered => Screen::Centered,
             ScreenArg::Bottom => Screen::Bottom,
-        }
-    }
-}
-
-/// The float types of the intersection tests.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PrecisionArg {
-    /// f64 throughout (the default).
-    F64,
-    /// Ray traversal and intersection tests in f32.
-    F32,
-}
-
-impl PrecisionArg {
-    /// The renderer's name for this precision.
-    pub fn precision(self) -> Precision {
-        match self {
-            PrecisionArg::F64 => Precision::F64,
-            PrecisionArg::F32 => Precision::F32,
         }
     }
 }

@@ -369,37 +369,3 @@ fn an_animation_warns_once_not_once_per_frame() {
     let stderr = String::from_utf8_lossy(&assert.success().get_output().stderr).into_owned();
     assert_eq!(stderr.matches("warning:").count(), 1, "{stderr}");
 }
-
-#[test]
-fn precision_f32_renders_and_a_bad_precision_is_refused() {
-    let (dir, path) = scene(SPHERE);
-    let out = dir.path().join("out.png");
-    rayrepl()
-        .arg(&path)
-        .args(["--width", "32", "--height", "24", "--precision", "f32", "-o"])
-        .arg(&out)
-        .assert()
-        .success();
-    let image = read_image(&out);
-    assert_eq!(image.dimensions(), (32, 24));
-    assert_ne!(image.get_pixel(16, 12).0, [0, 0, 0], "the sphere is in the middle");
-    rayrepl()
-        .arg(&path)
-        .args(["--precision", "f16"])
-        .assert()
-        .code(2)
-        .stderr(contains("invalid value 'f16' for '--precision").and(contains("[possible values: f64, f32]")));
-    // --reference renders in f64 whatever --precision says.
-    let reference = dir.path().join("reference.png");
-    let plain = dir.path().join("plain.png");
-    let size = ["--width", "8", "--height", "6"];
-    rayrepl()
-        .arg(&path)
-        .args(size)
-        .args(["--reference", "--precision", "f32", "-o"])
-        .arg(&reference)
-        .assert()
-        .success();
-    rayrepl().arg(&path).args(size).args(["--reference", "-o"]).arg(&plain).assert().success();
-    assert_eq!(read_image(&reference), read_image(&plain));
-}

@@ -5,13 +5,19 @@
 //! then picks the pixels whose average may differ from their centre's
 //! colour: an edge between two neighbours that saw different things, a
 //! bend in the colour (a highlight), or an object small enough to hide
-//! between centres. Those get all the samples; [`escalation_mask`] picks,
-//! among them, those whose samples still disagree most for a third pass.
+//! between centres. A second pass gives those all the samples.
+//!
+//! A refined pixel gets exactly the bytes of the uniform render with that
+//! many samples; any other keeps the bytes of the 1-sample render.
 
 use image::RgbImage;
 
-use super::geometry::SurfaceHit;
+use super::geometry::{Prepared, SurfaceHit};
 use super::intersect::Ray;
+use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
+use super::pixels::Pass;
+use super::shade::PathObserver;
+use crate::scene::Scene;
 
 /// What adaptive anti-aliasing learns from a pixel's centre ray besides
 /// its colour, gathered along its path by the tracer.
@@ -44,14 +50,19 @@ impl Glimpse {
     pub fn start(pixel_angle: f64) -> Glimpse {
         Glimpse { signature: 0, finest: f64::INFINITY, beam_width: 0.0, beam_spread: pixel_angle }
     }
+}
 
-    /// The path, along `ray` with weight `weight`, hit `hit`.
-    ///
-    /// The beam through the pixel widens along the ray by its spread; a
-    /// curved mirror spreads it further by twice the turn of the normal
-    /// across its footprint (a ray cone, as in texture filtering).
+impl PathObserver for Glimpse {
+    /// Mixes what was hit into the signature and follows the beam through
+    /// the pixel: it widens along the ray by its spread, and a curved mirror
+    /// spreads it further by twice the turn of the normal across its
+    /// footprint (a ray cone, as in texture filtering).
     #[inline(always)]
-    pub fn hit(&mut self, ray: &Ray, hit: &SurfaceHit, weight: f64) {
+    fn hit(&mut self, ray: &Ray, hit: Option<&SurfaceHit>, weight: f64) {
+        let Some(hit) = hit else {
+            self.signature = mix(self.signature, u64::MAX);
+            return;
+        };
         self.signature = mix(self.signature, hit.surface);
         if hit.curvature == 0.0 {
             // A flat surface: planes have one normal, a box one per face.
@@ -70,16 +81,8 @@ impl Glimpse {
         self.beam_width = beam;
     }
 
-    /// The path left the scene.
     #[inline(always)]
-    pub fn miss(&mut self) {
-        self.signature = mix(self.signature, u64::MAX);
-    }
-
-    /// At the current hit, the next light does (`lit`) or does not add its
-    /// diffuse and specular parts.
-    #[inline(always)]
-    pub fn light(&mut self, lit: bool) {
+    fn light(&mut self, lit: bool) {
         self.signature = mix(self.signature, u64::from(lit));
     }
 }
@@ -159,57 +162,46 @@ pub fn refinement_mask(image: &RgbImage, glimpses: &[Glimpse]) -> Vec<bool> {
     mask
 }
 
-/// A pixel refined by adaptive anti-aliasing is a candidate for more samples
-/// when the standard deviation of its samples, in 8-bit levels, exceeds this
-/// in one channel: its `samples` samples leave its byte uncertain by a few
-/// levels (about the deviation over `samples^0.75` on an edge).
-pub const ESCALATION_SPREAD: f64 = 24.0;
-
-/// The third pass of adaptive anti-aliasing may trace at most this share of
-/// the rays the first two traced, and never more than what keeps the whole
-/// render within half the rays of a uniform one (estimated as `samples`
-/// times the first pass's): see [`escalation_budget`].
-pub const ESCALATION_BUDGET: f64 = 0.1;
-
-/// The rays the third pass of adaptive anti-aliasing may trace, when the
-/// first pass (one sample per pixel) traced `first_rays` and the first two
-/// `spent`. A scene whose detail is smaller than a pixel, where nearly every
-/// pixel was refined, has already spent half a uniform render and gets none.
-pub fn escalation_budget(samples: u32, first_rays: u64, spent: u64) -> u64 {
-    let half_uniform = first_rays.saturating_mul(u64::from(samples)) / 2;
-    ((ESCALATION_BUDGET * spent as f64) as u64).min(half_uniform.saturating_sub(spent))
-}
-
-/// How much the samples of one pixel disagree, and what the pixel cost.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SampleSpread {
-    /// Standard deviation of the samples' colours, in 8-bit levels, in the
-    /// channel where it is largest.
-    pub levels: f64,
-    /// Rays traced for the pixel.
-    pub rays: u64,
-}
-
-/// The refined pixels (`refined`, with their `spread`) that adaptive
-/// anti-aliasing renders a third time with [`escalation_offsets`]: those
-/// spreading more than [`ESCALATION_SPREAD`], the most spread first, as long
-/// as their projected cost (5 times the rays of their `samples` samples) fits
-/// in `budget_rays`. Ties go to the earlier pixel, so the choice is
-/// deterministic.
-pub fn escalation_mask(refined: &[bool], spread: &[SampleSpread], budget_rays: u64) -> Vec<bool> {
-    let mut candidates: Vec<usize> =
-        (0..refined.len()).filter(|&k| refined[k] && spread[k].levels > ESCALATION_SPREAD).collect();
-    candidates.sort_by(|&a, &b| spread[b].levels.total_cmp(&spread[a].levels).then(a.cmp(&b)));
-    let mut mask = vec![false; refined.len()];
-    let mut spent = 0u64;
-    for k in candidates {
-        spent += 5 * spread[k].rays;
-        if spent > budget_rays {
-            break;
+/// Adaptive anti-aliasing's two passes into `image`: every pixel at its
+/// centre, then all `options.samples` samples for the pixels `refined`
+/// flags (one flag per pixel) or, when `None`, those [`refinement_mask`]
+/// picks.
+pub(crate) fn render_two_passes(
+    scene: &Scene,
+    geometry: &Prepared,
+    options: &RenderOptions,
+    control: &RenderControl,
+    refined: Option<&[bool]>,
+    image: &mut RgbImage,
+) -> Result<RenderStats, Cancelled> {
+    let first = Pass::new(scene, geometry, options, control, 1);
+    let mut glimpses = vec![Glimpse::start(first.rays.pixel_angle()); image.len() / 3];
+    let mut rays = first.run(image, None, &mut glimpses)?;
+    let detected;
+    let refined = match refined {
+        Some(flags) => flags,
+        None => {
+            detected = refinement_mask(image, &glimpses);
+            &detected
         }
-        mask[k] = true;
-    }
-    mask
+    };
+    let second = Pass::new(scene, geometry, options, control, options.samples).without_progress();
+    rays += second.run_plain(image, Some(refined))?;
+    let refined_pixels = refined.iter().filter(|&&f| f).count() as u64;
+    Ok(RenderStats { rays, refined_pixels, ..RenderStats::default() })
+}
+
+/// Adaptive anti-aliasing's first pass alone: every pixel of `scene`
+/// rendered at its centre, and the [`Glimpse`] of each pixel's ray (row
+/// major). [`refinement_mask`] of the two gives the pixels the second pass
+/// renders again.
+pub fn glimpse_pass(scene: &Scene, geometry: &Prepared, options: &RenderOptions) -> (RgbImage, Vec<Glimpse>) {
+    let control = RenderControl::default();
+    let pass = Pass::new(scene, geometry, options, &control, 1);
+    let mut image = RgbImage::new(options.width, options.height);
+    let mut glimpses = vec![Glimpse::start(pass.rays.pixel_angle()); image.len() / 3];
+    pass.run(&mut image, None, &mut glimpses).expect("no cancel flag: never cancelled");
+    (image, glimpses)
 }
 
 #[cfg(test)]
@@ -263,40 +255,5 @@ mod tests {
         glimpses[0].finest = 1.5;
         glimpses[2].finest = 2.5;
         assert_eq!(refinement_mask(&flat, &glimpses), [true, false, false]);
-    }
-
-    fn spread(levels: f64, rays: u64) -> SampleSpread {
-        SampleSpread { levels, rays }
-    }
-
-    #[test]
-    fn escalation_budget_is_a_tenth_of_the_spent_rays_within_half_a_uniform_render() {
-        // 16 samples on a first pass of 1000 rays: a uniform render ~16000.
-        assert_eq!(escalation_budget(16, 1000, 3000), 300);
-        assert_eq!(escalation_budget(16, 1000, 7800), 200);
-        assert_eq!(escalation_budget(16, 1000, 8000), 0);
-        assert_eq!(escalation_budget(16, 1000, 15_000), 0);
-        assert_eq!(escalation_budget(4, u64::MAX, 10), 1);
-    }
-
-    #[test]
-    fn escalation_takes_the_most_spread_pixels_that_fit_the_budget() {
-        let refined = [true, true, false, true, true, true];
-        let spreads = [
-            spread(30.0, 10),  // candidate
-            spread(90.0, 10),  // the most spread: first
-            spread(200.0, 1),  // not refined
-            spread(24.0, 1),   // not above the threshold
-            spread(30.0, 10),  // ties with pixel 0, which comes first
-            spread(60.0, 100), // fits only a large budget
-        ];
-        let chosen = |budget| escalation_mask(&refined, &spreads, budget);
-        assert_eq!(chosen(0), [false; 6]);
-        assert_eq!(chosen(50), [false, true, false, false, false, false]);
-        // Pixel 5 (cost 500) comes second and does not fit: the choice stops.
-        assert_eq!(chosen(549), [false, true, false, false, false, false]);
-        assert_eq!(chosen(599), [false, true, false, false, false, true]);
-        assert_eq!(chosen(600), [true, true, false, false, false, true]);
-        assert_eq!(chosen(650), [true, true, false, false, true, true]);
     }
 }

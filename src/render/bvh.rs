@@ -7,10 +7,10 @@
 
 use std::cell::Cell;
 
-use glam::{DMat3, DVec3, Mat3A, Vec3A};
+use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
-use super::intersect::{Aabb, Bounded, BoundedF32, BoxShape, Ray, RayF32};
+use super::intersect::{Aabb, Bounded, BoxShape, Ray};
 
 /// Up to this many objects a tree costs more than it saves: on the solar
 /// bench scene (3 spheres) a one-leaf tree runs 18% more instructions than
@@ -154,7 +154,7 @@ impl SharedFrame {
             |axis| dir_negative[axis as usize],
             |start, count| {
                 for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
-                    let t = BoxShape::hit_in_frame::<f64>(self.to_local, center, half, ray.origin, inv);
+                    let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
                     if t < best.get().0 {
                         best.set((t, (start + k) as u32));
                     }
@@ -179,9 +179,9 @@ impl SharedFrame {
             |k| self.bounds[k].hit(&local, inv, t_max),
             |axis| far_is_right[axis as usize],
             |start, count| {
-                self.boxes[start..start + count].iter().any(|&(center, half)| {
-                    BoxShape::hit_in_frame::<f64>(self.to_local, center, half, ray.origin, inv) < t_max
-                })
+                self.boxes[start..start + count]
+                    .iter()
+                    .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
             },
         )
     }
@@ -329,176 +329,15 @@ impl Bvh {
     }
 }
 
-/// The intersection data of a [`Bvh`] rounded to f32, for
-/// [`super::Precision::F32`]: the same tree (same links, same object order,
-/// so object indices are the f64 tree's), node bounds rounded outwards, and
-/// the objects' data in f32 ([`BoundedF32`]). Hit distances come back as
-/// f64 (exactly the f32 values).
-///
-/// The slab test widens its interval by a few f32 ulps, but the ray's origin
-/// and direction are rounded to f32 too, so a ray grazing a box can still be
-/// culled by mistake: the tests and the trade-off benchmark measure what f32
-/// costs in error.
-#[derive(Debug, Clone)]
-pub struct BvhF32 {
-    nodes: Vec<NodeF32>,
-    objects: Vec<BoundedF32>,
-    /// For a tree of boxes with common axes ([`SharedFrame`]): those axes,
-    /// as rows; the node bounds are then in that frame.
-    frame: Option<Mat3A>,
-}
-
-/// A node with f32 bounds: 32 bytes instead of 56.
-#[derive(Debug, Clone, Copy)]
-struct NodeF32 {
-    min: glam::Vec3,
-    max: glam::Vec3,
-    index: u32,
-    count: u16,
-    axis: u16,
-}
-
-impl NodeF32 {
-    /// The slab test ([`Aabb::hit`]) in f32, widened: whether `ray` (whose
-    /// `1 / dir` is `inv_dir`) meets the box at some `t` in `[0, t_max]`.
-    #[inline(always)]
-    fn hit(&self, ray: &RayF32, inv_dir: Vec3A, t_max: f64) -> bool {
-        // 1 + 2γ₃ with γₙ = nε/(1 - nε), ε = 2⁻²⁴ (Ize, "Robust BVH ray
-        // traversal", 2013), rounded up.
-        let widen = 1.0 + 4.0 * f32::EPSILON;
-        let t1 = (Vec3A::from(self.min) - ray.origin) * inv_dir;
-        let t2 = (Vec3A::from(self.max) - ray.origin) * inv_dir;
-        let t_near = t1.min(t2).max_element().max(0.0);
-        let t_far = t1.max(t2).min_element() * widen;
-        t_near <= t_far && f64::from(t_near) <= t_max
-    }
-}
-
-impl BvhF32 {
-    /// `bvh` rounded to f32 (node bounds outwards).
-    pub fn new(bvh: &Bvh) -> BvhF32 {
-        let down = |v: DVec3| glam::Vec3::new(round_down(v.x), round_down(v.y), round_down(v.z));
-        let up = |v: DVec3| -down(-v);
-        let bounds = |k: usize| bvh.shared.as_ref().map_or(bvh.nodes[k].bounds, |s| s.bounds[k]);
-        let nodes = (0..bvh.nodes.len())
-            .map(|k| {
-                let n = &bvh.nodes[k];
-                let b = bounds(k);
-                NodeF32 { min: down(b.min), max: up(b.max), index: n.index, count: n.count, axis: n.axis }
-            })
-            .collect();
-        BvhF32 {
-            nodes,
-            objects: bvh.objects.iter().map(BoundedF32::from).collect(),
-            frame: bvh.shared.as_ref().map(|s| Mat3A::from(s.to_local.as_mat3())),
-        }
-    }
-
-    /// The ray for the node tests (in the common frame, if any), its
-    /// `1 / dir`, and that again for the boxes when they share the frame.
-    #[inline(always)]
-    fn node_ray(&self, world: &RayF32) -> (RayF32, Vec3A, Option<Vec3A>) {
-        match self.frame {
-            Some(to_local) => {
-                let local = world.in_frame(to_local);
-                let inv = local.dir.recip();
-                (local, inv, Some(inv))
-            }
-            None => (*world, world.dir.recip(), None),
-        }
-    }
-
-    /// [`Bvh::closest_hit`] in f32: `(t, object index in tree order)`, or
-    /// `(t_max, u32::MAX)` for none.
-    #[inline]
-    pub fn closest_hit(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
-        let world = RayF32::new(ray);
-        let best = Cell::new((t_max, u32::MAX));
-        let nearest = |start: usize, count: usize, frame_inv: Option<Vec3A>| {
-            for (k, object) in self.objects[start..start + count].iter().enumerate() {
-                let t = object.hit(&world, frame_inv);
-                if t < best.get().0 {
-                    best.set((t, (start + k) as u32));
-                }
-            }
-        };
-        if self.nodes.is_empty() {
-            nearest(0, self.objects.len(), None);
-            return best.get();
-        }
-        let (local, inv, frame_inv) = self.node_ray(&world);
-        // Near child first, as the f64 tree.
-        let dir_negative = [local.dir.x < 0.0, local.dir.y < 0.0, local.dir.z < 0.0];
-        walk(
-            &self.nodes,
-            |k| self.nodes[k].hit(&local, inv, best.get().0),
-            |axis| dir_negative[axis as usize],
-            |start, count| {
-                nearest(start, count, frame_inv);
-                false
-            },
-        );
-        best.get()
-    }
-
-    /// [`Bvh::any_hit`] in f32.
-    #[inline]
-    pub fn any_hit(&self, ray: &Ray, t_max: f64) -> bool {
-        let world = RayF32::new(ray);
-        let (local, inv, frame_inv) = self.node_ray(&world);
-        let blocks = |objects: &[BoundedF32]| objects.iter().any(|o| o.hit(&world, frame_inv) < t_max);
-        if self.nodes.is_empty() {
-            return blocks(&self.objects);
-        }
-        // The child order of the f64 tree: far child first in a common
-        // frame (see `SharedFrame::any_hit`), left child first otherwise.
-        let far_is_right = [local.dir.x >= 0.0, local.dir.y >= 0.0, local.dir.z >= 0.0];
-        let in_frame = self.frame.is_some();
-        walk(
-            &self.nodes,
-            |k| self.nodes[k].hit(&local, inv, t_max),
-            |axis| in_frame && far_is_right[axis as usize],
-            |start, count| blocks(&self.objects[start..start + count]),
-        )
-    }
-}
-
-impl Linked for NodeF32 {
-    #[inline(always)]
-    fn links(&self) -> (u32, u16, u16) {
-        (self.index, self.count, self.axis)
-    }
-}
-
-/// The largest f32 not above `x`.
-fn round_down(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) > x { y.next_down() } else { y }
-}
-
-/// How a tree's nodes link to their children and objects (see [`Node`]).
-trait Linked {
-    /// `(index, count, axis)`.
-    fn links(&self) -> (u32, u16, u16);
-}
-
-impl Linked for Node {
-    #[inline(always)]
-    fn links(&self) -> (u32, u16, u16) {
-        (self.index, self.count, self.axis)
-    }
-}
-
-/// The closest-hit traversal of a flattened tree, whatever the node bounds'
-/// precision: `node_hit(node, t)` says whether the ray meets the node's box
+/// The closest-hit traversal of a flattened tree: `node_hit(node, t)` says whether the ray meets the node's box
 /// before `t`. An empty `nodes` means a flat list.
 #[inline(always)]
-fn closest_in<N: Linked>(
-    nodes: &[N],
+fn closest_in(
+    nodes: &[Node],
     objects: &[Bounded],
     ray: &Ray,
     t_max: f64,
-    node_hit: impl Fn(&N, f64) -> bool,
+    node_hit: impl Fn(&Node, f64) -> bool,
 ) -> (f64, u32) {
     let mut best = (t_max, u32::MAX);
     if nodes.is_empty() {
@@ -530,8 +369,8 @@ fn closest_in<N: Linked>(
 /// the node's `index` is visited first when `index_first(axis)`, else the
 /// one right after the node.
 #[inline(always)]
-fn walk<N: Linked>(
-    nodes: &[N],
+fn walk(
+    nodes: &[Node],
     mut meets: impl FnMut(usize) -> bool,
     index_first: impl Fn(u16) -> bool,
     mut leaf: impl FnMut(usize, usize) -> bool,
@@ -541,7 +380,7 @@ fn walk<N: Linked>(
     let mut current = 0usize;
     loop {
         if meets(current) {
-            let (index, count, axis) = nodes[current].links();
+            let Node { index, count, axis, .. } = nodes[current];
             if count > 0 {
                 if leaf(index as usize, count as usize) {
                     return true;

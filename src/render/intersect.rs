@@ -6,91 +6,9 @@
 //! wins ([`Bounded::normal`], [`PlaneShape::normal`]), so the hot loops carry a
 //! single number per object.
 
-use std::ops::{Add, Div, Mul, Neg, Sub};
-
-use glam::{DMat3, DVec3, Mat3A, Vec3A};
+use glam::{DMat3, DVec3};
 
 use crate::scene::Shape;
-
-/// The float type of the intersection tests: `f64` (the default, and all of
-/// the renderer but these tests) or `f32` ([`super::Precision::F32`]).
-///
-/// Each test is written once, generic over this trait, so both precisions
-/// run the same formulas in the same order; for `f64` the methods are the
-/// very glam and `f64` operations the tests used before, so the code
-/// generated is the same.
-pub trait Real:
-    Copy
-    + PartialOrd
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
-    /// A 3-vector of this type.
-    type Vec: Copy
-        + Add<Output = Self::Vec>
-        + Sub<Output = Self::Vec>
-        + Mul<Output = Self::Vec>
-        + Mul<Self, Output = Self::Vec>
-        + Neg<Output = Self::Vec>;
-    /// A 3x3 matrix of this type.
-    type Mat: Copy + Mul<Self::Vec, Output = Self::Vec>;
-    /// Zero.
-    const ZERO: Self;
-    /// Positive infinity (no hit).
-    const INFINITY: Self;
-    /// The square root.
-    fn sqrt(self) -> Self;
-    /// The dot product.
-    fn dot(a: Self::Vec, b: Self::Vec) -> Self;
-    /// The per-component `(min, max)` of two vectors, with `f64::min`'s
-    /// rule for NaN: the other operand wins (see [`BoxShape`]'s slabs).
-    fn min_max(a: Self::Vec, b: Self::Vec) -> (Self::Vec, Self::Vec);
-    /// The largest component.
-    fn max_element(v: Self::Vec) -> Self;
-    /// The smallest component.
-    fn min_element(v: Self::Vec) -> Self;
-}
-
-/// [`Real`] for a float type and its glam vector and matrix types: the
-/// same body for both precisions.
-macro_rules! impl_real {
-    ($real:ident, $vec:ident, $mat:ident) => {
-        impl Real for $real {
-            type Vec = $vec;
-            type Mat = $mat;
-            const ZERO: $real = 0.0;
-            const INFINITY: $real = $real::INFINITY;
-            #[inline(always)]
-            fn sqrt(self) -> $real {
-                $real::sqrt(self)
-            }
-            #[inline(always)]
-            fn dot(a: $vec, b: $vec) -> $real {
-                a.dot(b)
-            }
-            #[inline(always)]
-            fn min_max(a: $vec, b: $vec) -> ($vec, $vec) {
-                let min = $vec::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z));
-                let max = $vec::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z));
-                (min, max)
-            }
-            #[inline(always)]
-            fn max_element(v: $vec) -> $real {
-                v.max_element()
-            }
-            #[inline(always)]
-            fn min_element(v: $vec) -> $real {
-                v.min_element()
-            }
-        }
-    };
-}
-
-impl_real!(f64, DVec3, DMat3);
-impl_real!(f32, Vec3A, Mat3A);
 
 /// A ray `origin + t * dir`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -157,35 +75,35 @@ impl SphereShape {
     }
 }
 
-/// [`SphereShape::hit`] in the precision `R`: the distance to the nearest
+/// [`SphereShape::hit`]: the distance to the nearest
 /// hit with `t > 0` of the ray `origin + t * dir` (unit `dir`) with the
 /// sphere of `center` and `radius`, or infinity.
 #[inline(always)]
-fn sphere_hit<R: Real>(center: R::Vec, radius: R, origin: R::Vec, dir: R::Vec) -> R {
+fn sphere_hit(center: DVec3, radius: f64, origin: DVec3, dir: DVec3) -> f64 {
     let f = origin - center;
-    let b = R::dot(f, dir);
+    let b = f.dot(dir);
     let r2 = radius * radius;
-    let c = R::dot(f, f) - r2;
-    if c > R::ZERO && b >= R::ZERO {
+    let c = f.dot(f) - r2;
+    if c > 0.0 && b >= 0.0 {
         // Outside and moving away.
-        return R::INFINITY;
+        return f64::INFINITY;
     }
     let perp = f - dir * b;
-    let disc = r2 - R::dot(perp, perp);
-    if disc < R::ZERO {
-        return R::INFINITY;
+    let disc = r2 - perp.dot(perp);
+    if disc < 0.0 {
+        return f64::INFINITY;
     }
     let h = disc.sqrt();
-    let t = if c > R::ZERO {
+    let t = if c > 0.0 {
         // Outside, moving towards: the entry point -b - h.
         c / (h - b)
-    } else if b > R::ZERO {
+    } else if b > 0.0 {
         // Inside (or on the surface): the exit point -b + h.
         -c / (b + h)
     } else {
         h - b
     };
-    if t > R::ZERO { t } else { R::INFINITY }
+    if t > 0.0 { t } else { f64::INFINITY }
 }
 
 /// An oriented box, ready for intersection.
@@ -208,7 +126,7 @@ impl BoxShape {
     #[inline]
     fn slabs(&self, ray: &Ray) -> (DVec3, DVec3) {
         let d = self.to_local * ray.dir;
-        slabs_in_frame::<f64>(self.to_local, self.center, self.half, ray.origin, d.recip())
+        slabs_in_frame(self.to_local, self.center, self.half, ray.origin, d.recip())
     }
 
     /// Distance to the nearest hit with `t > 0`, or infinity, for a box
@@ -216,8 +134,8 @@ impl BoxShape {
     /// (computed once per ray when many boxes share their axes): the same
     /// arithmetic as [`BoxShape::hit`], so the same answer to the bit.
     #[inline(always)]
-    pub fn hit_in_frame<R: Real>(to_local: R::Mat, center: R::Vec, half: R::Vec, origin: R::Vec, inv: R::Vec) -> R {
-        let (near, far) = slabs_in_frame::<R>(to_local, center, half, origin, inv);
+    pub fn hit_in_frame(to_local: DMat3, center: DVec3, half: DVec3, origin: DVec3, inv: DVec3) -> f64 {
+        let (near, far) = slabs_in_frame(to_local, center, half, origin, inv);
         entry_or_exit(near, far)
     }
 }
@@ -225,13 +143,7 @@ impl BoxShape {
 /// [`BoxShape::slabs`] with the ray direction in the box's frame already
 /// inverted (`inv`).
 #[inline(always)]
-fn slabs_in_frame<R: Real>(
-    to_local: R::Mat,
-    center: R::Vec,
-    half: R::Vec,
-    origin: R::Vec,
-    inv: R::Vec,
-) -> (R::Vec, R::Vec) {
+fn slabs_in_frame(to_local: DMat3, center: DVec3, half: DVec3, origin: DVec3, inv: DVec3) -> (DVec3, DVec3) {
     let o = to_local * (origin - center);
     let t1 = (-half - o) * inv;
     let t2 = (half - o) * inv;
@@ -240,18 +152,20 @@ fn slabs_in_frame<R: Real>(
     // then made `max_element`/`min_element` drop another axis's bound (a
     // phantom hit outside the box); `f64::min`/`max` return the other,
     // infinite, distance, so such a ray misses (it sees the face edge-on).
-    R::min_max(t1, t2)
+    let min = DVec3::new(t1.x.min(t2.x), t1.y.min(t2.y), t1.z.min(t2.z));
+    let max = DVec3::new(t1.x.max(t2.x), t1.y.max(t2.y), t1.z.max(t2.z));
+    (min, max)
 }
 
 /// The hit distance from the slab distances: the entry point when the
 /// origin is outside, the exit point when it is inside, infinity for none.
 #[inline(always)]
-fn entry_or_exit<R: Real>(near: R::Vec, far: R::Vec) -> R {
-    let t_near = R::max_element(near);
-    let t_far = R::min_element(far);
-    if t_near > t_far || t_far <= R::ZERO {
-        R::INFINITY
-    } else if t_near > R::ZERO {
+fn entry_or_exit(near: DVec3, far: DVec3) -> f64 {
+    let t_near = near.max_element();
+    let t_far = far.min_element();
+    if t_near > t_far || t_far <= 0.0 {
+        f64::INFINITY
+    } else if t_near > 0.0 {
         t_near
     } else {
         t_far
@@ -397,105 +311,6 @@ impl Bounded {
             Bounded::Sphere(s) => s.bounds(),
             Bounded::Box(b) => b.bounds(),
         }
-    }
-}
-
-/// A ray rounded to f32, for the intersection tests of
-/// [`super::Precision::F32`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RayF32 {
-    /// Where the ray starts.
-    pub origin: Vec3A,
-    /// Direction (unit up to rounding).
-    pub dir: Vec3A,
-}
-
-impl RayF32 {
-    /// `ray` with each coordinate rounded to the nearest f32.
-    #[inline(always)]
-    pub fn new(ray: &Ray) -> RayF32 {
-        RayF32 { origin: to_f32(ray.origin), dir: to_f32(ray.dir) }
-    }
-
-    /// The ray seen in a frame whose axes are the rows of `to_local`.
-    #[inline(always)]
-    pub fn in_frame(&self, to_local: Mat3A) -> RayF32 {
-        RayF32 { origin: to_local * self.origin, dir: to_local * self.dir }
-    }
-}
-
-/// Rounds a vector to the nearest f32 per coordinate.
-#[inline(always)]
-pub fn to_f32(v: DVec3) -> Vec3A {
-    Vec3A::from(v.as_vec3())
-}
-
-/// A [`Bounded`] with its data rounded to f32: the same formulas
-/// ([`SphereShape::hit`], [`BoxShape::hit`]) computed in f32.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum BoundedF32 {
-    /// A sphere: centre and radius.
-    Sphere(Vec3A, f32),
-    /// An oriented box: centre, half sizes, and its axes as rows.
-    Box(Vec3A, Vec3A, Mat3A),
-}
-
-impl From<&Bounded> for BoundedF32 {
-    fn from(object: &Bounded) -> BoundedF32 {
-        match object {
-            Bounded::Sphere(s) => BoundedF32::Sphere(to_f32(s.center), s.radius as f32),
-            Bounded::Box(b) => BoundedF32::Box(to_f32(b.center), to_f32(b.half), Mat3A::from(b.to_local.as_mat3())),
-        }
-    }
-}
-
-impl BoundedF32 {
-    /// Distance to the nearest hit with `t > 0`, or infinity (as f64, exactly
-    /// the f32 value). A box whose axes are the frame of `frame_inv`
-    /// (`1 / (to_local * dir)`, shared by a tree of boxes with equal axes)
-    /// uses it instead of computing its own.
-    #[inline(always)]
-    pub fn hit(&self, ray: &RayF32, frame_inv: Option<Vec3A>) -> f64 {
-        let t = match *self {
-            BoundedF32::Sphere(center, radius) => sphere_hit(center, radius, ray.origin, ray.dir),
-            BoundedF32::Box(center, half, to_local) => {
-                let inv = frame_inv.unwrap_or_else(|| (to_local * ray.dir).recip());
-                BoxShape::hit_in_frame::<f32>(to_local, center, half, ray.origin, inv)
-            }
-        };
-        f64::from(t)
-    }
-}
-
-/// A [`PlaneShape`] rounded to f32.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlaneF32 {
-    /// Unit normal.
-    pub normal: Vec3A,
-    /// Signed distance from the origin.
-    pub shift: f32,
-}
-
-impl From<&PlaneShape> for PlaneF32 {
-    fn from(plane: &PlaneShape) -> PlaneF32 {
-        PlaneF32 { normal: to_f32(plane.normal), shift: plane.shift as f32 }
-    }
-}
-
-impl PlaneF32 {
-    /// [`PlaneShape::hit`] in f32: a hit when the origin is on the seen
-    /// side and the ray moves towards the plane.
-    #[inline(always)]
-    pub fn hit(&self, ray: &RayF32) -> f64 {
-        let (above, towards) = (self.normal.dot(ray.origin) - self.shift, self.normal.dot(ray.dir));
-        let t = -above / towards;
-        if above > 0.0 && towards < 0.0 && t > 0.0 { f64::from(t) } else { f64::INFINITY }
-    }
-
-    /// Whether `origin` is on the side the plane is seen from (`n·S > d`).
-    #[inline(always)]
-    pub fn is_above(&self, origin: Vec3A) -> bool {
-        self.normal.dot(origin) > self.shift
     }
 }
 

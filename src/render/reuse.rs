@@ -22,10 +22,12 @@ use std::time::Instant;
 
 use image::RgbImage;
 
+use super::geometry::{Blocker, Prepared, SurfaceHit};
+use super::intersect::Ray;
+use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
+use super::pixels::Pass;
+use super::shade::PathObserver;
 use super::sweep::Sweep;
-use super::{
-    Cancelled, Job, Precision, Prepared, RenderControl, RenderOptions, RenderStats, Selection, blocking_planes,
-};
 use crate::scene::Scene;
 
 /// The state carried from one frame of a run to the next.
@@ -55,13 +57,11 @@ pub const GIVE_UP_SHARE: f64 = 0.5;
 impl FrameReuse {
     /// Whether frame reuse can render the frames of an animation whose
     /// first frame is `scene` (prepared as `prepared`) with `options`:
-    /// nothing but bounded objects depends on `time`, no adaptive
-    /// anti-aliasing (whose choice of pixels looks at their neighbours), and
-    /// f64 intersection tests (the padding of [`super::sweep`] is sized for
-    /// them). Each later frame must also pass [`FrameReuse::holds_for`].
+    /// nothing but bounded objects depends on `time`, and no adaptive
+    /// anti-aliasing (whose choice of pixels looks at their neighbours).
+    /// Each later frame must also pass [`FrameReuse::holds_for`].
     pub fn applies(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> bool {
-        let adaptive = options.adaptive && options.samples > 1;
-        !adaptive && options.precision == Precision::F64 && FrameReuse::holds_for(scene, prepared)
+        !options.is_adaptive() && FrameReuse::holds_for(scene, prepared)
     }
 
     /// Whether one frame keeps the camera, ambient light, lights and planes
@@ -116,22 +116,70 @@ impl FrameReuse {
             return super::render(scene, prepared, &self.options, control);
         }
         let start = Instant::now();
-        let blocking_planes = blocking_planes(scene, prepared);
-        let job = Job {
-            watch: Some((&self.sweep, frame)),
-            ..Job::new(scene, prepared, &self.options, control, &blocking_planes, self.options.samples)
-        };
-        let mut stats = RenderStats::default();
-        let selection =
-            Selection { flags: Some(&stale), valid_until: Some(&mut self.valid_until), ..Selection::default() };
-        let done = job.run(&mut image, selection, &mut stats);
+        let last_frame = self.sweep.frames() - 1;
+        let watch = ValidityWatch { sweep: &self.sweep, frame, valid_until: last_frame };
+        let mut watches = vec![watch; pixels];
+        let pass = Pass::new(scene, prepared, &self.options, control, self.options.samples);
+        let done = pass.run(&mut image, Some(&stale), &mut watches);
         // A cancelled frame leaves `image` half new: start again from scratch.
         if done.is_err() {
             self.next -= 1;
         }
-        done?;
+        let mut stats = RenderStats { rays: done?, ..RenderStats::default() };
+        for ((valid_until, watch), traced) in self.valid_until.iter_mut().zip(&watches).zip(&stale) {
+            if *traced {
+                *valid_until = watch.valid_until;
+            }
+        }
         stats.elapsed = start.elapsed();
         self.image = Some(image.clone());
         Ok((image, stats))
+    }
+}
+
+/// Frame reuse's observer of one pixel's paths: works out the last frame
+/// for which they give the same colours (see [`super::sweep`]).
+#[derive(Debug, Clone, Copy)]
+struct ValidityWatch<'a> {
+    /// The frames' moving objects.
+    sweep: &'a Sweep,
+    /// The frame being traced.
+    frame: u32,
+    /// The last frame for which the paths seen so far hold.
+    valid_until: u32,
+}
+
+impl ValidityWatch<'_> {
+    /// Lowers [`ValidityWatch::valid_until`] to the frame before the first
+    /// one whose moving objects could change what `ray` found in `[0, t]`.
+    /// A hit on a moving object (`timed`) holds for this frame only.
+    #[inline]
+    fn watch(&mut self, ray: &Ray, t: f64, timed: bool) {
+        if self.valid_until <= self.frame {
+            return;
+        }
+        self.valid_until =
+            if timed { self.frame } else { self.valid_until.min(self.sweep.first_meeting(ray, t, self.frame) - 1) };
+    }
+}
+
+impl PathObserver for ValidityWatch<'_> {
+    const WANTS_BLOCKER: bool = true;
+
+    #[inline(always)]
+    fn hit(&mut self, ray: &Ray, hit: Option<&SurfaceHit>, _weight: f64) {
+        self.watch(ray, hit.map_or(f64::INFINITY, |h| h.t), hit.is_some_and(|h| h.timed));
+    }
+
+    /// A shadow ray blocked by the static part stays blocked; one blocked
+    /// only by a moving object holds for this frame only; an unblocked one
+    /// until a moving object may cross it.
+    #[inline(always)]
+    fn shadow(&mut self, ray: &Ray, blocker: Blocker) {
+        match blocker {
+            Blocker::Static => {}
+            Blocker::Timed => self.watch(ray, f64::INFINITY, true),
+            Blocker::Nothing => self.watch(ray, f64::INFINITY, false),
+        }
     }
 }
