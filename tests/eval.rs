@@ -8,6 +8,9 @@ use glam::{DMat3, DVec3};
 use rayrepl::lang::{Diagnostic, Interpreter, Limits, Severity, SourceMap, parse_file, parse_items};
 use rayrepl::scene::{Primitive, Scene, Shape};
 
+mod common;
+use common::limited::run_limited;
+
 /// A texture that raises no warning.
 const TEX: &str = "kd 0.5 ks 0.5 phong 10 color 255, 0, 51";
 
@@ -983,6 +986,41 @@ fn the_primitive_cap_stops_exponential_doubling() {
     assert!(d.message.starts_with("this makes more than 1048576 primitives"), "{}", d.message);
     // a0..a19 hold 2^20 - 1 primitives in all; a20's first copy of a19 crosses.
     assert_eq!((line, col), (21, 20));
+}
+
+/// A file for the binary: the header SPEC 2 requires, then `body`.
+fn scene_file(body: &str) -> String {
+    format!("camera distance 10 angle 1 end\nambient 0.2\n{}", source(body))
+}
+
+/// Runs the binary on `text` (from stdin) with a cap on its memory: it must
+/// stop with status 1 and the primitive limit's diagnostic, pointing at
+/// `line` and showing `shown` from its source line.
+fn assert_stopped_by_the_default_cap(text: &str, line: usize, shown: &str) {
+    let output = run_limited(&["--check", "-"], text);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    let limit = Limits::default().max_primitives;
+    assert!(stderr.contains(&format!("error: this makes more than {limit} primitives")), "{stderr}");
+    assert!(stderr.contains(&format!(":{line}:")), "{stderr}");
+    assert!(stderr.contains(shown) && stderr.contains('^'), "{stderr}");
+}
+
+#[test]
+fn the_default_cap_stops_doubling_before_memory_runs_out() {
+    let body = "object o = sphere center 0, 0, 0 radius 1 $T end\n".to_string()
+        + &"object o = group o o end\n".repeat(60)
+        + "put o\n";
+    // `o` and its first 22 doublings make 2^23 - 1 primitives; the 23rd
+    // (line 26) would bring them to 2^24 - 1, past 10 million.
+    assert_stopped_by_the_default_cap(&scene_file(&body), 26, "object o = group o o end");
+}
+
+#[test]
+fn the_default_cap_stops_two_to_the_forty_spheres() {
+    let body = "proc p(n)\n  if n < 1 then put sphere center 0, 0, 0 radius 1 $T end\n  \
+                else p(n - 1) p(n - 1) end\nend\np(40)\n";
+    assert_stopped_by_the_default_cap(&scene_file(body), 4, "put sphere");
 }
 
 #[test]
