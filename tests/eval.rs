@@ -847,6 +847,15 @@ fn a_failed_input_keeps_earlier_procedures_and_its_error_comes_from_the_state_be
     assert_eq!(sphere_centers(&i.scene().primitives), [DVec3::new(3.0, 0.0, 0.0)]);
 }
 
+#[test]
+fn huge_misspelt_names_fail_without_a_suggestion() {
+    let name = "a".repeat(100_000);
+    let misspelt = format!("{}b{}", "a".repeat(50_000), "a".repeat(49_999));
+    let (d, line, col) = error(&format!("let {name} = 1\nlet y = {misspelt}"));
+    assert!(d.message.starts_with("unknown variable `aaa"), "{}", &d.message[..40]);
+    assert_eq!((line, col, d.help), (2, 9, None));
+}
+
 // ---------------------------------------------------------------- limits
 
 /// Runs `f` on a thread with a big stack: dropping or building very deep
