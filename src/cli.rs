@@ -86,7 +86,7 @@ pub struct Cli {
     pub max_calls: usize,
 
     /// Most primitives a scene may create.
-    #[arg(long, default_value_t = 50_000_000, value_name = "N")]
+    #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_primitives, value_name = "N")]
     pub max_primitives: usize,
 
     /// Interactive session: no pictures in the terminal.

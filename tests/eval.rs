@@ -8,6 +8,9 @@ use glam::{DMat3, DVec3};
 use rayrepl::lang::{Diagnostic, Interpreter, Limits, Severity, SourceMap, parse_file, parse_items};
 use rayrepl::scene::{Primitive, Scene, Shape};
 
+mod common;
+use common::limited::run_limited;
+
 /// A texture that raises no warning.
 const TEX: &str = "kd 0.5 ks 0.5 phong 10 color 255, 0, 51";
 
@@ -664,22 +667,18 @@ fn parameters_of_calls_under_a_time_condition_are_timed() {
 
 #[test]
 fn nested_time_conditions_stay_linear() {
-    with_big_stack(|| {
-        let depth = 20_000;
-        let text = format!(
-            "let x = 0 {} let x = 1 {} put sphere center x, 0, 0 radius 1 {TEX} end",
-            "if time < 5 then ".repeat(depth),
-            "end ".repeat(depth)
-        );
-        let mut sources = SourceMap::new();
-        let id = sources.add("nested.ray", text.clone(), 0);
-        let program = parse_items(id, &text).unwrap();
-        let start = std::time::Instant::now();
-        let mut i = Interpreter::new(1.0, Limits::default());
-        i.run(&program).unwrap();
-        assert_eq!(i.scene().timed_primitives.len(), 1);
-        assert!(start.elapsed().as_secs_f64() < 5.0, "quadratic?");
-    });
+    let depth = 20_000;
+    let text = format!(
+        "let x = 0 {} let x = 1 {} put sphere center x, 0, 0 radius 1 {TEX} end",
+        "if time < 5 then ".repeat(depth),
+        "end ".repeat(depth)
+    );
+    let mut sources = SourceMap::new();
+    let id = sources.add("nested.ray", text.clone(), 0);
+    let program = parse_items(id, &text).unwrap();
+    let mut i = Interpreter::new(1.0, Limits::default());
+    i.run(&program).unwrap();
+    assert_eq!(i.scene().timed_primitives.len(), 1);
 }
 
 #[test]
@@ -844,13 +843,16 @@ fn a_failed_input_keeps_earlier_procedures_and_its_error_comes_from_the_state_be
     assert_eq!(sphere_centers(&i.scene().primitives), [DVec3::new(3.0, 0.0, 0.0)]);
 }
 
-// ---------------------------------------------------------------- limits
-
-/// Runs `f` on a thread with a big stack: dropping or building very deep
-/// ASTs recurses natively, which is the test's business, not the interpreter's.
-fn with_big_stack(f: impl FnOnce() + Send + 'static) {
-    std::thread::Builder::new().stack_size(1 << 30).spawn(f).unwrap().join().unwrap();
+#[test]
+fn huge_misspelt_names_fail_without_a_suggestion() {
+    let name = "a".repeat(100_000);
+    let misspelt = format!("{}b{}", "a".repeat(50_000), "a".repeat(49_999));
+    let (d, line, col) = error(&format!("let {name} = 1\nlet y = {misspelt}"));
+    assert!(d.message.starts_with("unknown variable `aaa"), "{}", &d.message[..40]);
+    assert_eq!((line, col, d.help), (2, 9, None));
 }
+
+// ---------------------------------------------------------------- limits
 
 #[test]
 fn ten_thousand_nested_calls_work() {
@@ -906,30 +908,28 @@ fn the_call_limit_is_configurable_and_mutual_recursion_is_summarised() {
 
 #[test]
 fn deeply_nested_expressions_evaluate() {
-    with_big_stack(|| {
-        let depth = 100_000;
-        let text = format!("let x = {}1{}", "1 + (".repeat(depth), ")".repeat(depth));
-        let mut sources = SourceMap::new();
-        let id = sources.add("deep.ray", text.clone(), 0);
-        let program = parse_items(id, &text).unwrap();
-        let mut i = Interpreter::new(0.0, Limits::default());
-        i.run(&program).unwrap();
-        assert_eq!(i.global_number("x"), Some((depth + 1) as f64));
-        // Nested groups and conditions too.
-        let text = format!(
-            "put {}sphere center 0, 0, 0 radius 1 {TEX} end{} if {}1 = 1{} then let y = 1 end",
-            "group ".repeat(depth),
-            " end".repeat(depth),
-            "!(".repeat(depth),
-            ")".repeat(depth)
-        );
-        let id = sources.add("deep2.ray", text.clone(), 0);
-        let program = parse_items(id, &text).unwrap();
-        let mut i = Interpreter::new(0.0, Limits::default());
-        i.run(&program).unwrap();
-        assert_eq!(i.scene().primitives.len(), 1);
-        assert_eq!(i.global_number("y"), Some(1.0));
-    });
+    let depth = 100_000;
+    let text = format!("let x = {}1{}", "1 + (".repeat(depth), ")".repeat(depth));
+    let mut sources = SourceMap::new();
+    let id = sources.add("deep.ray", text.clone(), 0);
+    let program = parse_items(id, &text).unwrap();
+    let mut i = Interpreter::new(0.0, Limits::default());
+    i.run(&program).unwrap();
+    assert_eq!(i.global_number("x"), Some((depth + 1) as f64));
+    // Nested groups and conditions too.
+    let text = format!(
+        "put {}sphere center 0, 0, 0 radius 1 {TEX} end{} if {}1 = 1{} then let y = 1 end",
+        "group ".repeat(depth),
+        " end".repeat(depth),
+        "!(".repeat(depth),
+        ")".repeat(depth)
+    );
+    let id = sources.add("deep2.ray", text.clone(), 0);
+    let program = parse_items(id, &text).unwrap();
+    let mut i = Interpreter::new(0.0, Limits::default());
+    i.run(&program).unwrap();
+    assert_eq!(i.scene().primitives.len(), 1);
+    assert_eq!(i.global_number("y"), Some(1.0));
 }
 
 #[test]
@@ -944,9 +944,8 @@ fn deeply_nested_expressions_evaluate_on_a_small_stack() {
             let program = parse_items(id, &text).unwrap();
             let mut i = Interpreter::new(0.0, Limits::default());
             i.run(&program).unwrap();
-            // Dropping a 100,000-deep AST recurses natively (the AST's own
-            // `Drop`), which a 256 KiB stack cannot do: leak it instead.
-            std::mem::forget(program);
+            // The AST is dropped here too, without recursion.
+            drop(program);
             i.global_number("x")
         })
         .unwrap()
@@ -983,6 +982,41 @@ fn the_primitive_cap_stops_exponential_doubling() {
     assert!(d.message.starts_with("this makes more than 1048576 primitives"), "{}", d.message);
     // a0..a19 hold 2^20 - 1 primitives in all; a20's first copy of a19 crosses.
     assert_eq!((line, col), (21, 20));
+}
+
+/// A file for the binary: the header SPEC 2 requires, then `body`.
+fn scene_file(body: &str) -> String {
+    format!("camera distance 10 angle 1 end\nambient 0.2\n{}", source(body))
+}
+
+/// Runs the binary on `text` (from stdin) with a cap on its memory: it must
+/// stop with status 1 and the primitive limit's diagnostic, pointing at
+/// `line` and showing `shown` from its source line.
+fn assert_stopped_by_the_default_cap(text: &str, line: usize, shown: &str) {
+    let output = run_limited(&["--check", "-"], text);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    let limit = Limits::default().max_primitives;
+    assert!(stderr.contains(&format!("error: this makes more than {limit} primitives")), "{stderr}");
+    assert!(stderr.contains(&format!(":{line}:")), "{stderr}");
+    assert!(stderr.contains(shown) && stderr.contains('^'), "{stderr}");
+}
+
+#[test]
+fn the_default_cap_stops_doubling_before_memory_runs_out() {
+    let body = "object o = sphere center 0, 0, 0 radius 1 $T end\n".to_string()
+        + &"object o = group o o end\n".repeat(60)
+        + "put o\n";
+    // `o` and its first 22 doublings make 2^23 - 1 primitives; the 23rd
+    // (line 26) would bring them to 2^24 - 1, past 10 million.
+    assert_stopped_by_the_default_cap(&scene_file(&body), 26, "object o = group o o end");
+}
+
+#[test]
+fn the_default_cap_stops_two_to_the_forty_spheres() {
+    let body = "proc p(n)\n  if n < 1 then put sphere center 0, 0, 0 radius 1 $T end\n  \
+                else p(n - 1) p(n - 1) end\nend\np(40)\n";
+    assert_stopped_by_the_default_cap(&scene_file(body), 4, "put sphere");
 }
 
 #[test]

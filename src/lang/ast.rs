@@ -2,6 +2,10 @@
 //!
 //! Every node carries the [`Span`] of the source text it came from, so that
 //! evaluation errors can point at the exact construct.
+//!
+//! The recursive nodes (expressions, conditions, objects, instructions) are
+//! dropped without recursion: a program nested 100,000 levels deep would
+//! otherwise overflow the stack of whichever thread lets go of it last.
 
 use std::rc::Rc;
 
@@ -298,4 +302,86 @@ pub enum Item {
 pub struct Program {
     /// The items, in source order.
     pub items: Vec<Item>,
+}
+
+/// A tree node that can hand over its children of the same type, leaving
+/// itself a leaf: what dropping a tree without recursion needs.
+trait Subtrees: Sized {
+    /// Moves this node's children of its own type into `into`.
+    fn take_subtrees(&mut self, into: &mut Vec<Self>);
+}
+
+/// Drops the subtrees of `node` from a list on the heap, one level at a
+/// time, so the depth of the tree costs no stack.
+fn drop_subtrees<T: Subtrees>(node: &mut T) {
+    let mut pending = Vec::new();
+    node.take_subtrees(&mut pending);
+    while let Some(mut subtree) = pending.pop() {
+        subtree.take_subtrees(&mut pending);
+    }
+}
+
+impl Subtrees for Expr {
+    fn take_subtrees(&mut self, into: &mut Vec<Expr>) {
+        match std::mem::replace(&mut self.kind, ExprKind::Pi) {
+            ExprKind::Neg(inner) | ExprKind::Call(_, inner) => into.push(*inner),
+            ExprKind::Binary(_, left, right) => into.extend([*left, *right]),
+            ExprKind::Number(_) | ExprKind::Var(_) | ExprKind::Pi => {}
+        }
+    }
+}
+
+impl Drop for Expr {
+    fn drop(&mut self) {
+        drop_subtrees(self);
+    }
+}
+
+impl Subtrees for Cond {
+    fn take_subtrees(&mut self, into: &mut Vec<Cond>) {
+        let leaf_expr = || Expr { kind: ExprKind::Pi, span: self.span };
+        let leaf = CondKind::Compare(CmpOp::Eq, leaf_expr(), leaf_expr());
+        match std::mem::replace(&mut self.kind, leaf) {
+            CondKind::Not(inner) => into.push(*inner),
+            CondKind::And(left, right) | CondKind::Or(left, right) => into.extend([*left, *right]),
+            CondKind::Compare(..) => {}
+        }
+    }
+}
+
+impl Drop for Cond {
+    fn drop(&mut self) {
+        drop_subtrees(self);
+    }
+}
+
+impl Subtrees for Obj {
+    fn take_subtrees(&mut self, into: &mut Vec<Obj>) {
+        match std::mem::replace(&mut self.kind, ObjKind::Group(Vec::new())) {
+            ObjKind::Translate(inner, _) | ObjKind::Rotate(inner, _) | ObjKind::Scale(inner, _) => into.push(*inner),
+            ObjKind::Group(mut members) => into.append(&mut members),
+            ObjKind::Var(_) | ObjKind::Sphere { .. } | ObjKind::Plane { .. } | ObjKind::Box { .. } => {}
+        }
+    }
+}
+
+impl Drop for Obj {
+    fn drop(&mut self) {
+        drop_subtrees(self);
+    }
+}
+
+impl Subtrees for Instr {
+    fn take_subtrees(&mut self, into: &mut Vec<Instr>) {
+        if let InstrKind::If(_, then, otherwise) = &mut self.kind {
+            into.append(then);
+            into.extend(otherwise.take().into_iter().flatten());
+        }
+    }
+}
+
+impl Drop for Instr {
+    fn drop(&mut self) {
+        drop_subtrees(self);
+    }
 }

@@ -61,15 +61,23 @@ fn grow<R>(f: impl FnOnce() -> R) -> R {
 /// Resource limits that turn runaway programs into clear errors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
-    /// Deepest chain of procedure calls allowed (default 100,000).
+    /// Deepest chain of procedure calls allowed.
     pub max_call_depth: usize,
-    /// Most primitives a program may create, in objects and in the scene (default 50 million).
+    /// Most primitives a program may create, in objects and in the scene.
     pub max_primitives: usize,
+}
+
+impl Limits {
+    /// The limits of every entry point unless the user raises them. The
+    /// primitive limit is set so that a scene at the limit can also be
+    /// rendered (the scene and its BVH) within a 24 GB machine, with room to
+    /// spare; the README gives the memory it takes.
+    pub const DEFAULT: Limits = Limits { max_call_depth: 100_000, max_primitives: 10_000_000 };
 }
 
 impl Default for Limits {
     fn default() -> Limits {
-        Limits { max_call_depth: 100_000, max_primitives: 50_000_000 }
+        Limits::DEFAULT
     }
 }
 

@@ -38,32 +38,42 @@ impl ObjectDescriptions {
         self.by_name.get(name).map(String::as_str)
     }
 
-    /// A short description of what an object expression builds.
+    /// A short description of what an object expression builds. Nested
+    /// transformations are read in a loop, so any depth of them is fine.
     pub(crate) fn describe(&self, obj: &Obj) -> String {
-        match &obj.kind {
-            ObjKind::Var(name) => self.get(name).unwrap_or("object").to_string(),
-            ObjKind::Sphere { .. } => "sphere".to_string(),
-            ObjKind::Plane { .. } => "plane".to_string(),
-            ObjKind::Box { .. } => "box".to_string(),
-            ObjKind::Translate(inner, _) => format!("translated {}", self.describe(inner)),
-            ObjKind::Rotate(inner, _) => format!("rotated {}", self.describe(inner)),
-            ObjKind::Scale(inner, _) => format!("scaled {}", self.describe(inner)),
-            ObjKind::Group(members) if members.len() == 1 => "group of 1 object".to_string(),
-            ObjKind::Group(members) => format!("group of {} objects", members.len()),
+        let mut description = String::new();
+        let mut obj = obj;
+        loop {
+            let (word, inner) = match &obj.kind {
+                ObjKind::Translate(inner, _) => ("translated ", inner),
+                ObjKind::Rotate(inner, _) => ("rotated ", inner),
+                ObjKind::Scale(inner, _) => ("scaled ", inner),
+                ObjKind::Var(name) => return description + self.get(name).unwrap_or("object"),
+                ObjKind::Sphere { .. } => return description + "sphere",
+                ObjKind::Plane { .. } => return description + "plane",
+                ObjKind::Box { .. } => return description + "box",
+                ObjKind::Group(members) if members.len() == 1 => return description + "group of 1 object",
+                ObjKind::Group(members) => return format!("{description}group of {} objects", members.len()),
+            };
+            description.push_str(word);
+            obj = inner;
         }
     }
 
+    /// Forgets every name `kind` binds, in nested `if`s too (from a list on
+    /// the heap, so any depth of them is fine).
     fn forget_names_bound_in(&mut self, kind: &InstrKind) {
-        match kind {
-            InstrKind::Object(name, _) | InstrKind::Let(name, _) => {
-                self.by_name.remove(&*name.name);
-            }
-            InstrKind::If(_, then, otherwise) => {
-                for instr in then.iter().chain(otherwise.iter().flatten()) {
-                    self.forget_names_bound_in(&instr.kind);
+        let mut pending = vec![kind];
+        while let Some(kind) = pending.pop() {
+            match kind {
+                InstrKind::Object(name, _) | InstrKind::Let(name, _) => {
+                    self.by_name.remove(&*name.name);
                 }
+                InstrKind::If(_, then, otherwise) => {
+                    pending.extend(then.iter().chain(otherwise.iter().flatten()).map(|instr| &instr.kind));
+                }
+                InstrKind::Call(..) | InstrKind::Put(_) => {}
             }
-            InstrKind::Call(..) | InstrKind::Put(_) => {}
         }
     }
 }

@@ -3,5 +3,6 @@
 // Each test crate compiles this module and uses only some of it.
 #![allow(dead_code)]
 
+pub mod limited;
 pub mod scenes;
 pub mod sexpr;

@@ -14,6 +14,10 @@ use crate::lang::source::Span;
 /// How many calls of a failing call chain are shown as "in this call" places.
 const CALLS_SHOWN: usize = 3;
 
+/// The most primitives the buffer for building `object` values keeps room
+/// for between uses: a huge object's buffer is freed rather than held.
+const SCRATCH_KEPT: usize = 4096;
+
 impl Interpreter {
     /// Runs instructions in order.
     pub(crate) fn exec_block(&mut self, body: &[Instr]) -> EvalResult<()> {
@@ -89,7 +93,9 @@ impl Interpreter {
         let result = self.emit_obj(obj, &mut buffer);
         let primitives: Rc<[_]> = Rc::from(&buffer[..]);
         buffer.clear();
-        self.scratch = buffer;
+        if buffer.capacity() <= SCRATCH_KEPT {
+            self.scratch = buffer;
+        }
         let tainted = result? | self.context_tainted;
         self.env.bind(&name.name, Value::object(primitives, tainted));
         Ok(())

@@ -10,7 +10,7 @@
 use lalrpop_util::ParseError;
 
 use super::opens_construct;
-use super::order::{ItemOrder, Phase};
+use super::order::{ItemOrder, Phase, line_number};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::lexer::{self, Lexer, Token};
 use crate::lang::source::{SourceId, Span};
@@ -67,12 +67,6 @@ pub(super) fn syntax_error(
             Diagnostic::error(last_character(place, location), "unexpected character")
         }
     }
-}
-
-/// The 1-based line number, as the user sees it, of byte `offset` of `text`.
-pub(crate) fn line_number(text: &str, offset: usize, line_offset: usize) -> usize {
-    let before = text.as_bytes().get(..offset).unwrap_or(text.as_bytes());
-    before.iter().filter(|&&b| b == b'\n').count() + 1 + line_offset
 }
 
 /// The text being parsed and how to name positions in it.

@@ -203,7 +203,13 @@ fn first_word(file: FileText<'_>, span: Span) -> Span {
 
 /// The 1-based line number, as the user sees it, of byte `offset`.
 fn line_of(file: FileText<'_>, offset: usize) -> usize {
-    super::errors::line_number(file.text, offset, file.line_offset)
+    line_number(file.text, offset, file.line_offset)
+}
+
+/// The 1-based line number, as the user sees it, of byte `offset` of `text`.
+pub(super) fn line_number(text: &str, offset: usize, line_offset: usize) -> usize {
+    let before = text.as_bytes().get(..offset).unwrap_or(text.as_bytes());
+    before.iter().filter(|&&b| b == b'\n').count() + 1 + line_offset
 }
 
 /// The span of the last character of `text` that is not blank (empty at 0
