@@ -13,7 +13,7 @@ const STACK_SIZE: usize = 1 << 30;
 
 fn main() -> ExitCode {
     let cli = Cli::parse_from(translate_legacy_args(std::env::args_os()));
-    let worker = std::thread::Builder::new().stack_size(STACK_SIZE).spawn(move || rayrepl::batch::run(cli));
+    let worker = std::thread::Builder::new().stack_size(STACK_SIZE).spawn(move || rayrepl::app::run(cli));
     match worker.map(|handle| handle.join()) {
         Ok(Ok(code)) => code,
         _ => {

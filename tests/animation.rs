@@ -159,8 +159,6 @@ fn frames_are_exact_with_anti_aliasing_and_without_skips() {
     assert_frames_exact(1..=5, |k, skip| evaluate(&text, k, skip), &no_skips, "no skips");
     let deep = RenderOptions { depth: 12, ..options(40, 30) };
     assert_frames_exact(1..=5, |k, skip| evaluate(&text, k, skip), &deep, "depth 12");
-    let f32 = RenderOptions { precision: rayrepl::render::Precision::F32, ..options(40, 30) };
-    assert_frames_exact(1..=5, |k, skip| evaluate(&text, k, skip), &f32, "f32 intersections");
 }
 
 #[test]

@@ -371,35 +371,61 @@ fn an_animation_warns_once_not_once_per_frame() {
 }
 
 #[test]
-fn precision_f32_renders_and_a_bad_precision_is_refused() {
+fn an_image_too_large_for_memory_is_refused_before_rendering() {
     let (dir, path) = scene(SPHERE);
     let out = dir.path().join("out.png");
     rayrepl()
         .arg(&path)
-        .args(["--width", "32", "--height", "24", "--precision", "f32", "-o"])
+        .args(["--width", "65535", "--height", "65535", "-o"])
         .arg(&out)
         .assert()
-        .success();
-    let image = read_image(&out);
-    assert_eq!(image.dimensions(), (32, 24));
-    assert_ne!(image.get_pixel(16, 12).0, [0, 0, 0], "the sphere is in the middle");
+        .code(2)
+        .stderr(contains("has 4294836225 pixels; the most is 67108864").and(contains("4 GiB of memory")));
     rayrepl()
         .arg(&path)
-        .args(["--precision", "f16"])
+        .args(["--width", "65536", "--height", "65536"])
         .assert()
         .code(2)
-        .stderr(contains("invalid value 'f16' for '--precision").and(contains("[possible values: f64, f32]")));
-    // --reference renders in f64 whatever --precision says.
-    let reference = dir.path().join("reference.png");
-    let plain = dir.path().join("plain.png");
-    let size = ["--width", "8", "--height", "6"];
+        .stderr(contains("the width must be a whole number from 1 to 65535"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn every_entry_point_shares_the_depth_limit() {
+    let (_dir, path) = scene(SPHERE);
     rayrepl()
         .arg(&path)
-        .args(size)
-        .args(["--reference", "--precision", "f32", "-o"])
-        .arg(&reference)
+        .args(["--depth", "4294967295"])
         .assert()
-        .success();
-    rayrepl().arg(&path).args(size).args(["--reference", "-o"]).arg(&plain).assert().success();
-    assert_eq!(read_image(&reference), read_image(&plain));
+        .code(2)
+        .stderr(contains("the depth must be a whole number from 0 to 1000"));
+}
+
+#[test]
+fn flags_that_would_do_nothing_are_refused() {
+    let (_dir, path) = scene(SPHERE);
+    let cases: [(&[&str], &str); 7] = [
+        (&["--frames", "1..2"], "--frames picks frames of an animation: give --anim N too"),
+        (&["--adaptive"], "--adaptive gives more samples to some pixels: give --samples N too"),
+        (&["--adaptive", "--samples", "1"], "give --samples N too, with N > 1"),
+        (&["--anim", "3", "--time", "2"], "frame k of an animation has time = k"),
+        (&["--no-preview"], "--no-preview is for the interactive session"),
+        (&["--keep-going"], "--keep-going is for a script on standard input"),
+        (&["-i", "-o", "x.png"], "-o does nothing in a session (-i starts a session)"),
+    ];
+    for (flags, message) in cases {
+        rayrepl().arg(&path).args(flags).assert().code(2).stderr(contains(message));
+    }
+    rayrepl()
+        .args(["--anim", "3"])
+        .write_stdin(":quit\n")
+        .assert()
+        .code(2)
+        .stderr(contains("--anim does nothing in a session (without a scene file, rayrepl starts a session)"));
+    rayrepl()
+        .arg(&path)
+        .args(["--check", "-o", "x.png"])
+        .assert()
+        .code(2)
+        .stderr(contains("'--check' cannot be used with '--output <FILE>'"));
 }

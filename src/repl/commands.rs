@@ -12,6 +12,7 @@ use crate::output::{FrameSink, OutputError};
 use crate::progress::Progress;
 use crate::render::{Prepared, RenderControl};
 use crate::scene::Scene;
+use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH, check_size, parse_time};
 
 use super::console::Console;
 use super::help;
@@ -19,15 +20,6 @@ use super::rendering::{ImageFormat, RenderError, RenderSettings, Size, render_im
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 use crate::animation::{AnimationError, render_animation};
-
-/// Largest width or height accepted for an image.
-const MAX_IMAGE_SIDE: u32 = 16_384;
-/// Most reflections `:depth` accepts.
-const MAX_DEPTH: u32 = 100;
-/// Most rays per pixel `:samples` accepts.
-const MAX_SAMPLES: u32 = 1024;
-/// Most frames `:anim` accepts.
-const MAX_FRAMES: u32 = 10_000;
 
 /// What the session does after a command.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -173,26 +165,19 @@ fn no_arguments(arguments: &[String]) -> Result<(), CommandError> {
     }
 }
 
-fn parse_count(text: &str, what: &str, range: std::ops::RangeInclusive<u32>) -> Result<u32, CommandError> {
-    let (low, high) = (*range.start(), *range.end());
-    match text.parse::<u32>() {
-        Ok(value) if range.contains(&value) => Ok(value),
-        _ => Err(CommandError::Usage(format!("{what} must be a whole number from {low} to {high}, not `{text}`"))),
-    }
+/// A whole-number setting from `text`, within `limit`.
+fn parse_count(text: &str, limit: &'static Limit) -> Result<u32, CommandError> {
+    limit.parse(text).map_err(usage)
 }
 
 fn parse_size(width: &str, height: &str) -> Result<Size, CommandError> {
-    Ok(Size {
-        width: parse_count(width, "the width", 1..=MAX_IMAGE_SIDE)?,
-        height: parse_count(height, "the height", 1..=MAX_IMAGE_SIDE)?,
-    })
+    let size = Size { width: parse_count(width, &WIDTH)?, height: parse_count(height, &HEIGHT)? };
+    check_size(size.width, size.height).map_err(usage)?;
+    Ok(size)
 }
 
-fn parse_number(text: &str) -> Result<f64, CommandError> {
-    match text.parse::<f64>() {
-        Ok(value) if value.is_finite() => Ok(value),
-        _ => Err(CommandError::Usage(format!("`{text}` is not a number"))),
-    }
+fn usage(error: SettingError) -> CommandError {
+    CommandError::Usage(error.to_string())
 }
 
 /// The image format for `path`, checked before any work is done.
@@ -271,7 +256,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let [frames, file] = arguments else {
         return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
     };
-    let frames = parse_count(frames, "the number of frames", 1..=MAX_FRAMES)?;
+    let frames = parse_count(frames, &FRAMES)?;
     let path = PathBuf::from(file);
     output_format(&path)?;
     explain_defaults(session, console);
@@ -302,7 +287,7 @@ fn time(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         }
         return Err(CommandError::Usage("give one number".to_string()));
     };
-    let value = parse_number(value)?;
+    let value = parse_time(value).map_err(usage)?;
     let previous = session.settings().time;
     match session.set_time(value) {
         Ok(false) => console.say(format!("time = {}", number(value))),
@@ -338,7 +323,7 @@ fn size(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => {}
-        [value] => session.set_depth(parse_count(value, "the depth", 0..=MAX_DEPTH)?),
+        [value] => session.set_depth(parse_count(value, &DEPTH)?),
         _ => return Err(CommandError::Usage("give one whole number".to_string())),
     }
     console.say(format!("depth = {}", session.settings().depth));
@@ -348,7 +333,7 @@ fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> 
 fn samples(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => {}
-        [value] => session.set_samples(parse_count(value, "the number of samples", 1..=MAX_SAMPLES)?),
+        [value] => session.set_samples(parse_count(value, &SAMPLES)?),
         _ => return Err(CommandError::Usage("give one whole number".to_string())),
     }
     console.say(format!("samples = {}", session.settings().samples));
@@ -603,13 +588,12 @@ mod tests {
 
     #[test]
     fn counts_and_sizes_are_checked() {
-        assert_eq!(parse_count("5", "depth", 0..=10).ok(), Some(5));
-        assert!(parse_count("-1", "depth", 0..=10).is_err());
-        assert!(parse_count("11", "depth", 0..=10).is_err());
-        assert!(parse_count("x", "depth", 0..=10).is_err());
+        assert_eq!(parse_count("5", &DEPTH).ok(), Some(5));
+        assert!(parse_count("-1", &DEPTH).is_err());
+        assert!(parse_count("1001", &DEPTH).is_err());
+        assert!(parse_count("x", &DEPTH).is_err());
         assert!(parse_size("0", "10").is_err());
-        assert!(parse_number("inf").is_err());
-        assert_eq!(parse_number("-2.5").ok(), Some(-2.5));
+        assert!(parse_size("65535", "65535").is_err());
     }
 
     #[test]

@@ -7,31 +7,9 @@ use std::sync::atomic::AtomicBool;
 use image::RgbImage;
 
 use crate::output::{GIF_FRAME_DELAY_MS, write_gif};
-use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, Screen, render};
+use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, render};
 use crate::scene::Scene;
-
-/// How the session renders: image size, reflections, antialiasing and time.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RenderSettings {
-    /// Image width in pixels for `:save` and `:anim`.
-    pub width: u32,
-    /// Image height in pixels for `:save` and `:anim`.
-    pub height: u32,
-    /// Number of reflections followed (SPEC 6).
-    pub depth: u32,
-    /// Rays per pixel (1 samples each pixel at its centre).
-    pub samples: u32,
-    /// The value of `time` for evaluation and renders (SPEC 3).
-    pub time: f64,
-    /// Where the z axis meets the screen (SPEC 5).
-    pub screen: Screen,
-}
-
-impl Default for RenderSettings {
-    fn default() -> RenderSettings {
-        RenderSettings { width: 640, height: 480, depth: 5, samples: 1, time: 0.0, screen: Screen::Centered }
-    }
-}
+pub use crate::settings::RenderSettings;
 
 /// Width and height of an image in pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -55,8 +33,8 @@ pub(crate) enum RenderError {
     Cancelled,
 }
 
-/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth
-/// and samples of `settings`.
+/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth,
+/// samples and screen of `settings`.
 ///
 /// This is the only place that calls the renderer. It stops when `cancel`
 /// is raised and reports finished pixels to `progress`, for the progress bar.
@@ -78,14 +56,7 @@ pub(crate) fn render_image(
 
 /// The renderer's options for an image of `size` with the session's settings.
 pub(crate) fn render_options(size: Size, settings: &RenderSettings) -> RenderOptions {
-    RenderOptions {
-        width: size.width,
-        height: size.height,
-        depth: settings.depth,
-        samples: settings.samples,
-        screen: settings.screen,
-        ..RenderOptions::default()
-    }
+    RenderSettings { width: size.width, height: size.height, ..*settings }.render_options()
 }
 
 /// The image formats the session writes, chosen by file extension.

@@ -1,5 +1,6 @@
-//! Batch work from the command line: checking, rendering still images and
-//! animations of a scene file.
+//! The application: dispatches what the command line asks for to a check, a
+//! render of a still image or an animation, or a session. Maps failures to
+//! exit codes.
 
 use std::cell::RefCell;
 use std::collections::HashSet;
@@ -17,14 +18,22 @@ use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, pa
 use crate::output::{self, FrameSink, ImageFormat};
 use crate::progress::Progress;
 use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
-use crate::repl::{self, RenderSettings, SessionOptions};
+use crate::repl::{self, SessionOptions};
 use crate::scene::Scene;
+
+/// The exit code of a command line that asks for something impossible or
+/// meaningless (the same as clap's for its own usage errors).
+const USAGE_EXIT_CODE: u8 = 2;
 
 /// Runs what the command line asks for and returns the process's exit code.
 ///
 /// With no scene, or with `-i`, that is a session (interactive on a
 /// terminal, a script otherwise); with a scene, a check or a render.
 pub fn run(cli: Cli) -> ExitCode {
+    if let Some(misuse) = cli.misuse() {
+        eprintln!("rayrepl: {misuse}");
+        return ExitCode::from(USAGE_EXIT_CODE);
+    }
     let pool = match rayon::ThreadPoolBuilder::new().num_threads(cli.threads.unwrap_or(0) as usize).build() {
         Ok(pool) => pool,
         Err(e) => {
@@ -44,14 +53,7 @@ fn session_options(cli: &Cli) -> SessionOptions {
         no_preview: cli.no_preview,
         keep_going: cli.keep_going,
         initial_file: cli.scene.clone(),
-        settings: RenderSettings {
-            width: cli.width,
-            height: cli.height,
-            depth: cli.depth,
-            samples: cli.samples,
-            time: cli.time,
-            screen: cli.screen.screen(),
-        },
+        settings: cli.settings(),
         limits: limits(cli),
     }
 }
@@ -78,7 +80,7 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), String> {
     let id = load(&mut sources, path)?;
     let frontend = Frontend::parse(sources, id, cli)?;
     if cli.check {
-        let scene = frontend.evaluate(cli.time, false)?;
+        let scene = frontend.evaluate(cli.settings().time, false)?;
         println!("{}: {}", frontend.sources.get(id).name, summary(&scene));
         return Ok(());
     }
@@ -201,22 +203,13 @@ fn render_options(cli: &Cli) -> RenderOptions {
             ..RenderOptions::reference(cli.width, cli.height, cli.depth)
         };
     }
-    RenderOptions {
-        width: cli.width,
-        height: cli.height,
-        depth: cli.depth,
-        samples: cli.samples,
-        screen: cli.screen.screen(),
-        adaptive: cli.adaptive,
-        precision: cli.precision.precision(),
-        ..RenderOptions::default()
-    }
+    cli.settings().render_options()
 }
 
 /// Renders one image at `--time`.
 fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
     let start = Instant::now();
-    let scene = frontend.evaluate(cli.time, false)?;
+    let scene = frontend.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
     let prepared = Prepared::new(&scene);
     let built = start.elapsed() - evaluated;
