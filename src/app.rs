@@ -15,7 +15,7 @@ use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
-use crate::output::{self, FrameSink, ImageFormat};
+use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::progress::Progress;
 use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
 use crate::repl::{self, SessionOptions};
@@ -41,11 +41,18 @@ pub fn run(cli: Cli) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    if !cli.starts_session() || !std::io::stdin().is_terminal() {
+        // The interactive session installs its own handler, which cancels renders.
+        let _ = ctrlc::set_handler(|| output::exit_discarding_unfinished(INTERRUPTED_EXIT_CODE));
+    }
     match cli.scene.clone() {
         Some(path) if !cli.interactive => pool.install(|| exit_code(run_file(&cli, &path))),
         _ => pool.install(|| repl::run(&session_options(&cli))),
     }
 }
+
+/// The exit code after Ctrl-C or `kill` (128 + SIGINT, as shells report it).
+const INTERRUPTED_EXIT_CODE: i32 = 130;
 
 /// The session's options from the command line.
 fn session_options(cli: &Cli) -> SessionOptions {
@@ -157,7 +164,7 @@ fn summary(scene: &Scene) -> String {
 }
 
 /// The output file: `-o`, or the scene's name with `.png` (`.gif` for an
-/// animation) in the current directory. Checks the format before any work.
+/// animation) in the current directory. Checks it before any work.
 fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
     let path = match &cli.output {
         Some(path) => path.clone(),
@@ -170,29 +177,22 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
         if cli.anim.is_some() {
             return Err("rayrepl: `-o -` writes a single image; give a file name for an animation".into());
         }
+        if std::io::stdout().is_terminal() {
+            return Err("rayrepl: `-o -` writes binary image data, not for a terminal: \
+                        redirect it (`> out.ppm`, `| display`) or give a file name"
+                .into());
+        }
         return Ok(path);
     }
-    let known = ImageFormat::from_path(&path).is_some() || (cli.anim.is_some() && is_gif(&path));
-    if !known {
-        let formats = if cli.anim.is_some() { ".png, .ppm or .gif" } else { ".png or .ppm" };
-        return Err(format!("rayrepl: cannot tell the image format of `{}`: use {formats}", path.display()));
+    if output::same_file(&path, scene) {
+        return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", path.display()));
     }
-    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
-        return Err(format!(
-            "rayrepl: cannot write `{}`: the folder `{}` does not exist",
-            path.display(),
-            folder.display()
-        ));
-    }
-    if is_gif(&path) && cli.frames.is_some() {
+    let content = if cli.anim.is_some() { Content::Animation } else { Content::Still };
+    let format = output::check_output(&path, content).map_err(|e| format!("rayrepl: {e}"))?;
+    if format == ImageFormat::Gif && cli.frames.is_some() {
         return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
     }
     Ok(path)
-}
-
-/// Whether `path` names an animated GIF.
-fn is_gif(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gif"))
 }
 
 /// The renderer's settings from the command line.

@@ -429,3 +429,92 @@ fn flags_that_would_do_nothing_are_refused() {
         .code(2)
         .stderr(contains("'--check' cannot be used with '--output <FILE>'"));
 }
+
+/// The names in `dir`, sorted.
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn an_interrupted_animation_leaves_no_temporary_file_and_the_old_output_intact() {
+    for signal in ["-INT", "-TERM"] {
+        let (dir, path) = scene(MOVING);
+        let out = dir.path().join("anim.gif");
+        std::fs::write(&out, b"the old animation").expect("old output");
+        let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"))
+            .arg(&path)
+            .args(["--width", "64", "--height", "48", "--anim", "1000000", "-o"])
+            .arg(&out)
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("started");
+        // Wait until the GIF is being written, frame by frame, into its temporary file.
+        while !names_in(dir.path()).iter().any(|name| name.ends_with(".tmp")) {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let killed = std::process::Command::new("kill").arg(signal).arg(child.id().to_string()).status();
+        assert!(killed.expect("kill runs").success());
+        let status = child.wait().expect("ended");
+        assert_eq!(status.code(), Some(130), "{signal}");
+        assert_eq!(names_in(dir.path()), ["anim.gif", "scene.ray"], "{signal}");
+        assert_eq!(std::fs::read(&out).expect("still there"), b"the old animation");
+    }
+}
+
+#[test]
+fn a_replaced_output_keeps_its_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("private.png");
+    std::fs::write(&out, b"old").expect("old output");
+    std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o600)).expect("chmod");
+    rayrepl().arg(&path).args(["--width", "4", "--height", "4", "-o"]).arg(&out).assert().success();
+    assert_eq!(std::fs::metadata(&out).expect("written").permissions().mode() & 0o777, 0o600);
+}
+
+#[test]
+fn the_scene_file_is_never_overwritten() {
+    let (dir, path) = scene(SPHERE);
+    let link = dir.path().join("link.png");
+    std::os::unix::fs::symlink(&path, &link).expect("symlink");
+    let through_dot = dir.path().join(".").join("scene.ray");
+    for output in [path.clone(), through_dot, link] {
+        rayrepl().arg(&path).arg("-o").arg(&output).assert().code(1).stderr(contains("is the scene file itself"));
+    }
+    assert_eq!(std::fs::read_to_string(&path).expect("scene"), SPHERE);
+}
+
+#[test]
+fn output_mistakes_are_said_in_plain_words() {
+    let (dir, path) = scene(SPHERE);
+    let folder = format!("{}/", dir.path().display());
+    rayrepl().arg(&path).args(["-o", &folder]).assert().code(1).stderr(contains("it is a folder"));
+    rayrepl()
+        .arg(&path)
+        .args(["-o", "x.gif"])
+        .assert()
+        .code(1)
+        .stderr(contains("GIF is for animations").and(contains("cannot tell").not()));
+    let blocked = dir.path().join("file");
+    std::fs::write(&blocked, b"").expect("a file");
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "4", "--height", "4", "-o"])
+        .arg(blocked.join("x.png"))
+        .assert()
+        .code(1)
+        .stderr(contains("os error").not());
+}
+
+#[test]
+fn image_data_is_not_written_to_a_terminal() {
+    let (_dir, path) = scene(SPHERE);
+    let mut command = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"));
+    command.arg(&path).args(["--width", "4", "--height", "4", "-o", "-"]);
+    use expectrl::Expect;
+    let mut session = expectrl::Session::spawn(command).expect("runs in a terminal");
+    session.expect("redirect it").expect("the refusal is shown");
+}

@@ -258,7 +258,8 @@ fn bad_arguments_get_usage_messages() {
         (":time 1 2", "usage: :time [NUMBER]"),
         (":render 10", "give both a width and a height, or neither"),
         (":save", "give the name of the file to write"),
-        (":save x.jpg", "cannot tell the format of `x.jpg`: end the name in .png, .ppm or .gif"),
+        (":save x.jpg", "cannot tell the image format of `x.jpg`: end the name in .png or .ppm"),
+        (":anim 2 x.jpg", "end the name in .gif, .png or .ppm"),
         (":save x.png 10", "usage: :save FILE [WIDTH HEIGHT]"),
         (":anim 0 x.gif", "the number of frames must be a whole number from 1 to 1000000"),
         (":anim 3", "usage: :anim FRAMES FILE"),
@@ -470,12 +471,13 @@ fn save_writes_the_same_image_as_rendering_the_file() {
 }
 
 #[test]
-fn save_writes_a_gif_too() {
+fn save_refuses_a_gif_as_the_command_line_does() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let gif = dir.path().join("a.gif");
     let run = run_with(&format!("{SCENE}:save {}\n", gif.display()), &small_size());
-    assert_eq!(run.code, 0, "{}", run.err);
-    assert_eq!(read_rgb(&gif).dimensions(), (32, 24));
+    assert_eq!(run.code, 1);
+    assert!(run.err.contains("GIF is for animations"), "{}", run.err);
+    assert!(!gif.exists());
 }
 
 #[test]

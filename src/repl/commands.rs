@@ -8,7 +8,7 @@ use image::RgbImage;
 
 use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
-use crate::output::{FrameSink, OutputError};
+use crate::output::{self, Content, FrameSink, OutputError};
 use crate::progress::Progress;
 use crate::render::{Prepared, RenderControl};
 use crate::scene::Scene;
@@ -16,7 +16,7 @@ use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH
 
 use super::console::Console;
 use super::help;
-use super::rendering::{ImageFormat, RenderError, RenderSettings, Size, render_image, render_options, write_image};
+use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 use crate::animation::{AnimationError, render_animation};
@@ -180,14 +180,9 @@ fn usage(error: SettingError) -> CommandError {
     CommandError::Usage(error.to_string())
 }
 
-/// The image format for `path`, checked before any work is done.
-fn output_format(path: &Path) -> Result<ImageFormat, CommandError> {
-    ImageFormat::of(path).ok_or_else(|| {
-        CommandError::Usage(format!(
-            "cannot tell the format of `{}`: end the name in .png, .ppm or .gif",
-            path.display()
-        ))
-    })
+/// Checks that `path` can receive `content` before any work is done.
+fn check_output(path: &Path, content: Content) -> Result<(), CommandError> {
+    output::check_output(path, content).map(drop).map_err(|e| CommandError::Usage(e.to_string()))
 }
 
 // ---------------------------------------------------------------- commands
@@ -244,10 +239,10 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         }
     };
     let path = PathBuf::from(file);
-    output_format(&path)?;
+    check_output(&path, Content::Still)?;
     explain_defaults(session, console);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    write_image(&path, &image).map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
+    output::write_image(&path, &image).map_err(|e| CommandError::Failed(e.to_string()))?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)
 }
@@ -258,7 +253,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     };
     let frames = parse_count(frames, &FRAMES)?;
     let path = PathBuf::from(file);
-    output_format(&path)?;
+    check_output(&path, Content::Animation)?;
     explain_defaults(session, console);
     let size = Size { width: session.settings().width, height: session.settings().height };
     let started = Instant::now();
@@ -361,7 +356,7 @@ pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut C
 /// Runs the file at `path` into the session, as one input.
 fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
     let text = std::fs::read_to_string(path)
-        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), plain_io_error(&e))))?;
+        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))?;
     let accepted = session.load(&path.display().to_string(), &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
@@ -560,15 +555,6 @@ fn first_line(text: &str) -> String {
     let mut lines = text.lines().filter(|line| !line.trim().is_empty());
     let first = lines.next().unwrap_or("").trim().to_string();
     if lines.next().is_some() { format!("{first} ...") } else { first }
-}
-
-/// An I/O error in plain words, without the OS error number.
-fn plain_io_error(error: &std::io::Error) -> String {
-    match error.kind() {
-        std::io::ErrorKind::NotFound => "no such file".to_string(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
-        _ => error.to_string(),
-    }
 }
 
 #[cfg(test)]

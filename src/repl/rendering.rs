@@ -1,12 +1,10 @@
 //! Turning the session's scene into images: the one call into the renderer,
-//! progress and cancellation around it, and writing image files.
+//! with progress and cancellation around it.
 
-use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use crate::output::{GIF_FRAME_DELAY_MS, write_gif};
 use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, render};
 use crate::scene::Scene;
 pub use crate::settings::RenderSettings;
@@ -59,53 +57,11 @@ pub(crate) fn render_options(size: Size, settings: &RenderSettings) -> RenderOpt
     RenderSettings { width: size.width, height: size.height, ..*settings }.render_options()
 }
 
-/// The image formats the session writes, chosen by file extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum ImageFormat {
-    /// `.png`
-    Png,
-    /// `.ppm` (binary P6)
-    Ppm,
-    /// `.gif`
-    Gif,
-}
-
-impl ImageFormat {
-    /// The format named by `path`'s extension, if it is one the session writes.
-    pub(crate) fn of(path: &Path) -> Option<ImageFormat> {
-        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
-        match extension.as_str() {
-            "png" => Some(ImageFormat::Png),
-            "ppm" => Some(ImageFormat::Ppm),
-            "gif" => Some(ImageFormat::Gif),
-            _ => None,
-        }
-    }
-}
-
-/// Writes one image to `path`, in the format its extension names.
-pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
-    let written = match ImageFormat::of(path) {
-        Some(ImageFormat::Gif) => write_gif(path, std::slice::from_ref(image), GIF_FRAME_DELAY_MS),
-        _ => crate::output::write_image(path, image),
-    };
-    written.map_err(|e| e.to_string())
-}
-
 #[cfg(test)]
 mod tests {
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     use super::*;
-
-    #[test]
-    fn formats_follow_the_extension() {
-        assert_eq!(ImageFormat::of(Path::new("a.PNG")), Some(ImageFormat::Png));
-        assert_eq!(ImageFormat::of(Path::new("dir/a.ppm")), Some(ImageFormat::Ppm));
-        assert_eq!(ImageFormat::of(Path::new("a.gif")), Some(ImageFormat::Gif));
-        assert_eq!(ImageFormat::of(Path::new("a.jpg")), None);
-        assert_eq!(ImageFormat::of(Path::new("a")), None);
-    }
 
     fn empty_scene() -> Scene {
         crate::lang::Interpreter::new(0.0, crate::lang::Limits::default()).into_scene()
