@@ -153,13 +153,12 @@ pub fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
 /// "3 spheres, 1 plane, 0 boxes, 2 lights".
 fn summary(scene: &Scene) -> String {
     let counts = scene.counts();
-    let plural = |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     format!(
         "{}, {}, {}, {}",
-        plural(counts.spheres, "sphere", "spheres"),
-        plural(counts.planes, "plane", "planes"),
-        plural(counts.boxes, "box", "boxes"),
-        plural(counts.lights, "light", "lights"),
+        counted(counts.spheres, "sphere", "spheres"),
+        counted(counts.planes, "plane", "planes"),
+        counted(counts.boxes, "box", "boxes"),
+        counted(counts.lights, "light", "lights"),
     )
 }
 
@@ -221,14 +220,38 @@ fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
         eprintln!("evaluate {:.3} s, build {:.3} s", evaluated.as_secs_f64(), built.as_secs_f64());
         print_stats(&stats, 1);
     }
-    if output == Path::new("-") {
+    let name = if output == Path::new("-") {
         let mut stdout = std::io::stdout().lock();
         output::write_ppm(&mut stdout, &image)
             .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
+        "standard output".to_string()
     } else {
-        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))
+        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
+        output.display().to_string()
+    };
+    report_written(cli, &name, &format!("{}x{}", cli.width, cli.height), start);
+    Ok(())
+}
+
+/// Says on stderr, unless `--quiet`, what was written to `name`: `what`
+/// ("800x600"), the reflections, the samples and the time since `start`.
+fn report_written(cli: &Cli, name: &str, what: &str, start: Instant) {
+    if cli.quiet {
+        return;
     }
+    let mut line = format!("wrote {name}: {what}, {}", counted(cli.depth as usize, "reflection", "reflections"));
+    let samples = render_options(cli).samples;
+    if samples > 1 {
+        let adaptive = if cli.adaptive { " (adaptive)" } else { "" };
+        line.push_str(&format!(", {}{adaptive}", counted(samples as usize, "sample", "samples")));
+    }
+    eprintln!("{line}, {:.2} s", start.elapsed().as_secs_f64());
+}
+
+/// "1 box", "3 boxes".
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// Renders one frame with the progress bar attached.
@@ -247,6 +270,7 @@ fn render_frame(
 /// frames, frame k with `time = k`, to numbered images or one GIF (see
 /// [`animation`] for what is computed once and what per frame).
 fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<(), String> {
+    let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
         return Err(format!(
@@ -270,9 +294,12 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     };
     progress.finish();
     if cli.stats {
-        print_stats(&total, frames.count());
+        print_stats(&total, frames.clone().count());
     }
-    frames_out.finish().map(drop).map_err(|e| format!("rayrepl: {e}"))
+    let written = frames_out.finish().map_err(|e| format!("rayrepl: {e}"))?;
+    let what = format!("{} of {}x{}", counted(frames.count(), "frame", "frames"), cli.width, cli.height);
+    report_written(cli, &output::describe_files(&written), &what, start);
+    Ok(())
 }
 
 /// Prints `--stats`: rays of each kind, render time and throughput, and

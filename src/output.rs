@@ -355,6 +355,15 @@ fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>
     (mapped.into_iter().map(|(index, _)| index).collect(), misfits)
 }
 
+/// The files an animation wrote, in words: `a.gif`, or `a0001.png ... a0100.png`.
+pub fn describe_files(files: &[PathBuf]) -> String {
+    match files {
+        [only] => only.display().to_string(),
+        [first, .., last] => format!("{} ... {}", first.display(), last.display()),
+        [] => String::new(),
+    }
+}
+
 /// The file name of frame `k` of `n`: the frame number, zero-padded to at
 /// least 4 digits (more if `n` needs them), inserted before the extension:
 /// `out.png` gives `out0001.png`.

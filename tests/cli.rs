@@ -518,3 +518,37 @@ fn image_data_is_not_written_to_a_terminal() {
     let mut session = expectrl::Session::spawn(command).expect("runs in a terminal");
     session.expect("redirect it").expect("the refusal is shown");
 }
+
+#[test]
+fn a_successful_render_says_so_unless_quiet() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("out.png");
+    let size = ["--width", "8", "--height", "6", "--depth", "1"];
+    let said = format!("wrote {}: 8x6, 1 reflection, ", out.display());
+    rayrepl().arg(&path).args(size).arg("-o").arg(&out).assert().success().stderr(contains(said));
+    rayrepl().arg(&path).args(size).args(["-q", "-o"]).arg(&out).assert().success().stderr("");
+    let frames = dir.path().join("f.png");
+    rayrepl()
+        .arg(&path)
+        .args(size)
+        .args(["--anim", "2", "-o"])
+        .arg(&frames)
+        .assert()
+        .success()
+        .stderr(contains("f0001.png ... ").and(contains("f0002.png: 2 frames of 8x6, 1 reflection, ")));
+    rayrepl().arg(&path).args(size).args(["-o", "-"]).assert().success().stderr(contains("wrote standard output: 8x6"));
+}
+
+#[test]
+fn a_piped_script_that_writes_nothing_says_how_to_get_a_picture() {
+    rayrepl().write_stdin(SPHERE).assert().success().stderr(contains("end it with `:save out.png`"));
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let script = format!("{SPHERE}:save small.png 4 4\n");
+    rayrepl()
+        .current_dir(dir.path())
+        .write_stdin(script)
+        .assert()
+        .success()
+        .stdout(contains("saved small.png"))
+        .stderr(contains(":save out.png").not());
+}

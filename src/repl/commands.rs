@@ -81,6 +81,11 @@ pub(crate) fn is_command(line: &str) -> bool {
     line.trim_start().starts_with(':')
 }
 
+/// Whether the command on `line` writes image files (`:save`, `:anim`).
+pub(crate) fn writes_files(line: &str) -> bool {
+    matches!(line.split_whitespace().next(), Some(":save" | ":anim"))
+}
+
 /// Runs the command on `line`, reporting any failure on the console.
 /// Returns `Err(())` if it failed, so scripts can count errors.
 pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) -> Result<Flow, ()> {
@@ -261,11 +266,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
     render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write))?;
     let written = sink.finish().map_err(cannot_write)?;
-    let names = match written.as_slice() {
-        [only] => only.display().to_string(),
-        [first, .., last] => format!("{} ... {}", first.display(), last.display()),
-        [] => String::new(),
-    };
+    let names = output::describe_files(&written);
     console.say(format!(
         "wrote {names} ({} of {size}, {})",
         counted(frames as usize, "frame"),
