@@ -137,7 +137,7 @@ fn show(sources: &SourceMap, diagnostic: &Diagnostic) -> String {
 }
 
 /// Reads a scene file (or standard input for `-`) into `sources`.
-pub fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
+fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
     if path == Path::new("-") {
         let mut text = String::new();
         std::io::stdin()

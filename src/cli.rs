@@ -121,7 +121,7 @@ const RENDER_ONLY: [&str; 12] = [
 
 impl Cli {
     /// The render settings the command line asks for.
-    pub fn settings(&self) -> RenderSettings {
+    pub(crate) fn settings(&self) -> RenderSettings {
         RenderSettings {
             width: self.width,
             height: self.height,
@@ -134,13 +134,13 @@ impl Cli {
     }
 
     /// Whether the command line starts a session rather than a check or a render.
-    pub fn starts_session(&self) -> bool {
+    pub(crate) fn starts_session(&self) -> bool {
         self.interactive || self.scene.is_none()
     }
 
     /// A flag that would do nothing with the others given, said in words,
     /// or a setting out of its limits.
-    pub fn misuse(&self) -> Option<String> {
+    pub(crate) fn misuse(&self) -> Option<String> {
         let session_flags = [
             (self.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),
             (self.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),

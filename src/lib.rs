@@ -14,4 +14,4 @@ mod progress;
 pub mod render;
 pub mod repl;
 pub mod scene;
-pub mod settings;
+mod settings;

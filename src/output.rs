@@ -18,7 +18,7 @@ use rayon::prelude::*;
 
 /// An image format rayrepl writes, named by a file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ImageFormat {
+pub(crate) enum ImageFormat {
     /// PNG, 8 bits per channel.
     Png,
     /// Binary PPM (P6).
@@ -52,7 +52,7 @@ pub enum Content {
 /// Checks, before any work, that `path` can receive `content`: a file name
 /// (not a folder) in an existing folder, with an extension naming a format
 /// that suits the content. Returns that format.
-pub fn check_output(path: &Path, content: Content) -> Result<ImageFormat, OutputError> {
+pub(crate) fn check_output(path: &Path, content: Content) -> Result<ImageFormat, OutputError> {
     let names_folder = path.as_os_str().to_string_lossy().ends_with(std::path::is_separator);
     if names_folder || path.is_dir() {
         return Err(OutputError::Folder { path: path.to_owned() });
@@ -69,7 +69,7 @@ pub fn check_output(path: &Path, content: Content) -> Result<ImageFormat, Output
 
 /// Whether `a` and `b` name the same existing file (through `./`, `..` or
 /// symbolic links).
-pub fn same_file(a: &Path, b: &Path) -> bool {
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
     matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b)
 }
 
@@ -183,14 +183,14 @@ pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
 }
 
 /// Writes `image` as binary PPM (P6) to `writer` (used for `-o -`).
-pub fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
+pub(crate) fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
     write!(writer, "P6\n{} {}\n255\n", image.width(), image.height())?;
     writer.write_all(image.as_raw())?;
     writer.flush()
 }
 
 /// Writes `image` as PNG to `writer`.
-pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
+fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
     // Fast compression: large renders and 100-frame animations would
     // otherwise spend more time compressing than tracing.
     let encoder = PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Adaptive);
@@ -205,7 +205,7 @@ const GIF_FRAME_DELAY_MS: u32 = 40;
 /// otherwise written at once as numbered images (`spin.png` gives
 /// `spin0001.png`, ...). Nothing is kept but the GIF's palette, so a long
 /// animation takes no more memory than a short one.
-pub struct FrameSink {
+pub(crate) struct FrameSink {
     path: PathBuf,
     count: usize,
     gif: Option<Option<GifStream>>,
@@ -271,7 +271,7 @@ struct GifStream {
 
 /// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
 /// (fastest).
-pub const GIF_QUANTISATION_SPEED: i32 = 10;
+const GIF_QUANTISATION_SPEED: i32 = 10;
 
 /// A pixel whose palette colour is off by more than this many levels in a
 /// channel is badly mapped.
@@ -356,7 +356,7 @@ fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>
 }
 
 /// The files an animation wrote, in words: `a.gif`, or `a0001.png ... a0100.png`.
-pub fn describe_files(files: &[PathBuf]) -> String {
+pub(crate) fn describe_files(files: &[PathBuf]) -> String {
     match files {
         [only] => only.display().to_string(),
         [first, .., last] => format!("{} ... {}", first.display(), last.display()),
@@ -367,7 +367,7 @@ pub fn describe_files(files: &[PathBuf]) -> String {
 /// The file name of frame `k` of `n`: the frame number, zero-padded to at
 /// least 4 digits (more if `n` needs them), inserted before the extension:
 /// `out.png` gives `out0001.png`.
-pub fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
+pub(crate) fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
     let digits = n.to_string().len().max(4);
     let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let mut name = format!("{stem}{k:0digits$}");
@@ -388,7 +388,7 @@ fn unfinished() -> MutexGuard<'static, Vec<PathBuf>> {
 /// Removes the temporary files of unfinished writes and ends the process
 /// with `code`: what an interruption (Ctrl-C, `kill`) does, so that it
 /// leaves no temporary file behind and every target as it was.
-pub fn exit_discarding_unfinished(code: i32) -> ! {
+pub(crate) fn exit_discarding_unfinished(code: i32) -> ! {
     // The lock is held until the end: no write starts or finishes meanwhile.
     let unfinished = unfinished();
     for path in unfinished.iter() {
@@ -480,7 +480,7 @@ fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
 }
 
 /// An I/O error in plain words, without Rust's `(os error 2)` suffix.
-pub fn io_reason(error: &io::Error) -> String {
+pub(crate) fn io_reason(error: &io::Error) -> String {
     match error.kind() {
         io::ErrorKind::NotFound => "no such file or folder".into(),
         io::ErrorKind::PermissionDenied => "permission denied".into(),
@@ -591,7 +591,7 @@ mod tests {
         use image::AnimationDecoder;
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("anim.gif");
-        assert_eq!(write_gif(&path, &[sample(), sample(), sample()]).expect("write gif"), [path.clone()]);
+        assert_eq!(write_gif(&path, &[sample(), sample(), sample()]).expect("write gif"), std::slice::from_ref(&path));
         let file = std::io::BufReader::new(std::fs::File::open(&path).expect("open"));
         let decoder = image::codecs::gif::GifDecoder::new(file).expect("decode");
         assert_eq!(decoder.into_frames().count(), 3);

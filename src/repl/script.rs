@@ -37,7 +37,6 @@ pub fn run_script(input: impl BufRead, out: &mut dyn Write, err: &mut dyn Write,
     }
     script.run(input);
     let (errors, wrote) = (script.errors, script.wrote);
-    drop(console);
     if errors > 0 {
         return 1;
     }
