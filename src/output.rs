@@ -271,15 +271,23 @@ struct GifStream {
 
 /// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
 /// (fastest).
-const GIF_QUANTISATION_SPEED: i32 = 10;
+const GIF_QUANTISATION_SPEED: usize = 10;
+
+/// How many pixels NeuQuant should learn from at least, where the frame has them.
+const GIF_LEARNT_PIXELS: usize = 48_000;
 
 /// A pixel whose palette colour is off by more than this many levels in a
 /// channel is badly mapped.
 const GIF_MISFIT_LEVELS: u8 = 24;
 
-/// A frame with more badly mapped pixels than one in this many gets a
-/// palette of its own.
+/// A frame with more badly mapped pixels than one in this many, and more
+/// than [`GIF_MISFIT_PIXELS`], gets a palette of its own.
 const GIF_MISFIT_SHARE: usize = 1000;
+
+/// Fewer badly mapped pixels than this never call for a new palette: in a
+/// small frame a few such pixels are the palette's usual error, and
+/// learning a palette for every frame would take most of the time.
+const GIF_MISFIT_PIXELS: usize = 32;
 
 impl GifStream {
     /// Starts a GIF at `path` of frames the size of `first`, each shown for
@@ -304,7 +312,7 @@ impl GifStream {
     /// the palette was `learnt_from_it`) and encodes it.
     fn add(&mut self, image: &RgbImage, learnt_from_it: bool) -> Result<(), OutputError> {
         let (mut indices, misfits) = map_to_palette(image, &self.palette);
-        if !learnt_from_it && misfits * GIF_MISFIT_SHARE > indices.len() {
+        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > indices.len() {
             self.palette = learn_palette(image);
             self.global = false;
             indices = map_to_palette(image, &self.palette).0;
@@ -335,7 +343,9 @@ const GIF_PALETTE_SAMPLE: usize = 480_000;
 fn learn_palette(image: &RgbImage) -> color_quant::NeuQuant {
     let stride = (image.len() / 3).div_ceil(GIF_PALETTE_SAMPLE).max(1);
     let rgba: Vec<u8> = image.pixels().step_by(stride).flat_map(|p| [p[0], p[1], p[2], 0xFF]).collect();
-    color_quant::NeuQuant::new(GIF_QUANTISATION_SPEED, 256, &rgba)
+    // NeuQuant learns from one pixel in `speed`: all of them in small frames.
+    let speed = (rgba.len() / 4 / GIF_LEARNT_PIXELS).clamp(1, GIF_QUANTISATION_SPEED);
+    color_quant::NeuQuant::new(speed as i32, 256, &rgba)
 }
 
 /// Each pixel of `image` as its index in `palette` (in parallel), and how
@@ -344,6 +354,7 @@ fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>
     let mapped: Vec<(u8, bool)> = image
         .as_raw()
         .par_chunks_exact(3)
+        .with_min_len(4096)
         .map(|p| {
             let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
             let colour = palette.lookup(index).unwrap_or_default();
