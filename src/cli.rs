@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use clap::{Parser, ValueEnum};
 
 use crate::render::Screen;
+use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, RenderSettings, SAMPLES, THREADS, WIDTH};
 
 /// rayrepl: an interpreter and ray tracer for the `.ray` scene language.
 ///
@@ -24,31 +25,35 @@ pub struct Cli {
     pub output: Option<PathBuf>,
 
     /// Parse and evaluate only, then print what the scene holds.
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = RENDER_ONLY)]
     pub check: bool,
 
     /// Load the scene into an interactive session instead of rendering it.
     #[arg(short, long)]
     pub interactive: bool,
 
-    /// Image width in pixels (also `-hsize`).
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    /// Do not say what was written.
+    #[arg(short, long)]
+    pub quiet: bool,
+
+    /// Image width in pixels, 1 to 65535 (also `-hsize`); at most 8192×8192 pixels in all.
+    #[arg(long, default_value_t = DEFAULTS.width, value_parser = |text: &str| WIDTH.parse(text))]
     pub width: u32,
 
-    /// Image height in pixels (also `-vsize`).
-    #[arg(long, default_value_t = 600, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    /// Image height in pixels, 1 to 65535 (also `-vsize`).
+    #[arg(long, default_value_t = DEFAULTS.height, value_parser = |text: &str| HEIGHT.parse(text))]
     pub height: u32,
 
-    /// Number of reflections followed (SPEC 6).
-    #[arg(long, default_value_t = 5)]
+    /// Number of reflections followed (SPEC 6), 0 to 1000.
+    #[arg(long, default_value_t = DEFAULTS.depth, value_parser = |text: &str| DEPTH.parse(text))]
     pub depth: u32,
 
-    /// The value of `time` for a single image.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_finite)]
-    pub time: f64,
+    /// The value of `time` for a single image [default: 0].
+    #[arg(long, allow_negative_numbers = true, value_parser = settings::parse_time)]
+    pub time: Option<f64>,
 
-    /// Samples per pixel (deterministic stratified anti-aliasing; 1 = pixel centres).
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    /// Samples per pixel, 1 to 4096 (deterministic stratified anti-aliasing; 1 = pixel centres).
+    #[arg(long, default_value_t = DEFAULTS.samples, value_parser = |text: &str| SAMPLES.parse(text))]
     pub samples: u32,
 
     /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges (where
@@ -65,16 +70,16 @@ pub struct Cli {
     #[arg(long, value_enum, default_value_t = ScreenArg::Centered)]
     pub screen: ScreenArg,
 
-    /// Worker threads (default: one per core).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    /// Worker threads, 1 to 1024 (default: one per core).
+    #[arg(long, value_parser = |text: &str| THREADS.parse(text))]
     pub threads: Option<u32>,
 
     /// Print ray counts, timings and millions of rays per second on stderr.
     #[arg(long)]
     pub stats: bool,
 
-    /// Render an animation of N frames, frame k with `time = k`.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    /// Render an animation of N frames (1 to 1000000), frame k with `time = k`.
+    #[arg(long, value_name = "N", value_parser = |text: &str| FRAMES.parse(text))]
     pub anim: Option<u32>,
 
     /// With --anim, render only frames A to B (for spreading frames over machines).
@@ -82,7 +87,7 @@ pub struct Cli {
     pub frames: Option<RangeInclusive<u32>>,
 
     /// Deepest chain of procedure calls allowed.
-    #[arg(long, default_value_t = 100_000, value_name = "N")]
+    #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_call_depth, value_name = "N")]
     pub max_calls: usize,
 
     /// Most primitives a scene may create.
@@ -96,6 +101,78 @@ pub struct Cli {
     /// Script on stdin: go on after an error (exit status 1 at the end).
     #[arg(long)]
     pub keep_going: bool,
+}
+
+/// The flags that only matter when an image is rendered, which `--check` does not do.
+const RENDER_ONLY: [&str; 12] = [
+    "output",
+    "quiet",
+    "width",
+    "height",
+    "depth",
+    "samples",
+    "adaptive",
+    "reference",
+    "screen",
+    "stats",
+    "anim",
+    "frames",
+];
+
+impl Cli {
+    /// The render settings the command line asks for.
+    pub(crate) fn settings(&self) -> RenderSettings {
+        RenderSettings {
+            width: self.width,
+            height: self.height,
+            depth: self.depth,
+            samples: self.samples,
+            adaptive: self.adaptive,
+            time: self.time.unwrap_or(DEFAULTS.time),
+            screen: self.screen.screen(),
+        }
+    }
+
+    /// Whether the command line starts a session rather than a check or a render.
+    pub(crate) fn starts_session(&self) -> bool {
+        self.interactive || self.scene.is_none()
+    }
+
+    /// A flag that would do nothing with the others given, said in words,
+    /// or a setting out of its limits.
+    pub(crate) fn misuse(&self) -> Option<String> {
+        let session_flags = [
+            (self.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),
+            (self.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),
+            (self.frames.is_some(), "--frames", ""),
+            (self.check, "--check", "; there, `:scene` tells what the scene holds"),
+            (self.stats, "--stats", ""),
+            (self.reference, "--reference", ""),
+            (self.quiet, "--quiet", ""),
+        ];
+        if self.starts_session() {
+            let (_, flag, instead) = session_flags.into_iter().find(|(given, _, _)| *given)?;
+            let why =
+                if self.interactive { "-i starts a session" } else { "without a scene file, rayrepl starts a session" };
+            return Some(format!("{flag} does nothing in a session ({why}){instead}"));
+        }
+        if self.frames.is_some() && self.anim.is_none() {
+            return Some("--frames picks frames of an animation: give --anim N too".into());
+        }
+        if self.adaptive && self.samples <= 1 {
+            return Some("--adaptive gives more samples to some pixels: give --samples N too, with N > 1".into());
+        }
+        if self.time.is_some() && self.anim.is_some() {
+            return Some("--time sets the time of one image; frame k of an animation has time = k".into());
+        }
+        if self.no_preview {
+            return Some("--no-preview is for the interactive session (`rayrepl` or `rayrepl -i scene.ray`)".into());
+        }
+        if self.keep_going {
+            return Some("--keep-going is for a script on standard input (`rayrepl --keep-going < script`)".into());
+        }
+        self.settings().validate().err().map(|error| error.to_string())
+    }
 }
 
 /// The two screen conventions of SPEC 5.
@@ -128,11 +205,6 @@ Examples:
   cat script.ray | rayrepl                             run a script
 
 The original course's spellings -hsize, -vsize, -depth and -anim are accepted.";
-
-/// Parses a finite number (`time` may not be NaN or infinite).
-fn parse_finite(text: &str) -> Result<f64, String> {
-    text.parse::<f64>().ok().filter(|t| t.is_finite()).ok_or_else(|| format!("`{text}` is not a finite number"))
-}
 
 /// Parses `A..B` (or `A-B`, or a single `A`) into a frame range.
 fn parse_frames(text: &str) -> Result<RangeInclusive<u32>, String> {

@@ -6,11 +6,12 @@
 //! ([`render`]) → image file ([`output`]) or terminal preview ([`repl`]).
 
 pub mod animation;
-pub mod batch;
+pub mod app;
 pub mod cli;
 pub mod lang;
 pub mod output;
-pub mod progress;
+mod progress;
 pub mod render;
 pub mod repl;
 pub mod scene;
+mod settings;

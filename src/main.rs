@@ -11,7 +11,7 @@ use rayrepl::cli::{Cli, translate_legacy_args};
 
 fn main() -> ExitCode {
     let cli = Cli::parse_from(translate_legacy_args(std::env::args_os()));
-    match catch_unwind(AssertUnwindSafe(|| rayrepl::batch::run(cli))) {
+    match catch_unwind(AssertUnwindSafe(|| rayrepl::app::run(cli))) {
         Ok(code) => code,
         Err(_) => {
             eprintln!("rayrepl: internal error (please report it with the input that caused it)");

@@ -1,24 +1,30 @@
 //! Writing images and animations: PNG, PPM, GIF, and the names of frames.
 //!
 //! Files are written atomically: into a temporary file in the target's
-//! directory, then renamed over the target, so a failed write never leaves a
-//! partial image behind.
+//! directory, then renamed over the target, so a failed or interrupted
+//! write never leaves a partial image behind, and a replaced file keeps its
+//! permissions. An animated GIF is encoded frame by frame as the frames
+//! arrive, so its memory does not grow with the number of frames.
 
 use std::fmt;
+use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ImageEncoder, RgbImage};
 use rayon::prelude::*;
 
-/// An image format that [`write_image`] can produce.
+/// An image format rayrepl writes, named by a file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ImageFormat {
+pub(crate) enum ImageFormat {
     /// PNG, 8 bits per channel.
     Png,
     /// Binary PPM (P6).
     Ppm,
+    /// Animated GIF, for animations only.
+    Gif,
 }
 
 impl ImageFormat {
@@ -28,9 +34,43 @@ impl ImageFormat {
         match ext.as_str() {
             "png" => Some(ImageFormat::Png),
             "ppm" => Some(ImageFormat::Ppm),
+            "gif" => Some(ImageFormat::Gif),
             _ => None,
         }
     }
+}
+
+/// What an output file will hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Content {
+    /// One image.
+    Still,
+    /// The frames of an animation: one GIF, or numbered images.
+    Animation,
+}
+
+/// Checks, before any work, that `path` can receive `content`: a file name
+/// (not a folder) in an existing folder, with an extension naming a format
+/// that suits the content. Returns that format.
+pub(crate) fn check_output(path: &Path, content: Content) -> Result<ImageFormat, OutputError> {
+    let names_folder = path.as_os_str().to_string_lossy().ends_with(std::path::is_separator);
+    if names_folder || path.is_dir() {
+        return Err(OutputError::Folder { path: path.to_owned() });
+    }
+    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
+        return Err(OutputError::NoFolder { path: path.to_owned(), folder: folder.to_owned() });
+    }
+    match (ImageFormat::from_path(path), content) {
+        (Some(ImageFormat::Gif), Content::Still) => Err(OutputError::GifIsForAnimations { path: path.to_owned() }),
+        (Some(format), _) => Ok(format),
+        (None, _) => Err(OutputError::UnknownFormat { path: path.to_owned(), content }),
+    }
+}
+
+/// Whether `a` and `b` name the same existing file (through `./`, `..` or
+/// symbolic links).
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b)
 }
 
 /// Why an image could not be written.
@@ -40,6 +80,25 @@ pub enum OutputError {
     UnknownFormat {
         /// The path given.
         path: PathBuf,
+        /// What was to be written.
+        content: Content,
+    },
+    /// A GIF was asked for one image.
+    GifIsForAnimations {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// The path names a folder, not a file.
+    Folder {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// The folder the file should go into does not exist.
+    NoFolder {
+        /// The path given.
+        path: PathBuf,
+        /// The missing folder.
+        folder: PathBuf,
     },
     /// Reading or writing a file failed.
     Io {
@@ -65,11 +124,28 @@ pub enum OutputError {
 impl fmt::Display for OutputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            OutputError::UnknownFormat { path } => write!(
+            OutputError::UnknownFormat { path, content } => {
+                let formats = match content {
+                    Content::Still => ".png or .ppm",
+                    Content::Animation => ".gif, .png or .ppm",
+                };
+                write!(f, "cannot tell the image format of `{}`: end the name in {formats}", path.display())
+            }
+            OutputError::GifIsForAnimations { path } => write!(
                 f,
-                "cannot write `{}`: unknown image format (use a file name ending in .png or .ppm)",
+                "cannot write `{}`: GIF is for animations (--anim N, or :anim in a session); \
+                 write one image as .png or .ppm",
                 path.display()
             ),
+            OutputError::Folder { path } => write!(
+                f,
+                "cannot write `{}`: it is a folder; give a file name in it, such as `{}`",
+                path.display(),
+                path.join("out.png").display()
+            ),
+            OutputError::NoFolder { path, folder } => {
+                write!(f, "cannot write `{}`: the folder `{}` does not exist", path.display(), folder.display())
+            }
             OutputError::Io { path, source } => {
                 write!(f, "cannot write `{}`: {}", path.display(), io_reason(source))
             }
@@ -88,145 +164,221 @@ impl std::error::Error for OutputError {
         match self {
             OutputError::Io { source, .. } => Some(source),
             OutputError::Encode { source, .. } => Some(source),
-            OutputError::UnknownFormat { .. } | OutputError::NoFrames { .. } => None,
+            _ => None,
         }
     }
 }
 
-/// Writes `image` to `path` in the format named by its extension (`.png` or
-/// `.ppm`), atomically.
+/// Writes `image` to `path` as PNG or PPM, as its extension says, atomically.
 pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
-    let format = ImageFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat { path: path.to_owned() })?;
-    write_atomically(path, |writer| match format {
-        ImageFormat::Png => write_png(writer, image).map_err(|e| encode_error(path, e)),
-        ImageFormat::Ppm => write_ppm(writer, image).map_err(|e| io_error(path, e)),
-    })
+    let format = check_output(path, Content::Still)?;
+    let (pending, mut writer) = PendingFile::create(path)?;
+    match format {
+        ImageFormat::Ppm => write_ppm(&mut writer, image).map_err(|e| io_error(path, e))?,
+        _ => write_png(&mut writer, image).map_err(|e| encode_error(path, e))?,
+    }
+    writer.flush().map_err(|e| io_error(path, e))?;
+    drop(writer);
+    pending.commit()
 }
 
 /// Writes `image` as binary PPM (P6) to `writer` (used for `-o -`).
-pub fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
+pub(crate) fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
     write!(writer, "P6\n{} {}\n255\n", image.width(), image.height())?;
     writer.write_all(image.as_raw())?;
     writer.flush()
 }
 
 /// Writes `image` as PNG to `writer`.
-pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
+fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
     // Fast compression: large renders and 100-frame animations would
     // otherwise spend more time compressing than tracing.
     let encoder = PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Adaptive);
     encoder.write_image(image.as_raw(), image.width(), image.height(), image::ExtendedColorType::Rgb8)
 }
 
-/// Writes `frames` as an animated GIF looping forever, each frame shown for
-/// `delay_ms` milliseconds (in steps of 10 ms, GIF's unit), atomically.
-///
-/// All frames share one 256-colour palette, learnt (NeuQuant) from pixels
-/// spread over every frame: an animation's frames mostly show the same
-/// colours, and learning a palette per frame took most of the time of a
-/// 100-frame GIF. Each frame is then mapped to the palette in parallel.
-pub fn write_gif(path: &Path, frames: &[RgbImage], delay_ms: u32) -> Result<(), OutputError> {
-    let Some(first) = frames.first() else {
-        return Err(OutputError::NoFrames { path: path.to_owned() });
-    };
-    let too_large = || OutputError::Io {
-        path: path.to_owned(),
-        source: io::Error::new(io::ErrorKind::InvalidInput, "a GIF is at most 65535 pixels wide and high"),
-    };
-    let width = u16::try_from(first.width()).map_err(|_| too_large())?;
-    let height = u16::try_from(first.height()).map_err(|_| too_large())?;
-    let delay = u16::try_from(delay_ms / 10).unwrap_or(u16::MAX);
-    let palette = learn_palette(frames);
-    let indexed: Vec<Vec<u8>> = frames
-        .par_iter()
-        .map(|frame| frame.pixels().map(|p| palette.index_of(&[p[0], p[1], p[2], 0xFF]) as u8).collect())
-        .collect();
-    write_atomically(path, |writer| {
-        let gif_error = |e| gif_encode_error(path, e);
-        let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
-        encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?;
-        for pixels in indexed {
-            let mut frame = gif::Frame::from_indexed_pixels(width, height, pixels, None);
-            frame.delay = delay;
-            encoder.write_frame(&frame).map_err(gif_error)?;
-        }
-        Ok(())
-    })
-}
-
-/// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
-/// (fastest).
-pub const GIF_QUANTISATION_SPEED: i32 = 10;
-
-/// About how many pixels the GIF palette is learnt from, taken evenly from
-/// all frames (as many as in two 800x600 frames).
-const GIF_PALETTE_SAMPLE: usize = 960_000;
-
-/// A 256-colour palette for all of `frames` (at least one, all the same size).
-fn learn_palette(frames: &[RgbImage]) -> color_quant::NeuQuant {
-    let pixels = frames.len() * frames[0].width() as usize * frames[0].height() as usize;
-    let stride = pixels.div_ceil(GIF_PALETTE_SAMPLE).max(1);
-    let mut sample = Vec::with_capacity(4 * pixels.div_ceil(stride));
-    for (k, p) in frames.iter().flat_map(|f| f.pixels()).enumerate() {
-        if k % stride == 0 {
-            sample.extend_from_slice(&[p[0], p[1], p[2], 0xFF]);
-        }
-    }
-    color_quant::NeuQuant::new(GIF_QUANTISATION_SPEED, 256, &sample)
-}
-
 /// How long each frame of an animated GIF is shown: 25 frames a second.
-pub const GIF_FRAME_DELAY_MS: u32 = 40;
+const GIF_FRAME_DELAY_MS: u32 = 40;
 
-/// Where the frames of an animation go as they are rendered: kept for one
-/// animated GIF if the file name ends in `.gif`, otherwise written at once as
-/// numbered images (`spin.png` gives `spin0001.png`, ...), so that a long
-/// animation does not have to fit in memory.
-pub struct FrameSink {
+/// Where the frames of an animation go as they are rendered, in order:
+/// encoded at once into one animated GIF if the file name ends in `.gif`,
+/// otherwise written at once as numbered images (`spin.png` gives
+/// `spin0001.png`, ...). Nothing is kept but the GIF's palette, so a long
+/// animation takes no more memory than a short one.
+pub(crate) struct FrameSink {
     path: PathBuf,
     count: usize,
-    gif_frames: Option<Vec<RgbImage>>,
+    gif: Option<Option<GifStream>>,
     written: Vec<PathBuf>,
 }
 
 impl FrameSink {
     /// A sink for `count` frames named after `path`.
     pub fn new(path: &Path, count: usize) -> FrameSink {
-        let gif = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gif"));
-        FrameSink {
-            path: path.to_path_buf(),
-            count,
-            gif_frames: gif.then(|| Vec::with_capacity(count)),
-            written: Vec::new(),
-        }
+        let gif = ImageFormat::from_path(path) == Some(ImageFormat::Gif);
+        FrameSink { path: path.to_path_buf(), count, gif: gif.then_some(None), written: Vec::new() }
     }
 
     /// Takes frame number `frame` (from 1).
     pub fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), OutputError> {
-        if let Some(frames) = &mut self.gif_frames {
-            frames.push(image);
-            return Ok(());
+        match &mut self.gif {
+            Some(Some(stream)) => stream.add(&image, false),
+            Some(stream) => {
+                let mut started = GifStream::start(&self.path, &image, GIF_FRAME_DELAY_MS)?;
+                started.add(&image, true)?;
+                *stream = Some(started);
+                Ok(())
+            }
+            None => {
+                let path = frame_path(&self.path, frame, self.count);
+                write_image(&path, &image)?;
+                self.written.push(path);
+                Ok(())
+            }
         }
-        let path = frame_path(&self.path, frame, self.count);
-        write_image(&path, &image)?;
-        self.written.push(path);
-        Ok(())
     }
 
-    /// Writes what is left to write; returns the files written.
+    /// Finishes the GIF, if any; returns the files written.
     pub fn finish(mut self) -> Result<Vec<PathBuf>, OutputError> {
-        if let Some(frames) = self.gif_frames.take() {
-            write_gif(&self.path, &frames, GIF_FRAME_DELAY_MS)?;
-            self.written.push(self.path);
+        match self.gif.take() {
+            Some(Some(stream)) => {
+                stream.finish()?;
+                self.written.push(self.path);
+            }
+            Some(None) => return Err(OutputError::NoFrames { path: self.path }),
+            None => {}
         }
         Ok(self.written)
+    }
+}
+
+/// An animated GIF being written, looping forever.
+///
+/// Its palette of 256 colours is learnt (NeuQuant) from the first frame; a
+/// later frame that the palette no longer fits (new colours came into view)
+/// gets a palette of its own, which the frames after it keep while it fits.
+struct GifStream {
+    pending: PendingFile,
+    encoder: gif::Encoder<BufWriter<File>>,
+    width: u16,
+    height: u16,
+    delay: u16,
+    /// The palette frames are mapped to.
+    palette: color_quant::NeuQuant,
+    /// Whether `palette` is the GIF's global one (the first frame's).
+    global: bool,
+}
+
+/// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
+/// (fastest).
+const GIF_QUANTISATION_SPEED: usize = 10;
+
+/// How many pixels NeuQuant should learn from at least, where the frame has them.
+const GIF_LEARNT_PIXELS: usize = 48_000;
+
+/// A pixel whose palette colour is off by more than this many levels in a
+/// channel is badly mapped.
+const GIF_MISFIT_LEVELS: u8 = 24;
+
+/// A frame with more badly mapped pixels than one in this many, and more
+/// than [`GIF_MISFIT_PIXELS`], gets a palette of its own.
+const GIF_MISFIT_SHARE: usize = 1000;
+
+/// Fewer badly mapped pixels than this never call for a new palette: in a
+/// small frame a few such pixels are the palette's usual error, and
+/// learning a palette for every frame would take most of the time.
+const GIF_MISFIT_PIXELS: usize = 32;
+
+impl GifStream {
+    /// Starts a GIF at `path` of frames the size of `first`, each shown for
+    /// `delay_ms` milliseconds (in steps of 10 ms, GIF's unit).
+    fn start(path: &Path, first: &RgbImage, delay_ms: u32) -> Result<GifStream, OutputError> {
+        let too_large = || OutputError::Io {
+            path: path.to_owned(),
+            source: io::Error::new(io::ErrorKind::InvalidInput, "a GIF is at most 65535 pixels wide and high"),
+        };
+        let width = u16::try_from(first.width()).map_err(|_| too_large())?;
+        let height = u16::try_from(first.height()).map_err(|_| too_large())?;
+        let palette = learn_palette(first);
+        let (pending, writer) = PendingFile::create(path)?;
+        let gif_error = |e| gif_encode_error(path, e);
+        let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
+        encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?;
+        let delay = u16::try_from(delay_ms / 10).unwrap_or(u16::MAX);
+        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true })
+    }
+
+    /// Maps `image` to the palette (a new one if it does not fit, unless
+    /// the palette was `learnt_from_it`) and encodes it.
+    fn add(&mut self, image: &RgbImage, learnt_from_it: bool) -> Result<(), OutputError> {
+        let (mut indices, misfits) = map_to_palette(image, &self.palette);
+        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > indices.len() {
+            self.palette = learn_palette(image);
+            self.global = false;
+            indices = map_to_palette(image, &self.palette).0;
+        }
+        let mut frame = gif::Frame::from_indexed_pixels(self.width, self.height, indices, None);
+        frame.delay = self.delay;
+        if !self.global {
+            frame.palette = Some(self.palette.color_map_rgb());
+        }
+        self.encoder.write_frame(&frame).map_err(|e| gif_encode_error(&self.pending.path, e))
+    }
+
+    /// Ends the GIF and puts it in place.
+    fn finish(self) -> Result<(), OutputError> {
+        let path = &self.pending.path;
+        let mut writer = self.encoder.into_inner().map_err(|e| gif_encode_error(path, e))?;
+        writer.flush().map_err(|e| io_error(path, e))?;
+        drop(writer);
+        self.pending.commit()
+    }
+}
+
+/// About how many pixels a GIF palette is learnt from, taken evenly from
+/// the frame (all of an 800x600 frame).
+const GIF_PALETTE_SAMPLE: usize = 480_000;
+
+/// A 256-colour palette for `image`.
+fn learn_palette(image: &RgbImage) -> color_quant::NeuQuant {
+    let stride = (image.len() / 3).div_ceil(GIF_PALETTE_SAMPLE).max(1);
+    let rgba: Vec<u8> = image.pixels().step_by(stride).flat_map(|p| [p[0], p[1], p[2], 0xFF]).collect();
+    // NeuQuant learns from one pixel in `speed`: all of them in small frames.
+    let speed = (rgba.len() / 4 / GIF_LEARNT_PIXELS).clamp(1, GIF_QUANTISATION_SPEED);
+    color_quant::NeuQuant::new(speed as i32, 256, &rgba)
+}
+
+/// Each pixel of `image` as its index in `palette` (in parallel), and how
+/// many pixels are more than [`GIF_MISFIT_LEVELS`] off.
+fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>, usize) {
+    let mapped: Vec<(u8, bool)> = image
+        .as_raw()
+        .par_chunks_exact(3)
+        .with_min_len(4096)
+        .map(|p| {
+            let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
+            let colour = palette.lookup(index).unwrap_or_default();
+            let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
+            (index as u8, misfit)
+        })
+        .collect();
+    let misfits = mapped.iter().filter(|(_, misfit)| *misfit).count();
+    (mapped.into_iter().map(|(index, _)| index).collect(), misfits)
+}
+
+/// The files an animation wrote, in words: `a.gif`, or `a0001.png ... a0100.png`.
+pub(crate) fn describe_files(files: &[PathBuf]) -> String {
+    match files {
+        [only] => only.display().to_string(),
+        [first, .., last] => format!("{} ... {}", first.display(), last.display()),
+        [] => String::new(),
     }
 }
 
 /// The file name of frame `k` of `n`: the frame number, zero-padded to at
 /// least 4 digits (more if `n` needs them), inserted before the extension:
 /// `out.png` gives `out0001.png`.
-pub fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
+pub(crate) fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
     let digits = n.to_string().len().max(4);
     let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let mut name = format!("{stem}{k:0digits$}");
@@ -237,25 +389,70 @@ pub fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
     base.with_file_name(name)
 }
 
-/// Runs `write` on a temporary file next to `path`, then renames it to
-/// `path`. On any error the temporary file is removed and `path` untouched.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut BufWriter<&mut tempfile::NamedTempFile>) -> Result<(), OutputError>,
-) -> Result<(), OutputError> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut file = temp_file_in(dir).map_err(|e| io_error(path, e))?;
-    {
-        let mut writer = BufWriter::new(&mut file);
-        write(&mut writer)?;
-        writer.flush().map_err(|e| io_error(path, e))?;
+/// The temporary files being written, which an interruption removes.
+static UNFINISHED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn unfinished() -> MutexGuard<'static, Vec<PathBuf>> {
+    UNFINISHED.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Removes the temporary files of unfinished writes and ends the process
+/// with `code`: what an interruption (Ctrl-C, `kill`) does, so that it
+/// leaves no temporary file behind and every target as it was.
+pub(crate) fn exit_discarding_unfinished(code: i32) -> ! {
+    // The lock is held until the end: no write starts or finishes meanwhile.
+    let unfinished = unfinished();
+    for path in unfinished.iter() {
+        let _ = std::fs::remove_file(path);
     }
-    file.as_file().sync_all().map_err(|e| io_error(path, e))?;
-    file.persist(path).map_err(|e| io_error(path, e.error))?;
-    Ok(())
+    std::process::exit(code)
+}
+
+/// A file being written: a temporary file next to its target, which
+/// [`PendingFile::commit`] renames over the target. Dropped without a
+/// commit, the temporary file is removed and the target left as it was.
+struct PendingFile {
+    path: PathBuf,
+    temp_path: PathBuf,
+    temp: Option<tempfile::NamedTempFile>,
+}
+
+impl PendingFile {
+    /// A temporary file for `path`, and a writer into it.
+    fn create(path: &Path) -> Result<(PendingFile, BufWriter<File>), OutputError> {
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let mut unfinished = unfinished();
+        let temp = temp_file_in(dir).map_err(|e| io_error(path, e))?;
+        unfinished.push(temp.path().to_owned());
+        let writer = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
+        let pending = PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp) };
+        Ok((pending, BufWriter::new(writer)))
+    }
+
+    /// Puts the written file in place of the target, with the target's
+    /// permissions if it existed.
+    fn commit(mut self) -> Result<(), OutputError> {
+        let temp = self.temp.take().expect("a pending file is committed once");
+        temp.as_file().sync_all().map_err(|e| io_error(&self.path, e))?;
+        if let Ok(existing) = std::fs::metadata(&self.path) {
+            temp.as_file().set_permissions(existing.permissions()).map_err(|e| io_error(&self.path, e))?;
+        }
+        let mut unfinished = unfinished();
+        let persisted = temp.persist(&self.path);
+        unfinished.retain(|p| *p != self.temp_path);
+        persisted.map(drop).map_err(|e| io_error(&self.path, e.error))
+    }
+}
+
+impl Drop for PendingFile {
+    fn drop(&mut self) {
+        let mut unfinished = unfinished();
+        drop(self.temp.take());
+        unfinished.retain(|p| *p != self.temp_path);
+    }
 }
 
 /// A temporary file in `dir`, readable by others like an ordinary new file
@@ -294,15 +491,24 @@ fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
 }
 
 /// An I/O error in plain words, without Rust's `(os error 2)` suffix.
-pub fn io_reason(error: &io::Error) -> String {
+pub(crate) fn io_reason(error: &io::Error) -> String {
     match error.kind() {
         io::ErrorKind::NotFound => "no such file or folder".into(),
         io::ErrorKind::PermissionDenied => "permission denied".into(),
-        io::ErrorKind::IsADirectory => "it is a directory".into(),
+        io::ErrorKind::IsADirectory => "it is a folder".into(),
+        io::ErrorKind::NotADirectory => "a part of the path is a file, not a folder".into(),
         io::ErrorKind::InvalidData => "it is not UTF-8 text".into(),
         io::ErrorKind::ReadOnlyFilesystem => "the file system is read-only".into(),
         io::ErrorKind::StorageFull => "the disk is full".into(),
-        _ => error.to_string(),
+        io::ErrorKind::QuotaExceeded => "the disk quota is used up".into(),
+        io::ErrorKind::BrokenPipe => "the program reading it has stopped".into(),
+        io::ErrorKind::ExecutableFileBusy | io::ErrorKind::ResourceBusy => "the file is in use".into(),
+        _ => {
+            let text = error.to_string();
+            let plain = text.split(" (os error").next().unwrap_or(&text);
+            let mut chars = plain.chars();
+            chars.next().map(|first| first.to_lowercase().chain(chars).collect()).unwrap_or_default()
+        }
     }
 }
 
@@ -343,9 +549,34 @@ mod tests {
     }
 
     #[test]
-    fn unknown_extension_is_a_clear_error() {
-        let err = write_image(Path::new("x.jpg"), &sample()).expect_err("jpg unsupported");
-        assert!(err.to_string().contains("unknown image format"), "{err}");
+    fn outputs_are_checked_before_any_work() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let message = |path: &Path, content| check_output(path, content).expect_err("refused").to_string();
+        assert!(message(Path::new("x.jpg"), Content::Still).contains("end the name in .png or .ppm"));
+        assert!(message(Path::new("x.gif"), Content::Still).contains("GIF is for animations"));
+        assert_eq!(check_output(Path::new("x.GIF"), Content::Animation).ok(), Some(ImageFormat::Gif));
+        assert!(message(dir.path(), Content::Still).contains("it is a folder"));
+        assert!(message(Path::new("somedir/"), Content::Still).contains("it is a folder"));
+        assert!(message(&dir.path().join("none/a.png"), Content::Still).contains("does not exist"));
+    }
+
+    #[test]
+    fn a_replaced_file_keeps_its_permissions() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("private.png");
+        std::fs::write(&path, b"old").expect("written");
+        std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o600)).expect("chmod");
+        write_image(&path, &sample()).expect("replaced");
+        assert_eq!(std::fs::metadata(&path).expect("exists").permissions().mode() & 0o777, 0o600);
+    }
+
+    #[test]
+    fn io_errors_read_without_os_error_numbers() {
+        let busy = io::Error::from_raw_os_error(26);
+        assert_eq!(io_reason(&busy), "the file is in use");
+        let odd = io::Error::from_raw_os_error(71);
+        assert!(!io_reason(&odd).contains("os error"), "{}", io_reason(&odd));
     }
 
     #[test]
@@ -357,19 +588,30 @@ mod tests {
         assert!(!path.exists());
     }
 
+    /// Writes `frames` to a GIF at `path` through a [`FrameSink`].
+    fn write_gif(path: &Path, frames: &[RgbImage]) -> Result<Vec<PathBuf>, OutputError> {
+        let mut sink = FrameSink::new(path, frames.len());
+        for (k, frame) in frames.iter().enumerate() {
+            sink.add(k + 1, frame.clone())?;
+        }
+        sink.finish()
+    }
+
     #[test]
     fn gif_round_trips_frame_count() {
         use image::AnimationDecoder;
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("anim.gif");
-        write_gif(&path, &[sample(), sample(), sample()], 40).expect("write gif");
+        assert_eq!(write_gif(&path, &[sample(), sample(), sample()]).expect("write gif"), std::slice::from_ref(&path));
         let file = std::io::BufReader::new(std::fs::File::open(&path).expect("open"));
         let decoder = image::codecs::gif::GifDecoder::new(file).expect("decode");
         assert_eq!(decoder.into_frames().count(), 3);
+        assert!(write_gif(&dir.path().join("empty.gif"), &[]).is_err());
+        assert_eq!(std::fs::read_dir(dir.path()).expect("list").count(), 1, "no temporary file left");
     }
 
     #[test]
-    fn one_gif_palette_keeps_the_colours_of_every_frame() {
+    fn gif_palettes_keep_the_colours_of_every_frame() {
         use image::AnimationDecoder;
         // Three frames of quite different colours, with a gradient each.
         let frame = |base: [u8; 3]| {
@@ -385,7 +627,7 @@ mod tests {
         let frames = [frame([200, 10, 10]), frame([10, 10, 180]), frame([10, 150, 10])];
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("colours.gif");
-        write_gif(&path, &frames, 40).expect("write gif");
+        write_gif(&path, &frames).expect("write gif");
         let file = std::io::BufReader::new(std::fs::File::open(&path).expect("open"));
         let decoded = image::codecs::gif::GifDecoder::new(file).expect("decode").into_frames().collect_frames();
         let decoded = decoded.expect("frames decode");

@@ -369,3 +369,186 @@ fn an_animation_warns_once_not_once_per_frame() {
     let stderr = String::from_utf8_lossy(&assert.success().get_output().stderr).into_owned();
     assert_eq!(stderr.matches("warning:").count(), 1, "{stderr}");
 }
+
+#[test]
+fn an_image_too_large_for_memory_is_refused_before_rendering() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.png");
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "65535", "--height", "65535", "-o"])
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(contains("has 4294836225 pixels; the most is 67108864").and(contains("4 GiB of memory")));
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "65536", "--height", "65536"])
+        .assert()
+        .code(2)
+        .stderr(contains("the width must be a whole number from 1 to 65535"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn every_entry_point_shares_the_depth_limit() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl()
+        .arg(&path)
+        .args(["--depth", "4294967295"])
+        .assert()
+        .code(2)
+        .stderr(contains("the depth must be a whole number from 0 to 1000"));
+}
+
+#[test]
+fn flags_that_would_do_nothing_are_refused() {
+    let (_dir, path) = scene(SPHERE);
+    let cases: [(&[&str], &str); 7] = [
+        (&["--frames", "1..2"], "--frames picks frames of an animation: give --anim N too"),
+        (&["--adaptive"], "--adaptive gives more samples to some pixels: give --samples N too"),
+        (&["--adaptive", "--samples", "1"], "give --samples N too, with N > 1"),
+        (&["--anim", "3", "--time", "2"], "frame k of an animation has time = k"),
+        (&["--no-preview"], "--no-preview is for the interactive session"),
+        (&["--keep-going"], "--keep-going is for a script on standard input"),
+        (&["-i", "-o", "x.png"], "-o does nothing in a session (-i starts a session)"),
+    ];
+    for (flags, message) in cases {
+        rayrepl().arg(&path).args(flags).assert().code(2).stderr(contains(message));
+    }
+    rayrepl()
+        .args(["--anim", "3"])
+        .write_stdin(":quit\n")
+        .assert()
+        .code(2)
+        .stderr(contains("--anim does nothing in a session (without a scene file, rayrepl starts a session)"));
+    rayrepl()
+        .arg(&path)
+        .args(["--check", "-o", "x.png"])
+        .assert()
+        .code(2)
+        .stderr(contains("'--check' cannot be used with '--output <FILE>'"));
+}
+
+/// The names in `dir`, sorted.
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn an_interrupted_animation_leaves_no_temporary_file_and_the_old_output_intact() {
+    for signal in ["-INT", "-TERM"] {
+        let (dir, path) = scene(MOVING);
+        let out = dir.path().join("anim.gif");
+        std::fs::write(&out, b"the old animation").expect("old output");
+        let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"))
+            .arg(&path)
+            .args(["--width", "64", "--height", "48", "--anim", "1000000", "-o"])
+            .arg(&out)
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("started");
+        // Wait until the GIF is being written, frame by frame, into its temporary file.
+        while !names_in(dir.path()).iter().any(|name| name.ends_with(".tmp")) {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let killed = std::process::Command::new("kill").arg(signal).arg(child.id().to_string()).status();
+        assert!(killed.expect("kill runs").success());
+        let status = child.wait().expect("ended");
+        assert_eq!(status.code(), Some(130), "{signal}");
+        assert_eq!(names_in(dir.path()), ["anim.gif", "scene.ray"], "{signal}");
+        assert_eq!(std::fs::read(&out).expect("still there"), b"the old animation");
+    }
+}
+
+#[test]
+fn a_replaced_output_keeps_its_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("private.png");
+    std::fs::write(&out, b"old").expect("old output");
+    std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o600)).expect("chmod");
+    rayrepl().arg(&path).args(["--width", "4", "--height", "4", "-o"]).arg(&out).assert().success();
+    assert_eq!(std::fs::metadata(&out).expect("written").permissions().mode() & 0o777, 0o600);
+}
+
+#[test]
+fn the_scene_file_is_never_overwritten() {
+    let (dir, path) = scene(SPHERE);
+    let link = dir.path().join("link.png");
+    std::os::unix::fs::symlink(&path, &link).expect("symlink");
+    let through_dot = dir.path().join(".").join("scene.ray");
+    for output in [path.clone(), through_dot, link] {
+        rayrepl().arg(&path).arg("-o").arg(&output).assert().code(1).stderr(contains("is the scene file itself"));
+    }
+    assert_eq!(std::fs::read_to_string(&path).expect("scene"), SPHERE);
+}
+
+#[test]
+fn output_mistakes_are_said_in_plain_words() {
+    let (dir, path) = scene(SPHERE);
+    let folder = format!("{}/", dir.path().display());
+    rayrepl().arg(&path).args(["-o", &folder]).assert().code(1).stderr(contains("it is a folder"));
+    rayrepl()
+        .arg(&path)
+        .args(["-o", "x.gif"])
+        .assert()
+        .code(1)
+        .stderr(contains("GIF is for animations").and(contains("cannot tell").not()));
+    let blocked = dir.path().join("file");
+    std::fs::write(&blocked, b"").expect("a file");
+    rayrepl()
+        .arg(&path)
+        .args(["--width", "4", "--height", "4", "-o"])
+        .arg(blocked.join("x.png"))
+        .assert()
+        .code(1)
+        .stderr(contains("os error").not());
+}
+
+#[test]
+fn image_data_is_not_written_to_a_terminal() {
+    let (_dir, path) = scene(SPHERE);
+    let mut command = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"));
+    command.arg(&path).args(["--width", "4", "--height", "4", "-o", "-"]);
+    use expectrl::Expect;
+    let mut session = expectrl::Session::spawn(command).expect("runs in a terminal");
+    session.expect("redirect it").expect("the refusal is shown");
+}
+
+#[test]
+fn a_successful_render_says_so_unless_quiet() {
+    let (dir, path) = scene(MOVING);
+    let out = dir.path().join("out.png");
+    let size = ["--width", "8", "--height", "6", "--depth", "1"];
+    let said = format!("wrote {}: 8x6, 1 reflection, ", out.display());
+    rayrepl().arg(&path).args(size).arg("-o").arg(&out).assert().success().stderr(contains(said));
+    rayrepl().arg(&path).args(size).args(["-q", "-o"]).arg(&out).assert().success().stderr("");
+    let frames = dir.path().join("f.png");
+    rayrepl()
+        .arg(&path)
+        .args(size)
+        .args(["--anim", "2", "-o"])
+        .arg(&frames)
+        .assert()
+        .success()
+        .stderr(contains("f0001.png ... ").and(contains("f0002.png: 2 frames of 8x6, 1 reflection, ")));
+    rayrepl().arg(&path).args(size).args(["-o", "-"]).assert().success().stderr(contains("wrote standard output: 8x6"));
+}
+
+#[test]
+fn a_piped_script_that_writes_nothing_says_how_to_get_a_picture() {
+    rayrepl().write_stdin(SPHERE).assert().success().stderr(contains("end it with `:save out.png`"));
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let script = format!("{SPHERE}:save small.png 4 4\n");
+    rayrepl()
+        .current_dir(dir.path())
+        .write_stdin(script)
+        .assert()
+        .success()
+        .stdout(contains("saved small.png"))
+        .stderr(contains(":save out.png").not());
+}

@@ -62,6 +62,6 @@ impl Drop for ArmedSwitch {
 fn on_ctrl_c() {
     match SWITCH.get() {
         Some(Some(switch)) if switch.armed.load(Ordering::SeqCst) => switch.cancel.store(true, Ordering::SeqCst),
-        _ => std::process::exit(INTERRUPTED_EXIT_CODE),
+        _ => crate::output::exit_discarding_unfinished(INTERRUPTED_EXIT_CODE),
     }
 }

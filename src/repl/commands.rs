@@ -8,26 +8,18 @@ use image::RgbImage;
 
 use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
-use crate::output::{FrameSink, OutputError};
+use crate::output::{self, Content, FrameSink, OutputError};
 use crate::progress::Progress;
 use crate::render::{Prepared, RenderControl};
 use crate::scene::Scene;
+use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH, check_size, parse_time};
 
 use super::console::Console;
 use super::help;
-use super::rendering::{ImageFormat, RenderError, RenderSettings, Size, render_image, render_options, write_image};
+use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 use crate::animation::{AnimationError, render_animation};
-
-/// Largest width or height accepted for an image.
-const MAX_IMAGE_SIDE: u32 = 16_384;
-/// Most reflections `:depth` accepts.
-const MAX_DEPTH: u32 = 100;
-/// Most rays per pixel `:samples` accepts.
-const MAX_SAMPLES: u32 = 1024;
-/// Most frames `:anim` accepts.
-const MAX_FRAMES: u32 = 10_000;
 
 /// What the session does after a command.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,6 +79,11 @@ const ALIASES: &[(&str, &str)] = &[(":q", ":quit"), (":exit", ":quit"), (":h", "
 /// Whether `line` is a command rather than program text.
 pub(crate) fn is_command(line: &str) -> bool {
     line.trim_start().starts_with(':')
+}
+
+/// Whether the command on `line` writes image files (`:save`, `:anim`).
+pub(crate) fn writes_files(line: &str) -> bool {
+    matches!(line.split_whitespace().next(), Some(":save" | ":anim"))
 }
 
 /// Runs the command on `line`, reporting any failure on the console.
@@ -173,36 +170,24 @@ fn no_arguments(arguments: &[String]) -> Result<(), CommandError> {
     }
 }
 
-fn parse_count(text: &str, what: &str, range: std::ops::RangeInclusive<u32>) -> Result<u32, CommandError> {
-    let (low, high) = (*range.start(), *range.end());
-    match text.parse::<u32>() {
-        Ok(value) if range.contains(&value) => Ok(value),
-        _ => Err(CommandError::Usage(format!("{what} must be a whole number from {low} to {high}, not `{text}`"))),
-    }
+/// A whole-number setting from `text`, within `limit`.
+fn parse_count(text: &str, limit: &'static Limit) -> Result<u32, CommandError> {
+    limit.parse(text).map_err(usage)
 }
 
 fn parse_size(width: &str, height: &str) -> Result<Size, CommandError> {
-    Ok(Size {
-        width: parse_count(width, "the width", 1..=MAX_IMAGE_SIDE)?,
-        height: parse_count(height, "the height", 1..=MAX_IMAGE_SIDE)?,
-    })
+    let size = Size { width: parse_count(width, &WIDTH)?, height: parse_count(height, &HEIGHT)? };
+    check_size(size.width, size.height).map_err(usage)?;
+    Ok(size)
 }
 
-fn parse_number(text: &str) -> Result<f64, CommandError> {
-    match text.parse::<f64>() {
-        Ok(value) if value.is_finite() => Ok(value),
-        _ => Err(CommandError::Usage(format!("`{text}` is not a number"))),
-    }
+fn usage(error: SettingError) -> CommandError {
+    CommandError::Usage(error.to_string())
 }
 
-/// The image format for `path`, checked before any work is done.
-fn output_format(path: &Path) -> Result<ImageFormat, CommandError> {
-    ImageFormat::of(path).ok_or_else(|| {
-        CommandError::Usage(format!(
-            "cannot tell the format of `{}`: end the name in .png, .ppm or .gif",
-            path.display()
-        ))
-    })
+/// Checks that `path` can receive `content` before any work is done.
+fn check_output(path: &Path, content: Content) -> Result<(), CommandError> {
+    output::check_output(path, content).map(drop).map_err(|e| CommandError::Usage(e.to_string()))
 }
 
 // ---------------------------------------------------------------- commands
@@ -259,10 +244,10 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         }
     };
     let path = PathBuf::from(file);
-    output_format(&path)?;
+    check_output(&path, Content::Still)?;
     explain_defaults(session, console);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    write_image(&path, &image).map_err(|e| CommandError::Failed(format!("cannot write {}: {e}", path.display())))?;
+    output::write_image(&path, &image).map_err(|e| CommandError::Failed(e.to_string()))?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)
 }
@@ -271,9 +256,9 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let [frames, file] = arguments else {
         return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
     };
-    let frames = parse_count(frames, "the number of frames", 1..=MAX_FRAMES)?;
+    let frames = parse_count(frames, &FRAMES)?;
     let path = PathBuf::from(file);
-    output_format(&path)?;
+    check_output(&path, Content::Animation)?;
     explain_defaults(session, console);
     let size = Size { width: session.settings().width, height: session.settings().height };
     let started = Instant::now();
@@ -281,11 +266,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
     render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write))?;
     let written = sink.finish().map_err(cannot_write)?;
-    let names = match written.as_slice() {
-        [only] => only.display().to_string(),
-        [first, .., last] => format!("{} ... {}", first.display(), last.display()),
-        [] => String::new(),
-    };
+    let names = output::describe_files(&written);
     console.say(format!(
         "wrote {names} ({} of {size}, {})",
         counted(frames as usize, "frame"),
@@ -302,7 +283,7 @@ fn time(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         }
         return Err(CommandError::Usage("give one number".to_string()));
     };
-    let value = parse_number(value)?;
+    let value = parse_time(value).map_err(usage)?;
     let previous = session.settings().time;
     match session.set_time(value) {
         Ok(false) => console.say(format!("time = {}", number(value))),
@@ -338,7 +319,7 @@ fn size(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => {}
-        [value] => session.set_depth(parse_count(value, "the depth", 0..=MAX_DEPTH)?),
+        [value] => session.set_depth(parse_count(value, &DEPTH)?),
         _ => return Err(CommandError::Usage("give one whole number".to_string())),
     }
     console.say(format!("depth = {}", session.settings().depth));
@@ -348,7 +329,7 @@ fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> 
 fn samples(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => {}
-        [value] => session.set_samples(parse_count(value, "the number of samples", 1..=MAX_SAMPLES)?),
+        [value] => session.set_samples(parse_count(value, &SAMPLES)?),
         _ => return Err(CommandError::Usage("give one whole number".to_string())),
     }
     console.say(format!("samples = {}", session.settings().samples));
@@ -376,7 +357,7 @@ pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut C
 /// Runs the file at `path` into the session, as one input.
 fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
     let text = std::fs::read_to_string(path)
-        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), plain_io_error(&e))))?;
+        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))?;
     let accepted = session.load(&path.display().to_string(), &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
@@ -577,15 +558,6 @@ fn first_line(text: &str) -> String {
     if lines.next().is_some() { format!("{first} ...") } else { first }
 }
 
-/// An I/O error in plain words, without the OS error number.
-fn plain_io_error(error: &std::io::Error) -> String {
-    match error.kind() {
-        std::io::ErrorKind::NotFound => "no such file".to_string(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
-        _ => error.to_string(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -603,13 +575,12 @@ mod tests {
 
     #[test]
     fn counts_and_sizes_are_checked() {
-        assert_eq!(parse_count("5", "depth", 0..=10).ok(), Some(5));
-        assert!(parse_count("-1", "depth", 0..=10).is_err());
-        assert!(parse_count("11", "depth", 0..=10).is_err());
-        assert!(parse_count("x", "depth", 0..=10).is_err());
+        assert_eq!(parse_count("5", &DEPTH).ok(), Some(5));
+        assert!(parse_count("-1", &DEPTH).is_err());
+        assert!(parse_count("1001", &DEPTH).is_err());
+        assert!(parse_count("x", &DEPTH).is_err());
         assert!(parse_size("0", "10").is_err());
-        assert!(parse_number("inf").is_err());
-        assert_eq!(parse_number("-2.5").ok(), Some(-2.5));
+        assert!(parse_size("65535", "65535").is_err());
     }
 
     #[test]

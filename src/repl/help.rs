@@ -396,7 +396,8 @@ Example:
         text: "\
 :save FILE        writes the scene at the size set by :size
 :save FILE W H    writes it W pixels wide and H high
-  The file name's ending picks the format: .png, .ppm or .gif.
+  The file name's ending picks the format: .png or .ppm (a .gif is
+  an animation: see :anim).
 Example:
   :save balls.png 1024 768",
     },

@@ -1,37 +1,13 @@
 //! Turning the session's scene into images: the one call into the renderer,
-//! progress and cancellation around it, and writing image files.
+//! with progress and cancellation around it.
 
-use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use crate::output::{GIF_FRAME_DELAY_MS, write_gif};
-use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, Screen, render};
+use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, render};
 use crate::scene::Scene;
-
-/// How the session renders: image size, reflections, antialiasing and time.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RenderSettings {
-    /// Image width in pixels for `:save` and `:anim`.
-    pub width: u32,
-    /// Image height in pixels for `:save` and `:anim`.
-    pub height: u32,
-    /// Number of reflections followed (SPEC 6).
-    pub depth: u32,
-    /// Rays per pixel (1 samples each pixel at its centre).
-    pub samples: u32,
-    /// The value of `time` for evaluation and renders (SPEC 3).
-    pub time: f64,
-    /// Where the z axis meets the screen (SPEC 5).
-    pub screen: Screen,
-}
-
-impl Default for RenderSettings {
-    fn default() -> RenderSettings {
-        RenderSettings { width: 640, height: 480, depth: 5, samples: 1, time: 0.0, screen: Screen::Centered }
-    }
-}
+pub use crate::settings::RenderSettings;
 
 /// Width and height of an image in pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -55,8 +31,8 @@ pub(crate) enum RenderError {
     Cancelled,
 }
 
-/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth
-/// and samples of `settings`.
+/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth,
+/// samples and screen of `settings`.
 ///
 /// This is the only place that calls the renderer. It stops when `cancel`
 /// is raised and reports finished pixels to `progress`, for the progress bar.
@@ -78,47 +54,7 @@ pub(crate) fn render_image(
 
 /// The renderer's options for an image of `size` with the session's settings.
 pub(crate) fn render_options(size: Size, settings: &RenderSettings) -> RenderOptions {
-    RenderOptions {
-        width: size.width,
-        height: size.height,
-        depth: settings.depth,
-        samples: settings.samples,
-        screen: settings.screen,
-        ..RenderOptions::default()
-    }
-}
-
-/// The image formats the session writes, chosen by file extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum ImageFormat {
-    /// `.png`
-    Png,
-    /// `.ppm` (binary P6)
-    Ppm,
-    /// `.gif`
-    Gif,
-}
-
-impl ImageFormat {
-    /// The format named by `path`'s extension, if it is one the session writes.
-    pub(crate) fn of(path: &Path) -> Option<ImageFormat> {
-        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
-        match extension.as_str() {
-            "png" => Some(ImageFormat::Png),
-            "ppm" => Some(ImageFormat::Ppm),
-            "gif" => Some(ImageFormat::Gif),
-            _ => None,
-        }
-    }
-}
-
-/// Writes one image to `path`, in the format its extension names.
-pub(crate) fn write_image(path: &Path, image: &RgbImage) -> Result<(), String> {
-    let written = match ImageFormat::of(path) {
-        Some(ImageFormat::Gif) => write_gif(path, std::slice::from_ref(image), GIF_FRAME_DELAY_MS),
-        _ => crate::output::write_image(path, image),
-    };
-    written.map_err(|e| e.to_string())
+    RenderSettings { width: size.width, height: size.height, ..*settings }.render_options()
 }
 
 #[cfg(test)]
@@ -126,15 +62,6 @@ mod tests {
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     use super::*;
-
-    #[test]
-    fn formats_follow_the_extension() {
-        assert_eq!(ImageFormat::of(Path::new("a.PNG")), Some(ImageFormat::Png));
-        assert_eq!(ImageFormat::of(Path::new("dir/a.ppm")), Some(ImageFormat::Ppm));
-        assert_eq!(ImageFormat::of(Path::new("a.gif")), Some(ImageFormat::Gif));
-        assert_eq!(ImageFormat::of(Path::new("a.jpg")), None);
-        assert_eq!(ImageFormat::of(Path::new("a")), None);
-    }
 
     fn empty_scene() -> Scene {
         crate::lang::Interpreter::new(0.0, crate::lang::Limits::default()).into_scene()

@@ -16,12 +16,19 @@ const SCRIPT_NAME: &str = "<stdin>";
 
 /// Runs the script read from `input`, writing messages to `out` and
 /// diagnostics to `err`. The first error stops the script unless
-/// `options.keep_going`; `options.initial_file` is loaded first. Returns the
-/// exit status: 0 if everything succeeded, 1 otherwise.
+/// `options.keep_going`; `options.initial_file` is loaded first. A script
+/// that succeeds without writing an image ends with a note on how to write
+/// one. Returns the exit status: 0 if everything succeeded, 1 otherwise.
 pub fn run_script(input: impl BufRead, out: &mut dyn Write, err: &mut dyn Write, options: &SessionOptions) -> i32 {
     let mut session = new_session(options);
     let mut console = Console::plain(out, err);
-    let mut script = Script { session: &mut session, console: &mut console, keep_going: options.keep_going, errors: 0 };
+    let mut script = Script {
+        session: &mut session,
+        console: &mut console,
+        keep_going: options.keep_going,
+        errors: 0,
+        wrote: false,
+    };
     if let Some(path) = &options.initial_file {
         let loaded = commands::load_reporting(script.session, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
@@ -29,7 +36,15 @@ pub fn run_script(input: impl BufRead, out: &mut dyn Write, err: &mut dyn Write,
         }
     }
     script.run(input);
-    if script.errors > 0 { 1 } else { 0 }
+    let (errors, wrote) = (script.errors, script.wrote);
+    if errors > 0 {
+        return 1;
+    }
+    if !wrote {
+        let _ =
+            writeln!(err, "note: the script wrote no picture: end it with `:save out.png` (or `:anim 100 out.gif`)");
+    }
+    0
 }
 
 /// Whether the script goes on.
@@ -45,6 +60,8 @@ struct Script<'s, 'c> {
     console: &'s mut Console<'c>,
     keep_going: bool,
     errors: usize,
+    /// Whether a command wrote an image file.
+    wrote: bool,
 }
 
 impl Script<'_, '_> {
@@ -95,7 +112,10 @@ impl Script<'_, '_> {
     fn command(&mut self, line: &str) -> Step {
         match commands::execute(self.session, line, self.console) {
             Ok(Flow::Quit) => Step::Stop,
-            Ok(Flow::Continue) => self.after(true),
+            Ok(Flow::Continue) => {
+                self.wrote |= commands::writes_files(line);
+                self.after(true)
+            }
             Err(()) => self.after(false),
         }
     }

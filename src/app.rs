@@ -1,5 +1,6 @@
-//! Batch work from the command line: checking, rendering still images and
-//! animations of a scene file.
+//! The application: dispatches what the command line asks for to a check, a
+//! render of a still image or an animation, or a session. Maps failures to
+//! exit codes.
 
 use std::cell::RefCell;
 use std::collections::HashSet;
@@ -14,17 +15,25 @@ use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
-use crate::output::{self, FrameSink, ImageFormat};
+use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::progress::Progress;
 use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
-use crate::repl::{self, RenderSettings, SessionOptions};
+use crate::repl::{self, SessionOptions};
 use crate::scene::Scene;
+
+/// The exit code of a command line that asks for something impossible or
+/// meaningless (the same as clap's for its own usage errors).
+const USAGE_EXIT_CODE: u8 = 2;
 
 /// Runs what the command line asks for and returns the process's exit code.
 ///
 /// With no scene, or with `-i`, that is a session (interactive on a
 /// terminal, a script otherwise); with a scene, a check or a render.
 pub fn run(cli: Cli) -> ExitCode {
+    if let Some(misuse) = cli.misuse() {
+        eprintln!("rayrepl: {misuse}");
+        return ExitCode::from(USAGE_EXIT_CODE);
+    }
     let pool = match rayon::ThreadPoolBuilder::new().num_threads(cli.threads.unwrap_or(0) as usize).build() {
         Ok(pool) => pool,
         Err(e) => {
@@ -32,11 +41,18 @@ pub fn run(cli: Cli) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    if !cli.starts_session() || !std::io::stdin().is_terminal() {
+        // The interactive session installs its own handler, which cancels renders.
+        let _ = ctrlc::set_handler(|| output::exit_discarding_unfinished(INTERRUPTED_EXIT_CODE));
+    }
     match cli.scene.clone() {
         Some(path) if !cli.interactive => pool.install(|| exit_code(run_file(&cli, &path))),
         _ => pool.install(|| repl::run(&session_options(&cli))),
     }
 }
+
+/// The exit code after Ctrl-C or `kill` (128 + SIGINT, as shells report it).
+const INTERRUPTED_EXIT_CODE: i32 = 130;
 
 /// The session's options from the command line.
 fn session_options(cli: &Cli) -> SessionOptions {
@@ -44,14 +60,7 @@ fn session_options(cli: &Cli) -> SessionOptions {
         no_preview: cli.no_preview,
         keep_going: cli.keep_going,
         initial_file: cli.scene.clone(),
-        settings: RenderSettings {
-            width: cli.width,
-            height: cli.height,
-            depth: cli.depth,
-            samples: cli.samples,
-            time: cli.time,
-            screen: cli.screen.screen(),
-        },
+        settings: cli.settings(),
         limits: limits(cli),
     }
 }
@@ -78,7 +87,7 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), String> {
     let id = load(&mut sources, path)?;
     let frontend = Frontend::parse(sources, id, cli)?;
     if cli.check {
-        let scene = frontend.evaluate(cli.time, false)?;
+        let scene = frontend.evaluate(cli.settings().time, false)?;
         println!("{}: {}", frontend.sources.get(id).name, summary(&scene));
         return Ok(());
     }
@@ -128,7 +137,7 @@ fn show(sources: &SourceMap, diagnostic: &Diagnostic) -> String {
 }
 
 /// Reads a scene file (or standard input for `-`) into `sources`.
-pub fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
+fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
     if path == Path::new("-") {
         let mut text = String::new();
         std::io::stdin()
@@ -144,18 +153,17 @@ pub fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
 /// "3 spheres, 1 plane, 0 boxes, 2 lights".
 fn summary(scene: &Scene) -> String {
     let counts = scene.counts();
-    let plural = |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     format!(
         "{}, {}, {}, {}",
-        plural(counts.spheres, "sphere", "spheres"),
-        plural(counts.planes, "plane", "planes"),
-        plural(counts.boxes, "box", "boxes"),
-        plural(counts.lights, "light", "lights"),
+        counted(counts.spheres, "sphere", "spheres"),
+        counted(counts.planes, "plane", "planes"),
+        counted(counts.boxes, "box", "boxes"),
+        counted(counts.lights, "light", "lights"),
     )
 }
 
 /// The output file: `-o`, or the scene's name with `.png` (`.gif` for an
-/// animation) in the current directory. Checks the format before any work.
+/// animation) in the current directory. Checks it before any work.
 fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
     let path = match &cli.output {
         Some(path) => path.clone(),
@@ -168,29 +176,22 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
         if cli.anim.is_some() {
             return Err("rayrepl: `-o -` writes a single image; give a file name for an animation".into());
         }
+        if std::io::stdout().is_terminal() {
+            return Err("rayrepl: `-o -` writes binary image data, not for a terminal: \
+                        redirect it (`> out.ppm`, `| display`) or give a file name"
+                .into());
+        }
         return Ok(path);
     }
-    let known = ImageFormat::from_path(&path).is_some() || (cli.anim.is_some() && is_gif(&path));
-    if !known {
-        let formats = if cli.anim.is_some() { ".png, .ppm or .gif" } else { ".png or .ppm" };
-        return Err(format!("rayrepl: cannot tell the image format of `{}`: use {formats}", path.display()));
+    if output::same_file(&path, scene) {
+        return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", path.display()));
     }
-    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
-        return Err(format!(
-            "rayrepl: cannot write `{}`: the folder `{}` does not exist",
-            path.display(),
-            folder.display()
-        ));
-    }
-    if is_gif(&path) && cli.frames.is_some() {
+    let content = if cli.anim.is_some() { Content::Animation } else { Content::Still };
+    let format = output::check_output(&path, content).map_err(|e| format!("rayrepl: {e}"))?;
+    if format == ImageFormat::Gif && cli.frames.is_some() {
         return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
     }
     Ok(path)
-}
-
-/// Whether `path` names an animated GIF.
-fn is_gif(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gif"))
 }
 
 /// The renderer's settings from the command line.
@@ -201,21 +202,13 @@ fn render_options(cli: &Cli) -> RenderOptions {
             ..RenderOptions::reference(cli.width, cli.height, cli.depth)
         };
     }
-    RenderOptions {
-        width: cli.width,
-        height: cli.height,
-        depth: cli.depth,
-        samples: cli.samples,
-        screen: cli.screen.screen(),
-        adaptive: cli.adaptive,
-        ..RenderOptions::default()
-    }
+    cli.settings().render_options()
 }
 
 /// Renders one image at `--time`.
 fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
     let start = Instant::now();
-    let scene = frontend.evaluate(cli.time, false)?;
+    let scene = frontend.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
     let prepared = Prepared::new(&scene);
     let built = start.elapsed() - evaluated;
@@ -227,14 +220,38 @@ fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
         eprintln!("evaluate {:.3} s, build {:.3} s", evaluated.as_secs_f64(), built.as_secs_f64());
         print_stats(&stats, 1);
     }
-    if output == Path::new("-") {
+    let name = if output == Path::new("-") {
         let mut stdout = std::io::stdout().lock();
         output::write_ppm(&mut stdout, &image)
             .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
+        "standard output".to_string()
     } else {
-        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))
+        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
+        output.display().to_string()
+    };
+    report_written(cli, &name, &format!("{}x{}", cli.width, cli.height), start);
+    Ok(())
+}
+
+/// Says on stderr, unless `--quiet`, what was written to `name`: `what`
+/// ("800x600"), the reflections, the samples and the time since `start`.
+fn report_written(cli: &Cli, name: &str, what: &str, start: Instant) {
+    if cli.quiet {
+        return;
     }
+    let mut line = format!("wrote {name}: {what}, {}", counted(cli.depth as usize, "reflection", "reflections"));
+    let samples = render_options(cli).samples;
+    if samples > 1 {
+        let adaptive = if cli.adaptive { " (adaptive)" } else { "" };
+        line.push_str(&format!(", {}{adaptive}", counted(samples as usize, "sample", "samples")));
+    }
+    eprintln!("{line}, {:.2} s", start.elapsed().as_secs_f64());
+}
+
+/// "1 box", "3 boxes".
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// Renders one frame with the progress bar attached.
@@ -253,6 +270,7 @@ fn render_frame(
 /// frames, frame k with `time = k`, to numbered images or one GIF (see
 /// [`animation`] for what is computed once and what per frame).
 fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<(), String> {
+    let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
         return Err(format!(
@@ -276,9 +294,12 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     };
     progress.finish();
     if cli.stats {
-        print_stats(&total, frames.count());
+        print_stats(&total, frames.clone().count());
     }
-    frames_out.finish().map(drop).map_err(|e| format!("rayrepl: {e}"))
+    let written = frames_out.finish().map_err(|e| format!("rayrepl: {e}"))?;
+    let what = format!("{} of {}x{}", counted(frames.count(), "frame", "frames"), cli.width, cli.height);
+    report_written(cli, &output::describe_files(&written), &what, start);
+    Ok(())
 }
 
 /// Prints `--stats`: rays of each kind, render time and throughput, and
