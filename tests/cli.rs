@@ -355,7 +355,7 @@ fn adaptive_sampling_is_accepted() {
         .arg(&out)
         .assert()
         .success()
-        .stderr(contains("adaptive: ").and(contains(" pixels refined, ")));
+        .stderr(contains("adaptive: ").and(contains(" pixels refined")));
     assert!(out.exists());
 }
 
