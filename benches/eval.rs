@@ -4,8 +4,8 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use rayrepl::lang::{Interpreter, Limits, SourceMap, ast::Program, parse_file, parse_items};
 
-/// The sponge scene of `examples/menger.ray`, called at depth 5 there.
-const MENGER: &str = include_str!("../examples/menger.ray");
+/// The sponge scene of `benches/scenes/menger.ray`, called at depth 5 there.
+const MENGER: &str = include_str!("scenes/menger.ray");
 
 fn program(text: &str, file: bool) -> Program {
     let mut sources = SourceMap::new();

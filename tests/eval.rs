@@ -1032,31 +1032,6 @@ fn the_cap_counts_what_a_session_already_holds() {
     assert_eq!(i.scene().primitives.len(), 10);
 }
 
-/// The peak resident memory of this process in KiB (`VmHWM`, Linux only).
-fn peak_memory_kib() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.trim_start_matches("VmHWM:").trim().trim_end_matches("kB").trim().parse().ok()
-}
-
-#[test]
-#[ignore = "a performance check: run alone, in release (`cargo test --release --test eval -- --ignored menger`)"]
-fn menger_depth_5_is_fast_and_lean() {
-    let text = include_str!("../examples/menger.ray");
-    let mut sources = SourceMap::new();
-    let id = sources.add("menger.ray", text, 0);
-    let program = parse_file(id, text).unwrap();
-    let start = std::time::Instant::now();
-    let mut i = Interpreter::new(0.0, Limits::default());
-    i.run(&program).unwrap();
-    let elapsed = start.elapsed().as_secs_f64();
-    let peak = peak_memory_kib();
-    println!("menger depth 5: {elapsed:.3} s, peak resident memory {peak:?} KiB");
-    assert_eq!(i.scene().counts().boxes, 3_200_000);
-    assert!(elapsed < 2.0, "{elapsed} s");
-    assert!(peak.is_none_or(|kib| kib < 1_500_000), "{peak:?} KiB");
-}
-
 mod random_programs {
     use super::*;
     use proptest::prelude::*;

@@ -1,27 +1,16 @@
 //! The interactive session driven through a pseudo-terminal: multi-line
 //! input, completion, Ctrl-C, Ctrl-D, colours and the history file.
-//!
-//! These run the `rayrepl` binary, whose `main` must hand a session over to
-//! `rayrepl::repl::run` (with `--no-preview`, `-i FILE`). Until it does they
-//! are ignored; run them against any binary that does with
-//! `RAYREPL_TEST_BIN=target/debug/examples/repl_session cargo test --test
-//! repl_interactive -- --ignored`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use std::time::Duration;
 
 use expectrl::process::unix::WaitStatus;
 use expectrl::{ControlCode, Eof, Expect, Session};
 
-/// The binary under test.
-fn binary() -> PathBuf {
-    std::env::var_os("RAYREPL_TEST_BIN").map_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_rayrepl")), PathBuf::from)
-}
-
 /// A session on a terminal, its history kept under `data_home`.
 fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsSession {
-    let mut command = Command::new(binary());
+    let mut command = Command::new(env!("CARGO_BIN_EXE_rayrepl"));
     command.args(args).env("XDG_DATA_HOME", data_home).env("TERM", "xterm-256color");
     if color {
         command.env_remove("NO_COLOR");
@@ -169,7 +158,7 @@ fn a_file_given_with_i_is_loaded_first() {
     let data_home = tempfile::tempdir().expect("temporary directory");
     let scene = data_home.path().join("start.ray");
     std::fs::write(&scene, "let r = 4\n").expect("write the scene");
-    let mut command = Command::new(binary());
+    let mut command = Command::new(env!("CARGO_BIN_EXE_rayrepl"));
     command
         .args(["--no-preview", "-i"])
         .arg(&scene)

@@ -565,19 +565,14 @@ fn anim_reports_the_frame_that_fails() {
 
 // ------------------------------------------------------------ the binary
 
-/// Scripts piped into the `rayrepl` binary. Ignored until `main` hands a
-/// session without a scene to `rayrepl::repl::run`; run them against any
-/// binary that does with `RAYREPL_TEST_BIN=... cargo test -- --ignored`.
+/// Scripts piped into the `rayrepl` binary.
 mod binary {
     use assert_cmd::Command;
     use predicates::prelude::PredicateBooleanExt;
     use predicates::str::contains;
 
     fn rayrepl() -> Command {
-        match std::env::var_os("RAYREPL_TEST_BIN") {
-            Some(path) => Command::new(path),
-            None => Command::new(env!("CARGO_BIN_EXE_rayrepl")),
-        }
+        Command::new(env!("CARGO_BIN_EXE_rayrepl"))
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Speed against error: how far each render setting is from a reference
 //! image, and what it costs.
 //!
-//! `cargo run --release --example tradeoff [WIDTH HEIGHT]` (default 320x240).
+//! `cargo run --release -p tradeoff [WIDTH HEIGHT]` (default 320x240).
 //! For each benchmark scene (evaluated once) it renders a reference (256
 //! stratified samples on a 16x16 grid, no skips), then for every
 //! setting the median time of 3 renders and the error of its image against
@@ -28,7 +28,7 @@ use rayrepl::scene::Scene;
 const SCENES: [&str; 4] = ["solar", "sponge4", "spheres100k", "scales"];
 
 /// The line after which the report goes in `BENCHMARKS.md`.
-const BEGIN: &str = "<!-- tradeoff: begin (written by `cargo run --release --example tradeoff`) -->";
+const BEGIN: &str = "<!-- tradeoff: begin (written by `cargo run --release -p tradeoff`) -->";
 /// The line before which the report ends in `BENCHMARKS.md`.
 const END: &str = "<!-- tradeoff: end -->";
 
@@ -103,7 +103,7 @@ fn main() {
     let width = args.next().flatten().unwrap_or(320);
     let height = args.next().flatten().unwrap_or(240);
     let base = RenderOptions { width, height, ..RenderOptions::default() };
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
     let mut rows = Vec::new();
     for name in SCENES {
         let scene = match evaluate(&root.join(format!("benches/scenes/{name}.ray"))) {
@@ -341,7 +341,7 @@ fn markdown(rows: &[Row], width: u32, height: u32) -> String {
     let threads = rayon::current_num_threads();
     let _ = writeln!(
         s,
-        "Measured by `cargo run --release --example tradeoff` on {} ({} cores by `nproc`, {threads} rayon threads), \
+        "Measured by `cargo run --release -p tradeoff` on {} ({} cores by `nproc`, {threads} rayon threads), \
          {}. Images are {width}x{height}. Each scene is evaluated once; each setting is rendered {RUNS} times and \
          the median wall-clock time is shown (other work shared the machine, so small times are noisy; load \
          average at the end of the run: {}).\n",
