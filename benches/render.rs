@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group};
 use glam::{DMat3, DVec3};
-use rayrepl::render::{Prepared, RenderControl, RenderOptions, RenderStats, render};
+use rayrepl::render::{RenderControl, RenderOptions, RenderStats, SceneGeometry, render};
 use rayrepl::scene::{Camera, Light, Material, Primitive, Scene, Shape, TimeUse};
 
 fn material(color: [f64; 3], kd: f64, ks: f64, phong: f64) -> Material {
@@ -94,7 +94,7 @@ fn options(width: u32, height: u32) -> RenderOptions {
     RenderOptions { width, height, depth: 5, ..RenderOptions::default() }
 }
 
-fn render_once(scene: &Scene, prepared: &Prepared, width: u32, height: u32) -> RenderStats {
+fn render_once(scene: &Scene, prepared: &SceneGeometry, width: u32, height: u32) -> RenderStats {
     let (image, stats) =
         render(scene, prepared, &options(width, height), &RenderControl::default()).expect("no cancel");
     black_box(image);
@@ -103,11 +103,11 @@ fn render_once(scene: &Scene, prepared: &Prepared, width: u32, height: u32) -> R
 
 /// Renders `frames` frames of the solar animation, reusing the static part.
 fn solar_animation(frames: u32, width: u32, height: u32) -> RenderStats {
-    let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..solar(0.0) }).static_part().clone();
+    let static_part = SceneGeometry::new(&Scene { timed_primitives: Vec::new(), ..solar(0.0) }).static_part().clone();
     let mut total = RenderStats::default();
     for k in 1..=frames {
         let scene = solar(f64::from(k));
-        let prepared = Prepared::with_static(static_part.clone(), &scene.timed_primitives);
+        let prepared = SceneGeometry::with_static(static_part.clone(), &scene.timed_primitives);
         let stats = render_once(&scene, &prepared, width, height);
         total.rays += stats.rays;
         total.elapsed += stats.elapsed;
@@ -117,7 +117,7 @@ fn solar_animation(frames: u32, width: u32, height: u32) -> RenderStats {
 
 fn bench_solar(c: &mut Criterion) {
     let scene = solar(0.0);
-    let prepared = Prepared::new(&scene);
+    let prepared = SceneGeometry::new(&scene);
     let mut group = c.benchmark_group("solar");
     group.sample_size(10).measurement_time(Duration::from_secs(8));
     group.bench_function("1920x1080 depth 5", |b| b.iter(|| render_once(&scene, &prepared, 1920, 1080)));
@@ -129,10 +129,10 @@ fn bench_boxes(c: &mut Criterion) {
     let scene = box_field();
     let mut group = c.benchmark_group("boxes");
     group.sample_size(10).measurement_time(Duration::from_secs(15));
-    group.bench_function("160k build", |b| b.iter(|| Prepared::new(&scene)));
+    group.bench_function("160k build", |b| b.iter(|| SceneGeometry::new(&scene)));
     group.bench_function("160k build + 1920x1080", |b| {
         b.iter(|| {
-            let prepared = Prepared::new(&scene);
+            let prepared = SceneGeometry::new(&scene);
             render_once(&scene, &prepared, 1920, 1080)
         })
     });
@@ -162,7 +162,7 @@ fn run_report(which: &str) {
         let (w, h) = size.split_once('x').expect("solar-WxH");
         let (w, h) = (w.parse().expect("width"), h.parse().expect("height"));
         let scene = solar(0.0);
-        let prepared = Prepared::new(&scene);
+        let prepared = SceneGeometry::new(&scene);
         let start = Instant::now();
         let (image, stats) = render(&scene, &prepared, &options(w, h), &RenderControl::default()).expect("no cancel");
         report(&format!("solar {w}x{h} d5"), start.elapsed(), &stats);
@@ -175,7 +175,7 @@ fn run_report(which: &str) {
         // What each skip saves on the solar scene (one frame, 1920x1080).
         use rayrepl::render::Skips;
         let scene = solar(0.0);
-        let prepared = Prepared::new(&scene);
+        let prepared = SceneGeometry::new(&scene);
         let variants = [
             ("all skips", Skips::all()),
             ("no back-facing skip", Skips { back_facing_light: false, ..Skips::all() }),
@@ -198,7 +198,7 @@ fn run_report(which: &str) {
     }
     if which.contains("solar") || which == "1" {
         let scene = solar(0.0);
-        let prepared = Prepared::new(&scene);
+        let prepared = SceneGeometry::new(&scene);
         render_once(&scene, &prepared, 1920, 1080);
         let start = Instant::now();
         let stats = render_once(&scene, &prepared, 1920, 1080);
@@ -210,7 +210,7 @@ fn run_report(which: &str) {
     if which.contains("boxes") || which == "1" {
         let scene = box_field();
         let start = Instant::now();
-        let prepared = Prepared::new(&scene);
+        let prepared = SceneGeometry::new(&scene);
         let build = start.elapsed();
         let stats = render_once(&scene, &prepared, 1920, 1080);
         println!("boxes 160k BVH build         {:>8.3} s", build.as_secs_f64());

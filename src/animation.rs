@@ -6,7 +6,7 @@
 //! alone:
 //! - a scene that does not depend on `time` is rendered once for all frames;
 //! - later frames evaluate only what depends on `time`, and reuse the first
-//!   frame's static geometry and its BVH ([`Prepared::with_static`]);
+//!   frame's static geometry and its BVH ([`SceneGeometry::with_static`]);
 //! - when only bounded objects move, frames are evaluated a window at a time
 //!   and each frame traces only the pixels a moving object may have changed
 //!   ([`FrameReuse`]).
@@ -16,7 +16,7 @@ use std::sync::Arc;
 
 use image::RgbImage;
 
-use crate::render::{self, Cancelled, FrameReuse, Prepared, RenderControl, RenderOptions, RenderStats};
+use crate::render::{self, Cancelled, FrameReuse, RenderControl, RenderOptions, RenderStats, SceneGeometry};
 use crate::scene::Scene;
 
 /// Most frames evaluated ahead of rendering for [`FrameReuse`]: a pixel is
@@ -62,7 +62,7 @@ pub fn render_animation<E>(
         return Ok(total);
     }
     let first = evaluate(start, false).map_err(AnimationError::Failed)?;
-    let first_prepared = Prepared::new(&first);
+    let first_prepared = SceneGeometry::new(&first);
     if !first.depends_on_time() {
         let (image, stats) = render::render(&first, &first_prepared, options, control)?;
         sink(start, image.clone()).map_err(AnimationError::Failed)?;
@@ -84,7 +84,7 @@ pub fn render_animation<E>(
     loop {
         // Gather a window: frames that frame reuse can take together, or a
         // single frame that it cannot.
-        let mut window: Vec<(u32, Scene, Prepared)> = Vec::new();
+        let mut window: Vec<(u32, Scene, SceneGeometry)> = Vec::new();
         let mut timed = 0;
         let mut failure = None;
         let mut together = reuse;
@@ -94,7 +94,7 @@ pub fn render_animation<E>(
                 None if next > end => break,
                 None => match evaluate(next as u32, true) {
                     Ok(scene) => {
-                        let prepared = Prepared::with_static(Arc::clone(&static_part), &scene.timed_primitives);
+                        let prepared = SceneGeometry::with_static(Arc::clone(&static_part), &scene.timed_primitives);
                         next += 1;
                         ((next - 1) as u32, scene, prepared)
                     }
@@ -129,7 +129,7 @@ pub fn render_animation<E>(
 /// Renders the frames of one window in order, with [`FrameReuse`] when
 /// `together`, and hands them to `sink`.
 fn render_window<E>(
-    window: &[(u32, Scene, Prepared)],
+    window: &[(u32, Scene, SceneGeometry)],
     together: bool,
     options: &RenderOptions,
     control: &RenderControl,

@@ -17,7 +17,7 @@ use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
 use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::progress::Progress;
-use crate::render::{self, Prepared, RenderControl, RenderOptions, RenderStats};
+use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
 use crate::repl::{self, SessionOptions};
 use crate::scene::Scene;
 
@@ -85,21 +85,21 @@ fn exit_code(result: Result<(), String>) -> ExitCode {
 fn run_file(cli: &Cli, path: &Path) -> Result<(), String> {
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
-    let frontend = Frontend::parse(sources, id, cli)?;
+    let parsed = ParsedScene::parse(sources, id, cli)?;
     if cli.check {
-        let scene = frontend.evaluate(cli.settings().time, false)?;
-        println!("{}: {}", frontend.sources.get(id).name, summary(&scene));
+        let scene = parsed.evaluate(cli.settings().time, false)?;
+        println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
         return Ok(());
     }
     let output = output_path(cli, path)?;
     match cli.anim {
-        Some(count) => animate(cli, &frontend, count, &output),
-        None => still(cli, &frontend, &output),
+        Some(count) => animate(cli, &parsed, count, &output),
+        None => still(cli, &parsed, &output),
     }
 }
 
 /// A parsed scene file, ready to be evaluated at any `time`.
-struct Frontend {
+struct ParsedScene {
     sources: SourceMap,
     program: Program,
     limits: Limits,
@@ -107,11 +107,11 @@ struct Frontend {
     warned: RefCell<HashSet<(Span, String)>>,
 }
 
-impl Frontend {
+impl ParsedScene {
     /// Parses the file `id` of `sources`.
-    fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<Frontend, String> {
+    fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<ParsedScene, String> {
         let program = parse_file(id, &sources.get(id).text).map_err(|d| show(&sources, &d))?;
-        Ok(Frontend { sources, program, limits: limits(cli), warned: RefCell::default() })
+        Ok(ParsedScene { sources, program, limits: limits(cli), warned: RefCell::default() })
     }
 
     /// Evaluates the program at `time`, printing warnings on stderr. With
@@ -206,11 +206,11 @@ fn render_options(cli: &Cli) -> RenderOptions {
 }
 
 /// Renders one image at `--time`.
-fn still(cli: &Cli, frontend: &Frontend, output: &Path) -> Result<(), String> {
+fn still(cli: &Cli, parsed: &ParsedScene, output: &Path) -> Result<(), String> {
     let start = Instant::now();
-    let scene = frontend.evaluate(cli.settings().time, false)?;
+    let scene = parsed.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
-    let prepared = Prepared::new(&scene);
+    let prepared = SceneGeometry::new(&scene);
     let built = start.elapsed() - evaluated;
     let options = render_options(cli);
     let progress = Progress::new(u64::from(options.width) * u64::from(options.height), "rendering");
@@ -257,7 +257,7 @@ fn counted(n: usize, one: &str, many: &str) -> String {
 /// Renders one frame with the progress bar attached.
 fn render_frame(
     scene: &Scene,
-    prepared: &Prepared,
+    prepared: &SceneGeometry,
     options: &RenderOptions,
     progress: &Progress,
 ) -> (RgbImage, RenderStats) {
@@ -269,7 +269,7 @@ fn render_frame(
 /// Renders frames `--frames` (default all) of an animation of `count`
 /// frames, frame k with `time = k`, to numbered images or one GIF (see
 /// [`animation`] for what is computed once and what per frame).
-fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<(), String> {
+fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result<(), String> {
     let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
@@ -285,7 +285,7 @@ fn animate(cli: &Cli, frontend: &Frontend, count: u32, output: &Path) -> Result<
     let tick = |pixels: u64| progress.advance(pixels);
     let control = RenderControl { progress: Some(&tick), cancel: None };
     let mut frames_out = FrameSink::new(output, count as usize);
-    let evaluate = |k: u32, skip_static: bool| frontend.evaluate(f64::from(k), skip_static);
+    let evaluate = |k: u32, skip_static: bool| parsed.evaluate(f64::from(k), skip_static);
     let sink = |k: u32, image: RgbImage| frames_out.add(k as usize, image).map_err(|e| format!("rayrepl: {e}"));
     let total = match render_animation(frames.clone(), evaluate, &options, &control, sink) {
         Ok(total) => total,

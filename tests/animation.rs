@@ -10,7 +10,7 @@ use image::RgbImage;
 use proptest::prelude::*;
 use rayrepl::animation::{AnimationError, WINDOW_FRAMES, render_animation};
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{Prepared, RenderControl, RenderOptions, RenderStats, render};
+use rayrepl::render::{RenderControl, RenderOptions, RenderStats, SceneGeometry, render};
 use rayrepl::scene::{Primitive, Scene, Shape};
 
 mod common;
@@ -60,7 +60,7 @@ fn assert_frames_exact(
     for (k, image) in images {
         let alone = scene_at(k, false).expect("the frame evaluates");
         let (expected, _) =
-            render(&alone, &Prepared::new(&alone), options, &RenderControl::default()).expect("no cancel");
+            render(&alone, &SceneGeometry::new(&alone), options, &RenderControl::default()).expect("no cancel");
         if image != expected {
             let differing = image.pixels().zip(expected.pixels()).filter(|(a, b)| a != b).count();
             panic!("{what}: frame {k} differs from its own render in {differing} pixels");

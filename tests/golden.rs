@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use image::RgbImage;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{self, Prepared, RenderControl, RenderOptions};
+use rayrepl::render::{self, RenderControl, RenderOptions, SceneGeometry};
 
 const WIDTH: u32 = 96;
 const HEIGHT: u32 = 72;
@@ -36,7 +36,7 @@ fn render_scene(path: &Path, time: f64) -> RgbImage {
     let scene = interpreter.into_scene();
     let options = RenderOptions { width: WIDTH, height: HEIGHT, ..RenderOptions::default() };
     let control = RenderControl { progress: None, cancel: None };
-    render::render(&scene, &Prepared::new(&scene), &options, &control).expect("not cancelled").0
+    render::render(&scene, &SceneGeometry::new(&scene), &options, &control).expect("not cancelled").0
 }
 
 /// What differs between `actual` and `golden`, or `None` when they agree.

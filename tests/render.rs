@@ -12,7 +12,7 @@ use proptest::prelude::*;
 use rayrepl::render::bvh::Bvh;
 use rayrepl::render::intersect::{Bounded, BoxShape, SphereShape};
 use rayrepl::render::{
-    Cancelled, MAX_DEPTH, Prepared, Ray, RenderControl, RenderOptions, RenderStats, Screen, Skips, glimpse_pass,
+    Cancelled, MAX_DEPTH, Ray, RenderControl, RenderOptions, RenderStats, SceneGeometry, Screen, Skips, glimpse_pass,
     refinement_mask, render, render_refining,
 };
 use rayrepl::scene::{Light, Material, Primitive, Scene, Shape};
@@ -27,7 +27,7 @@ fn options(width: u32, height: u32) -> RenderOptions {
 }
 
 fn render_with(scene: &Scene, options: &RenderOptions) -> (RgbImage, RenderStats) {
-    let prepared = Prepared::new(scene);
+    let prepared = SceneGeometry::new(scene);
     render(scene, &prepared, options, &RenderControl::default()).expect("no cancel flag")
 }
 
@@ -426,7 +426,7 @@ fn depth_beyond_the_maximum_is_the_maximum() {
 
 /// Renders `s` with `o` on pools of 1 and of 2 threads: the bytes must match.
 fn assert_same_bytes_with_one_and_two_threads(s: &Scene, o: &RenderOptions) {
-    let prepared = Prepared::new(s);
+    let prepared = SceneGeometry::new(s);
     let run = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
         pool.install(|| render(s, &prepared, o, &RenderControl::default()).expect("no cancel").0)
@@ -450,8 +450,9 @@ fn static_and_timed_parts_render_like_one_scene() {
         split.timed_primitives = split.primitives.split_off(split_at);
         let o = options(80, 60);
         let (a, _) = render_with(&whole, &o);
-        let static_part = Prepared::new(&Scene { timed_primitives: Vec::new(), ..split.clone() }).static_part().clone();
-        let prepared = Prepared::with_static(Arc::clone(&static_part), &split.timed_primitives);
+        let static_part =
+            SceneGeometry::new(&Scene { timed_primitives: Vec::new(), ..split.clone() }).static_part().clone();
+        let prepared = SceneGeometry::with_static(Arc::clone(&static_part), &split.timed_primitives);
         let (b, _) = render(&split, &prepared, &o, &RenderControl::default()).expect("no cancel");
         assert!(a == b);
     }
@@ -460,7 +461,7 @@ fn static_and_timed_parts_render_like_one_scene() {
 #[test]
 fn progress_adds_up_and_cancel_stops() {
     let s = solar();
-    let prepared = Prepared::new(&s);
+    let prepared = SceneGeometry::new(&s);
     let o = options(50, 37);
     let done = AtomicU64::new(0);
     let progress = |n: u64| {
@@ -627,7 +628,7 @@ proptest! {
     ) {
         let mut s = scene(10.0, 1.0, 0.1, vec![], primitives);
         s.timed_primitives = s.primitives.split_off(split.min(s.primitives.len()));
-        let prepared = Prepared::new(&s);
+        let prepared = SceneGeometry::new(&s);
         for ray in &rays {
             let exists = prepared.closest_hit(ray).is_some();
             prop_assert_eq!(prepared.any_hit(ray), exists);
@@ -644,7 +645,7 @@ proptest! {
 fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
     for (name, s) in [("solar", solar()), ("random", random_scene(5, 200))] {
         let base = options(96, 72);
-        let (one, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &base);
+        let (one, glimpses) = glimpse_pass(&s, &SceneGeometry::new(&s), &base);
         let (uniform, _) = render_with(&s, &RenderOptions { samples: 9, ..base });
         let (adaptive, stats) = render_with(&s, &RenderOptions { samples: 9, adaptive: true, ..base });
         let mask = refinement_mask(&one, &glimpses);
@@ -664,7 +665,7 @@ fn adaptive_refines_exactly_the_flagged_pixels_with_the_uniform_bytes() {
 #[test]
 fn render_refining_refines_the_pixels_given() {
     let s = solar();
-    let prepared = Prepared::new(&s);
+    let prepared = SceneGeometry::new(&s);
     let o = RenderOptions { samples: 9, adaptive: true, ..options(96, 72) };
     let refining = |flags: &[bool]| render_refining(&s, &prepared, &o, flags, &RenderControl::default()).unwrap();
     let (one, glimpses) = glimpse_pass(&s, &prepared, &o);
@@ -689,7 +690,7 @@ fn render_refining_refines_the_pixels_given() {
 fn a_glimpse_measures_the_apparent_size_of_what_it_hits() {
     let ball = sphere([0.0, 0.0, 0.0], 1.0, material([1.0, 1.0, 1.0], 0.8, 0.0, 1.0));
     let s = scene(10.0, 1.0, 0.2, vec![light([0.0, 0.0, 1.0], 0.8)], vec![ball]);
-    let (_, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options(101, 101));
+    let (_, glimpses) = glimpse_pass(&s, &SceneGeometry::new(&s), &options(101, 101));
     let pixel_angle = 2.0 * 0.5f64.tan() / 101.0;
     let expected = (2.0 / 9.0) / pixel_angle;
     let centre = glimpses[50 * 101 + 50].finest;
@@ -709,7 +710,7 @@ fn a_glimpse_follows_the_beam_through_a_curved_mirror() {
     let mirror = sphere([0.0, 0.0, 0.0], 1.0, material([1.0, 1.0, 1.0], 0.0, 0.9, 1.0));
     let behind = sphere([0.0, 0.0, 20.0], 2.0, material([1.0, 1.0, 1.0], 1.0, 0.0, 1.0));
     let s = scene(10.0, 1.0, 0.5, vec![], vec![mirror, behind]);
-    let (_, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options(101, 101));
+    let (_, glimpses) = glimpse_pass(&s, &SceneGeometry::new(&s), &options(101, 101));
     let pixel_angle = 2.0 * 0.5f64.tan() / 101.0;
     let expected = 4.0 / (332.0 * pixel_angle);
     let centre = glimpses[50 * 101 + 50].finest;
@@ -726,7 +727,7 @@ fn glimpse_signatures_change_where_the_colour_may_jump() {
     let block = cube([-2.0, 0.0, 0.0], [2.0, 2.0, 2.0], turned, matt([0.2, 0.6, 1.0]));
     let ball = sphere([2.5, 1.0, 0.0], 1.0, matt([1.0, 0.3, 0.1]));
     let s = scene(12.0, 1.0, 0.2, vec![light([0.3, 0.5, 1.0], 0.8)], vec![wall, block, ball]);
-    let (image, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &options(160, 120));
+    let (image, glimpses) = glimpse_pass(&s, &SceneGeometry::new(&s), &options(160, 120));
     // The wall and each face of the box are flat and matt: one colour each,
     // in light or in shadow. The most frequent colours are the lit wall,
     // the wall in the shadows, and the faces.
@@ -777,7 +778,7 @@ fn adaptive_on_a_flat_image_is_the_one_sample_image() {
     let wall = plane([0.0, 0.0, 1.0], -5.0, material([0.8, 0.4, 0.2], 0.9, 0.0, 1.0));
     let s = scene(10.0, 0.8, 0.2, vec![light([0.2, 0.5, 1.0], 0.7)], vec![wall]);
     let base = options(40, 30);
-    let (one, glimpses) = glimpse_pass(&s, &Prepared::new(&s), &base);
+    let (one, glimpses) = glimpse_pass(&s, &SceneGeometry::new(&s), &base);
     assert!(refinement_mask(&one, &glimpses).iter().all(|&f| !f));
     let (adaptive, stats) = render_with(&s, &RenderOptions { samples: 16, adaptive: true, ..base });
     assert!(adaptive == one);

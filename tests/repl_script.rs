@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{Prepared, RenderControl, RenderOptions, render};
+use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, render};
 use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
 
 /// A texture that raises no warning.
@@ -442,7 +442,7 @@ fn render_file(file_text: &str, width: u32, height: u32, depth: u32, samples: u3
     interpreter.run(&program).expect("the file runs");
     let scene = interpreter.into_scene();
     let options = RenderOptions { width, height, depth, samples, ..RenderOptions::default() };
-    render(&scene, &Prepared::new(&scene), &options, &RenderControl::default()).expect("not cancelled").0
+    render(&scene, &SceneGeometry::new(&scene), &options, &RenderControl::default()).expect("not cancelled").0
 }
 
 fn read_rgb(path: &Path) -> image::RgbImage {

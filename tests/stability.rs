@@ -17,7 +17,7 @@ use glam::{DMat3, DVec3};
 use image::RgbImage;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_items};
 use rayrepl::render::shade::offset_origin;
-use rayrepl::render::{Prepared, PrimaryRays, Ray, RenderControl, RenderOptions, Screen, Skips, render};
+use rayrepl::render::{PrimaryRays, Ray, RenderControl, RenderOptions, SceneGeometry, Screen, Skips, render};
 use rayrepl::scene::{Material, Scene, Shape};
 
 mod common;
@@ -51,7 +51,7 @@ fn options(width: u32, height: u32, depth: u32) -> RenderOptions {
 fn render_in_pool(scene: &Scene, options: &RenderOptions, threads: usize) -> RgbImage {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a rayon pool");
     pool.install(|| {
-        let prepared = Prepared::new(scene);
+        let prepared = SceneGeometry::new(scene);
         render(scene, &prepared, options, &RenderControl::default()).expect("no cancel flag").0
     })
 }
@@ -72,7 +72,7 @@ fn render_checked(scene: &Scene, options: &RenderOptions) -> RgbImage {
 /// offset origin. Shadow rays start from that same origin along unit light
 /// directions, so they are covered too. Returns the number of hits checked.
 fn assert_sane_paths(scene: &Scene, options: &RenderOptions) -> usize {
-    let prepared = Prepared::new(scene);
+    let prepared = SceneGeometry::new(scene);
     let rays = PrimaryRays::new(&scene.camera, options.width, options.height, options.screen);
     let mut hits = 0;
     for j in 0..options.height {
@@ -167,7 +167,7 @@ fn count_near(image: &RgbImage, expected: [u8; 3], tolerance: u8) -> usize {
 /// Pixels whose primary ray hits `target`'s face with the given outward
 /// normal (within `1e-9`), and the image's bytes there.
 fn face_pixels(scene: &Scene, options: &RenderOptions, image: &RgbImage, normal: DVec3) -> Vec<[u8; 3]> {
-    let prepared = Prepared::new(scene);
+    let prepared = SceneGeometry::new(scene);
     let rays = PrimaryRays::new(&scene.camera, options.width, options.height, Screen::Centered);
     let mut out = Vec::new();
     for j in 0..options.height {
@@ -543,7 +543,7 @@ fn a_thousand_reflections_inside_a_sphere_stay_on_it() {
     let m = material([0.8, 0.6, 0.4], 0.5, 0.4, 20.0);
     let center = DVec3::new(0.5, -0.3, 0.2);
     let s = scene(3.0, 1.2, 0.3, vec![], vec![sphere(center.into(), 20.0, m)]);
-    let prepared = Prepared::new(&s);
+    let prepared = SceneGeometry::new(&s);
     let rays = PrimaryRays::new(&s.camera, 8, 6, Screen::Centered);
     let mut worst: f64 = 0.0;
     for (i, j) in [(0, 0), (3, 2), (7, 5), (1, 4)] {

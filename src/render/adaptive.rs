@@ -12,7 +12,7 @@
 
 use image::RgbImage;
 
-use super::geometry::{Prepared, SurfaceHit};
+use super::geometry::{SceneGeometry, SurfaceHit};
 use super::intersect::Ray;
 use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
 use super::pixels::Pass;
@@ -168,7 +168,7 @@ pub fn refinement_mask(image: &RgbImage, glimpses: &[Glimpse]) -> Vec<bool> {
 /// picks.
 pub(crate) fn render_two_passes(
     scene: &Scene,
-    geometry: &Prepared,
+    geometry: &SceneGeometry,
     options: &RenderOptions,
     control: &RenderControl,
     refined: Option<&[bool]>,
@@ -195,7 +195,7 @@ pub(crate) fn render_two_passes(
 /// rendered at its centre, and the [`Glimpse`] of each pixel's ray (row
 /// major). [`refinement_mask`] of the two gives the pixels the second pass
 /// renders again.
-pub fn glimpse_pass(scene: &Scene, geometry: &Prepared, options: &RenderOptions) -> (RgbImage, Vec<Glimpse>) {
+pub fn glimpse_pass(scene: &Scene, geometry: &SceneGeometry, options: &RenderOptions) -> (RgbImage, Vec<Glimpse>) {
     let control = RenderControl::default();
     let pass = Pass::new(scene, geometry, options, &control, 1);
     let mut image = RgbImage::new(options.width, options.height);

@@ -3,7 +3,7 @@
 //! directly), and the materials.
 //!
 //! An animation keeps the part that does not depend on `time` across frames
-//! ([`Prepared::with_static`]) and rebuilds only the rest.
+//! ([`SceneGeometry::with_static`]) and rebuilds only the rest.
 
 use std::sync::Arc;
 
@@ -48,7 +48,7 @@ pub struct SurfaceHit {
     pub normal: DVec3,
     /// The material of the object hit.
     pub material: Material,
-    /// Whether the object hit depends on `time` (is in [`Prepared::timed`]).
+    /// Whether the object hit depends on `time` (is in [`SceneGeometry::timed`]).
     pub timed: bool,
     /// Which object was hit: equal for two hits of one render exactly when
     /// they are on the same object.
@@ -163,7 +163,7 @@ impl Geometry {
     }
 }
 
-/// What blocks a shadow ray ([`Prepared::blocker`]).
+/// What blocks a shadow ray ([`SceneGeometry::blocker`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Blocker {
     /// Nothing: the light is visible.
@@ -177,7 +177,7 @@ pub enum Blocker {
 /// A scene's geometry split for animations: the static part (built once,
 /// shared across frames) and the part that depends on `time`.
 #[derive(Debug, Clone, Default)]
-pub struct Prepared {
+pub struct SceneGeometry {
     static_part: Arc<Geometry>,
     timed: Geometry,
     /// Both parts in one flat list, when both are small.
@@ -196,27 +196,27 @@ impl ObjectId {
     }
 }
 
-impl Prepared {
+impl SceneGeometry {
     /// Prepares both parts of `scene`.
-    pub fn new(scene: &Scene) -> Prepared {
+    pub fn new(scene: &Scene) -> SceneGeometry {
         let (static_part, timed) =
             rayon::join(|| Geometry::build(&scene.primitives), || Geometry::build(&scene.timed_primitives));
-        Prepared::from_parts(Arc::new(static_part), timed)
+        SceneGeometry::from_parts(Arc::new(static_part), timed)
     }
 
     /// Reuses an already built static part and prepares only `timed`
     /// (the next frame of an animation).
-    pub fn with_static(static_part: Arc<Geometry>, timed: &[Primitive]) -> Prepared {
-        Prepared::from_parts(static_part, Geometry::build(timed))
+    pub fn with_static(static_part: Arc<Geometry>, timed: &[Primitive]) -> SceneGeometry {
+        SceneGeometry::from_parts(static_part, Geometry::build(timed))
     }
 
-    fn from_parts(static_part: Arc<Geometry>, timed: Geometry) -> Prepared {
+    fn from_parts(static_part: Arc<Geometry>, timed: Geometry) -> SceneGeometry {
         let merged = if timed.is_empty() { None } else { Geometry::concat_flat(&static_part, &timed) };
-        Prepared { static_part, timed, merged }
+        SceneGeometry { static_part, timed, merged }
     }
 
     /// The geometry of [`Scene::primitives`], the same for every frame of an
-    /// animation: pass it to [`Prepared::with_static`] for the next frame.
+    /// animation: pass it to [`SceneGeometry::with_static`] for the next frame.
     pub fn static_part(&self) -> &Arc<Geometry> {
         &self.static_part
     }
@@ -256,13 +256,13 @@ impl Prepared {
 
     /// The planes, of both parts, that can block rays along `dir` (a
     /// light's direction): those with `n·dir < 0`. Shadow rays towards that
-    /// light test only these, with [`Prepared::blocked`].
+    /// light test only these, with [`SceneGeometry::blocked`].
     pub fn planes_blocking(&self, dir: DVec3) -> Vec<PlaneShape> {
         self.static_part.planes_facing(dir).chain(self.timed.planes_facing(dir)).collect()
     }
 
-    /// The same answer as [`Prepared::any_hit`] for a ray whose direction
-    /// is the one `planes` was made for by [`Prepared::planes_blocking`].
+    /// The same answer as [`SceneGeometry::any_hit`] for a ray whose direction
+    /// is the one `planes` was made for by [`SceneGeometry::planes_blocking`].
     ///
     /// Such a plane stops the ray exactly when its origin is on the seen
     /// side (`n·S > d`): moving towards the plane from there, it meets it at
@@ -278,7 +278,7 @@ impl Prepared {
         }
     }
 
-    /// [`Prepared::blocked`], saying which part blocks the ray (the static
+    /// [`SceneGeometry::blocked`], saying which part blocks the ray (the static
     /// part is asked first), for a scene whose timed part has no plane:
     /// frame reuse needs to know whether the answer can change with `time`.
     #[inline]

@@ -2,9 +2,9 @@
 //! and the parallel loop over the image.
 //!
 //! ```no_run
-//! # use rayrepl::render::{render, Prepared, RenderControl, RenderOptions};
+//! # use rayrepl::render::{render, SceneGeometry, RenderControl, RenderOptions};
 //! # fn demo(scene: &rayrepl::scene::Scene) {
-//! let prepared = Prepared::new(scene);
+//! let prepared = SceneGeometry::new(scene);
 //! let options = RenderOptions { width: 800, height: 600, ..RenderOptions::default() };
 //! let (image, stats) = render(scene, &prepared, &options, &RenderControl::default()).expect("not cancelled");
 //! # }
@@ -14,11 +14,11 @@
 //! per frame:
 //!
 //! ```no_run
-//! # use rayrepl::render::{render, Prepared, RenderControl, RenderOptions};
+//! # use rayrepl::render::{render, SceneGeometry, RenderControl, RenderOptions};
 //! # fn demo(frames: &[rayrepl::scene::Scene], options: &RenderOptions) {
-//! let first = Prepared::new(&frames[0]);
+//! let first = SceneGeometry::new(&frames[0]);
 //! for scene in frames {
-//!     let prepared = Prepared::with_static(first.static_part().clone(), &scene.timed_primitives);
+//!     let prepared = SceneGeometry::with_static(first.static_part().clone(), &scene.timed_primitives);
 //!     let (image, _) = render(scene, &prepared, options, &RenderControl::default()).expect("not cancelled");
 //! }
 //! # }
@@ -36,11 +36,11 @@ pub mod bvh;
 pub mod camera;
 pub mod geometry;
 pub mod intersect;
+pub mod moving_bounds;
 mod options;
 mod pixels;
 pub mod reuse;
 pub mod shade;
-pub mod sweep;
 
 use std::time::Instant;
 
@@ -48,7 +48,7 @@ use image::RgbImage;
 
 pub use adaptive::{ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, FINE_DETAIL, Glimpse, glimpse_pass, refinement_mask};
 pub use camera::{PrimaryRays, Screen, sample_offsets};
-pub use geometry::{Geometry, Prepared, SurfaceHit};
+pub use geometry::{Geometry, SceneGeometry, SurfaceHit};
 pub use intersect::Ray;
 pub use options::{
     Cancelled, MAX_DEPTH, REFERENCE_SAMPLES, RayCounts, RenderControl, RenderOptions, RenderStats, Skips,
@@ -65,7 +65,7 @@ use crate::scene::Scene;
 /// `control.cancel` was set during the render.
 pub fn render(
     scene: &Scene,
-    prepared: &Prepared,
+    prepared: &SceneGeometry,
     options: &RenderOptions,
     control: &RenderControl,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
@@ -84,7 +84,7 @@ pub fn render(
 /// If `refined` does not hold one flag per pixel.
 pub fn render_refining(
     scene: &Scene,
-    prepared: &Prepared,
+    prepared: &SceneGeometry,
     options: &RenderOptions,
     refined: &[bool],
     control: &RenderControl,
@@ -97,7 +97,7 @@ pub fn render_refining(
 /// when `None`, detected by [`refinement_mask`].
 fn render_with(
     scene: &Scene,
-    prepared: &Prepared,
+    prepared: &SceneGeometry,
     options: &RenderOptions,
     control: &RenderControl,
     given: Option<&[bool]>,
@@ -139,7 +139,7 @@ mod tests {
     #[test]
     fn adaptive_pixels_hold_the_bytes_of_their_last_pass() {
         let s = scene();
-        let prepared = Prepared::new(&s);
+        let prepared = SceneGeometry::new(&s);
         let adaptive = RenderOptions { width: 80, height: 60, samples: 16, adaptive: true, ..RenderOptions::default() };
         let uniform = RenderOptions { adaptive: false, ..adaptive };
         let control = RenderControl::default();

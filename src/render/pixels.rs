@@ -11,7 +11,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::camera::{PrimaryRays, sample_offsets};
-use super::geometry::Prepared;
+use super::geometry::SceneGeometry;
 use super::options::{Cancelled, RayCounts, RenderControl, RenderOptions};
 use super::shade::{Lighting, PathObserver, Tracer};
 use crate::scene::Scene;
@@ -27,7 +27,7 @@ pub(crate) struct Pass<'a> {
     /// Where the samples of a pixel lie in it.
     pub offsets: Vec<DVec2>,
     lighting: Lighting<'a>,
-    geometry: &'a Prepared,
+    geometry: &'a SceneGeometry,
     width: u32,
     control: &'a RenderControl<'a>,
     /// Whether progress counts the pixels of this pass.
@@ -39,7 +39,7 @@ impl<'a> Pass<'a> {
     /// with `samples` samples each.
     pub fn new(
         scene: &'a Scene,
-        geometry: &'a Prepared,
+        geometry: &'a SceneGeometry,
         options: &RenderOptions,
         control: &'a RenderControl<'a>,
         samples: u32,

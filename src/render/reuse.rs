@@ -5,12 +5,12 @@
 //! It applies when the camera, the ambient light, the lights and the planes
 //! are the same in every frame, and only bounded objects (spheres, boxes)
 //! depend on `time` ([`FrameReuse::applies`]). A traced pixel records the
-//! last frame its bytes hold for ([`super::sweep`] says why that is exact);
+//! last frame its bytes hold for ([`super::moving_bounds`] says why that is exact);
 //! it is traced again in the frame after that.
 //!
 //! ```no_run
-//! # use rayrepl::render::{FrameReuse, Prepared, RenderControl, RenderOptions};
-//! # fn demo(frames: &[(rayrepl::scene::Scene, Prepared)], options: &RenderOptions) {
+//! # use rayrepl::render::{FrameReuse, SceneGeometry, RenderControl, RenderOptions};
+//! # fn demo(frames: &[(rayrepl::scene::Scene, SceneGeometry)], options: &RenderOptions) {
 //! let mut reuse = FrameReuse::new(frames.iter().map(|(_, prepared)| prepared), options);
 //! for (scene, prepared) in frames {
 //!     let (image, _) = reuse.render(scene, prepared, &RenderControl::default()).expect("not cancelled");
@@ -22,18 +22,18 @@ use std::time::Instant;
 
 use image::RgbImage;
 
-use super::geometry::{Blocker, Prepared, SurfaceHit};
+use super::geometry::{Blocker, SceneGeometry, SurfaceHit};
 use super::intersect::Ray;
+use super::moving_bounds::MovingBounds;
 use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
 use super::pixels::Pass;
 use super::shade::PathObserver;
-use super::sweep::Sweep;
 use crate::scene::Scene;
 
 /// The state carried from one frame of a run to the next.
 #[derive(Debug)]
 pub struct FrameReuse {
-    sweep: Sweep,
+    moving_bounds: MovingBounds,
     options: RenderOptions,
     /// The frame [`FrameReuse::render`] renders next (0 for the first).
     next: u32,
@@ -60,23 +60,23 @@ impl FrameReuse {
     /// nothing but bounded objects depends on `time`, and no adaptive
     /// anti-aliasing (whose choice of pixels looks at their neighbours).
     /// Each later frame must also pass [`FrameReuse::holds_for`].
-    pub fn applies(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> bool {
+    pub fn applies(scene: &Scene, prepared: &SceneGeometry, options: &RenderOptions) -> bool {
         !options.is_adaptive() && FrameReuse::holds_for(scene, prepared)
     }
 
     /// Whether one frame keeps the camera, ambient light, lights and planes
     /// fixed.
-    pub fn holds_for(scene: &Scene, prepared: &Prepared) -> bool {
+    pub fn holds_for(scene: &Scene, prepared: &SceneGeometry) -> bool {
         let time_use = scene.time_use;
         !(time_use.camera || time_use.ambient || time_use.lights || prepared.has_timed_planes())
     }
 
     /// Frame reuse over the frames whose geometry is `frames`, in order,
     /// rendered with `options`.
-    pub fn new<'a>(frames: impl IntoIterator<Item = &'a Prepared>, options: &RenderOptions) -> FrameReuse {
-        let bounds: Vec<_> = frames.into_iter().map(Prepared::timed_bounds).collect();
+    pub fn new<'a>(frames: impl IntoIterator<Item = &'a SceneGeometry>, options: &RenderOptions) -> FrameReuse {
+        let bounds: Vec<_> = frames.into_iter().map(SceneGeometry::timed_bounds).collect();
         FrameReuse {
-            sweep: Sweep::new(bounds.iter().map(Vec::as_slice)),
+            moving_bounds: MovingBounds::new(bounds.iter().map(Vec::as_slice)),
             options: *options,
             next: 0,
             image: None,
@@ -91,11 +91,11 @@ impl FrameReuse {
     pub fn render(
         &mut self,
         scene: &Scene,
-        prepared: &Prepared,
+        prepared: &SceneGeometry,
         control: &RenderControl,
     ) -> Result<(RgbImage, RenderStats), Cancelled> {
         let frame = self.next;
-        assert!(frame < self.sweep.frames(), "more frames rendered than given to FrameReuse::new");
+        assert!(frame < self.moving_bounds.frames(), "more frames rendered than given to FrameReuse::new");
         self.next += 1;
         if !self.watching {
             return super::render(scene, prepared, &self.options, control);
@@ -116,8 +116,8 @@ impl FrameReuse {
             return super::render(scene, prepared, &self.options, control);
         }
         let start = Instant::now();
-        let last_frame = self.sweep.frames() - 1;
-        let watch = ValidityWatch { sweep: &self.sweep, frame, valid_until: last_frame };
+        let last_frame = self.moving_bounds.frames() - 1;
+        let watch = ValidityWatch { moving_bounds: &self.moving_bounds, frame, valid_until: last_frame };
         let mut watches = vec![watch; pixels];
         let pass = Pass::new(scene, prepared, &self.options, control, self.options.samples);
         let done = pass.run(&mut image, Some(&stale), &mut watches);
@@ -138,11 +138,11 @@ impl FrameReuse {
 }
 
 /// Frame reuse's observer of one pixel's paths: works out the last frame
-/// for which they give the same colours (see [`super::sweep`]).
+/// for which they give the same colours (see [`super::moving_bounds`]).
 #[derive(Debug, Clone, Copy)]
 struct ValidityWatch<'a> {
     /// The frames' moving objects.
-    sweep: &'a Sweep,
+    moving_bounds: &'a MovingBounds,
     /// The frame being traced.
     frame: u32,
     /// The last frame for which the paths seen so far hold.
@@ -158,8 +158,11 @@ impl ValidityWatch<'_> {
         if self.valid_until <= self.frame {
             return;
         }
-        self.valid_until =
-            if timed { self.frame } else { self.valid_until.min(self.sweep.first_meeting(ray, t, self.frame) - 1) };
+        self.valid_until = if timed {
+            self.frame
+        } else {
+            self.valid_until.min(self.moving_bounds.first_meeting(ray, t, self.frame) - 1)
+        };
     }
 }
 

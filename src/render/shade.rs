@@ -13,7 +13,7 @@
 
 use glam::DVec3;
 
-use super::geometry::{Blocker, Prepared, SurfaceHit};
+use super::geometry::{Blocker, SceneGeometry, SurfaceHit};
 use super::intersect::{PlaneShape, Ray};
 use super::options::{MAX_DEPTH, RayCounts, Skips};
 use crate::scene::{Light, Material, Scene};
@@ -52,7 +52,7 @@ pub(crate) struct Lighting<'a> {
     /// The lights.
     pub lights: &'a [Light],
     /// For each light, the planes that can block rays towards it
-    /// ([`Prepared::planes_blocking`]).
+    /// ([`SceneGeometry::planes_blocking`]).
     pub blocking_planes: Vec<Vec<PlaneShape>>,
     /// Number of reflections followed (SPEC 6 `depth`).
     pub depth: u32,
@@ -63,7 +63,7 @@ pub(crate) struct Lighting<'a> {
 impl<'a> Lighting<'a> {
     /// The lighting of `scene`, whose geometry is `geometry`, followed down
     /// to `depth` reflections (at most [`MAX_DEPTH`]).
-    pub fn new(scene: &'a Scene, geometry: &Prepared, depth: u32, skips: Skips) -> Lighting<'a> {
+    pub fn new(scene: &'a Scene, geometry: &SceneGeometry, depth: u32, skips: Skips) -> Lighting<'a> {
         let blocking_planes = scene.lights.iter().map(|l| geometry.planes_blocking(l.direction)).collect();
         Lighting { ambient: scene.ambient, lights: &scene.lights, blocking_planes, depth: depth.min(MAX_DEPTH), skips }
     }
@@ -71,7 +71,7 @@ impl<'a> Lighting<'a> {
 
 /// Traces paths through a scene's geometry and counts the rays.
 pub(crate) struct Tracer<'a> {
-    geometry: &'a Prepared,
+    geometry: &'a SceneGeometry,
     lighting: &'a Lighting<'a>,
     /// Rays traced so far.
     pub counts: RayCounts,
@@ -79,7 +79,7 @@ pub(crate) struct Tracer<'a> {
 
 impl<'a> Tracer<'a> {
     /// A tracer over `geometry` with the image constants `lighting`.
-    pub fn new(geometry: &'a Prepared, lighting: &'a Lighting<'a>) -> Tracer<'a> {
+    pub fn new(geometry: &'a SceneGeometry, lighting: &'a Lighting<'a>) -> Tracer<'a> {
         Tracer { geometry, lighting, counts: RayCounts::default() }
     }
 

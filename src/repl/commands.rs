@@ -10,7 +10,7 @@ use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
 use crate::output::{self, Content, FrameSink, OutputError};
 use crate::progress::Progress;
-use crate::render::{Prepared, RenderControl};
+use crate::render::{RenderControl, SceneGeometry};
 use crate::scene::Scene;
 use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH, check_size, parse_time};
 
@@ -495,7 +495,8 @@ fn render_scene(
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
     let tick = |pixels: u64| progress.advance(pixels);
-    let image = render_image(scene, &Prepared::new(scene), size, settings, cancel, &tick).map_err(render_failure)?;
+    let image =
+        render_image(scene, &SceneGeometry::new(scene), size, settings, cancel, &tick).map_err(render_failure)?;
     Ok((image, started.elapsed()))
 }
 

@@ -5,7 +5,7 @@ use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use crate::render::{Cancelled, Prepared, RenderControl, RenderOptions, render};
+use crate::render::{Cancelled, RenderControl, RenderOptions, SceneGeometry, render};
 use crate::scene::Scene;
 pub use crate::settings::RenderSettings;
 
@@ -38,7 +38,7 @@ pub(crate) enum RenderError {
 /// is raised and reports finished pixels to `progress`, for the progress bar.
 pub(crate) fn render_image(
     scene: &Scene,
-    prepared: &Prepared,
+    prepared: &SceneGeometry,
     size: Size,
     settings: &RenderSettings,
     cancel: &AtomicBool,
@@ -73,7 +73,7 @@ mod tests {
         let size = Size { width: 64, height: 64 };
         let settings = RenderSettings::default();
         let cancel = AtomicBool::new(true);
-        let result = render_image(&scene, &Prepared::new(&scene), size, &settings, &cancel, &|_| {});
+        let result = render_image(&scene, &SceneGeometry::new(&scene), size, &settings, &cancel, &|_| {});
         assert_eq!(result, Err(RenderError::Cancelled));
     }
 
@@ -85,7 +85,8 @@ mod tests {
         let count = |done: u64| {
             pixels.fetch_add(done as usize, Ordering::Relaxed);
         };
-        let image = render_image(&scene, &Prepared::new(&scene), size, &RenderSettings::default(), &cancel, &count);
+        let image =
+            render_image(&scene, &SceneGeometry::new(&scene), size, &RenderSettings::default(), &cancel, &count);
         assert_eq!(image.map(|i| i.dimensions()), Ok((40, 20)));
         assert_eq!(pixels.load(Ordering::Relaxed), 800);
     }

@@ -20,7 +20,7 @@ use std::time::Duration;
 use image::RgbImage;
 use plotters::prelude::*;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{Prepared, RenderControl, RenderOptions, Skips, render, render_refining};
+use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, Skips, render, render_refining};
 use rayrepl::scene::Scene;
 
 /// The benchmark scenes measured (sponge5, 3.2 million boxes, is left out:
@@ -113,7 +113,7 @@ fn main() {
                 std::process::exit(1);
             }
         };
-        let prepared = Prepared::new(&scene);
+        let prepared = SceneGeometry::new(&scene);
         let reference_options = RenderOptions { samples: 256, skips: Skips::none(), ..base };
         let (reference, reference_time, _) = render_once(&scene, &prepared, &reference_options);
         eprintln!("{name}: reference in {:.2} s", reference_time.as_secs_f64());
@@ -261,7 +261,7 @@ fn ideal_pixels(one_sample: &RgbImage, uniform16: &RgbImage, reference: &RgbImag
 }
 
 /// One render, its wall-clock time and its primary rays per pixel.
-fn render_once(scene: &Scene, prepared: &Prepared, options: &RenderOptions) -> (RgbImage, Duration, f64) {
+fn render_once(scene: &Scene, prepared: &SceneGeometry, options: &RenderOptions) -> (RgbImage, Duration, f64) {
     let (image, stats) = render(scene, prepared, options, &RenderControl::default()).expect("nothing cancels it");
     let pixels = f64::from(options.width) * f64::from(options.height);
     (image, stats.elapsed, stats.rays.primary as f64 / pixels)

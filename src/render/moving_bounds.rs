@@ -7,7 +7,7 @@
 //! its rays gives the same answer in a later frame `j` unless an object of
 //! frame `j` lies on the part of the ray that was looked at: a closest-hit
 //! ray between its origin and its hit, a shadow ray that the fixed part did
-//! not block anywhere along it. [`Sweep::first_meeting`] answers the first
+//! not block anywhere along it. [`MovingBounds::first_meeting`] answers the first
 //! such frame, so the pixel can be copied until then, byte for byte.
 //!
 //! The boxes are padded (see [`PAD`]) and the slab test treats a zero
@@ -35,7 +35,7 @@ pub const PAD: f64 = 1e-6;
 
 /// The boxes of the moving objects in each frame of a run of frames.
 #[derive(Debug, Clone)]
-pub struct Sweep {
+pub struct MovingBounds {
     frames: u32,
     /// The tree, depth first: an interior node's first child follows it.
     nodes: Vec<Node>,
@@ -65,10 +65,10 @@ struct Node {
 /// Most items in a leaf.
 const LEAF_ITEMS: usize = 4;
 
-impl Sweep {
+impl MovingBounds {
     /// A sweep over `frames`, each given as the boxes of its moving objects
     /// (frame 0 first).
-    pub fn new<'a>(frames: impl IntoIterator<Item = &'a [Aabb]>) -> Sweep {
+    pub fn new<'a>(frames: impl IntoIterator<Item = &'a [Aabb]>) -> MovingBounds {
         let mut items = Vec::new();
         let mut count = 0;
         for (frame, boxes) in frames.into_iter().enumerate() {
@@ -79,7 +79,7 @@ impl Sweep {
         if !items.is_empty() {
             build(&mut items, 0, &mut nodes);
         }
-        Sweep { frames: count, nodes, items }
+        MovingBounds { frames: count, nodes, items }
     }
 
     /// Number of frames.
@@ -88,7 +88,7 @@ impl Sweep {
     }
 
     /// The first frame after `after` with a moving object whose box meets
-    /// the ray somewhere in `[0, t_max]`, or [`Sweep::frames`] if none does.
+    /// the ray somewhere in `[0, t_max]`, or [`MovingBounds::frames`] if none does.
     pub fn first_meeting(&self, ray: &Ray, t_max: f64, after: u32) -> u32 {
         // The far end moves out a little, like the boxes: a moving object
         // hit just beyond the recorded hit, within rounding, still counts.
@@ -212,9 +212,9 @@ mod tests {
     }
 
     /// Frame f has a unit box centred at x = f.
-    fn marching(frames: u32) -> Sweep {
+    fn marching(frames: u32) -> MovingBounds {
         let frames: Vec<Vec<Aabb>> = (0..frames).map(|f| unit_box_at(f64::from(f))).collect();
-        Sweep::new(frames.iter().map(Vec::as_slice))
+        MovingBounds::new(frames.iter().map(Vec::as_slice))
     }
 
     fn down_at(x: f64) -> Ray {
@@ -254,7 +254,7 @@ mod tests {
     #[test]
     fn frames_without_moving_objects_meet_nothing() {
         let frames = [unit_box_at(0.0), vec![], unit_box_at(0.0)];
-        let sweep = Sweep::new(frames.iter().map(Vec::as_slice));
+        let sweep = MovingBounds::new(frames.iter().map(Vec::as_slice));
         assert_eq!(sweep.frames(), 3);
         assert_eq!(sweep.first_meeting(&down_at(0.0), f64::INFINITY, 0), 2);
     }
