@@ -6,7 +6,8 @@
 //!                  + ks * colour(reflected ray) )        Hj = normalize(Lj - V)
 //! ```
 //!
-//! [`Tracer`]'s `colour` is that formula, one level of reflection per call.
+//! [`Tracer`]'s `trace` computes it level by level down a path of mirror
+//! reflections and folds the levels back up.
 //! What frame reuse and adaptive anti-aliasing learn about a path reaches
 //! them through a [`PathObserver`]; the unit observer `()` does nothing and
 //! compiles away.
@@ -75,32 +76,69 @@ pub(crate) struct Tracer<'a> {
     lighting: &'a Lighting<'a>,
     /// Rays traced so far.
     pub counts: RayCounts,
+    /// The levels of the path being traced (a buffer kept for reuse; at
+    /// most `depth + 1` long).
+    levels: Vec<Level>,
+}
+
+/// One level of a path: the local colour and the weight `ks` of the
+/// reflection term (0 when there is none).
+#[derive(Debug, Clone, Copy)]
+struct Level {
+    local: DVec3,
+    ks: f64,
 }
 
 impl<'a> Tracer<'a> {
     /// A tracer over `geometry` with the image constants `lighting`.
     pub fn new(geometry: &'a SceneGeometry, lighting: &'a Lighting<'a>) -> Tracer<'a> {
-        Tracer { geometry, lighting, counts: RayCounts::default() }
+        Tracer { geometry, lighting, counts: RayCounts::default(), levels: Vec::with_capacity(8) }
     }
 
-    /// The colour seen along a camera ray, each component in [0, 1].
-    #[inline]
+    /// SPEC 6: the colour seen along a camera ray, each component in [0, 1].
+    ///
+    /// Down the path of mirror reflections, each level's local colour (all
+    /// of the formula but the reflection term) and its `ks` are recorded, to
+    /// level `depth` at most; back up, `colour = clamp(local + ks *
+    /// colour(reflected ray))` folds them, clamping at every level. Below
+    /// the last level the colour is black: the ray met nothing, or the
+    /// reflection term is dropped. (A loop, not recursion: measured faster.)
     pub fn trace<O: PathObserver>(&mut self, primary: &Ray, observer: &mut O) -> DVec3 {
         self.counts.primary += 1;
-        self.colour(*primary, 0, 1.0, observer)
+        let mut levels = std::mem::take(&mut self.levels);
+        levels.clear();
+        let (mut ray, mut weight) = (*primary, 1.0);
+        loop {
+            let found = self.geometry.closest_hit(&ray);
+            observer.hit(&ray, found.as_ref(), weight);
+            let Some(hit) = found else { break };
+            // Shadow and mirror rays start at P moved off the surface.
+            let origin = offset_origin(hit.point, hit.normal);
+            let local = self.local_colour(&ray, &hit, origin, observer);
+            let ks = hit.material.ks;
+            // With ks = 0 the reflection term is `0 * colour = +0`, which
+            // changes nothing.
+            let reflects = levels.len() < self.lighting.depth as usize && (ks != 0.0 || !self.lighting.skips.zero_ks);
+            levels.push(Level { local, ks: if reflects { ks } else { 0.0 } });
+            if !reflects {
+                break;
+            }
+            self.counts.reflection += 1;
+            weight *= ks;
+            ray = reflected(&ray, &hit, origin);
+        }
+        let colour = levels.iter().rev().fold(DVec3::ZERO, |next, level| clamp_unit(level.local + next * level.ks));
+        self.levels = levels;
+        colour
     }
 
-    /// SPEC 6: the colour seen along `ray`, a ray of reflection level
-    /// `level` (0 for a camera ray) whose colour reaches the pixel with
-    /// weight `weight`: black where it meets nothing, clamped at every level.
-    fn colour<O: PathObserver>(&mut self, ray: Ray, level: u32, weight: f64, observer: &mut O) -> DVec3 {
-        let found = self.geometry.closest_hit(&ray);
-        observer.hit(&ray, found.as_ref(), weight);
-        let Some(hit) = found else { return DVec3::ZERO };
+    /// All of SPEC 6's formula at `hit` but the reflection term: the ambient
+    /// part and, for each light on the front side that nothing blocks, the
+    /// diffuse and specular parts. Shadow rays start at `origin`.
+    #[inline(always)]
+    fn local_colour<O: PathObserver>(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3, observer: &mut O) -> DVec3 {
         let Material { color, kd, ks, phong } = hit.material;
         let (n, skips) = (hit.normal, self.lighting.skips);
-        // Shadow and mirror rays start at P moved off the surface.
-        let origin = offset_origin(hit.point, n);
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
         for (light, planes) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes) {
@@ -130,13 +168,7 @@ impl<'a> Tracer<'a> {
                 c += color * (ks * phong_power(n_dot_h.max(0.0), phong) * light.intensity);
             }
         }
-        // + ks * colour(reflected ray), down to level `depth`. With ks = 0
-        // the term is `0 * colour = +0`, which changes nothing.
-        if level < self.lighting.depth && (ks != 0.0 || !skips.zero_ks) {
-            self.counts.reflection += 1;
-            c += self.colour(reflected(&ray, &hit, origin), level + 1, weight * ks, observer) * ks;
-        }
-        clamp_unit(c)
+        c
     }
 
     /// Whether nothing blocks the shadow ray `ray`, whose direction is the
