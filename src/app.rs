@@ -67,7 +67,7 @@ fn session_options(cli: &Cli) -> SessionOptions {
 
 /// The evaluator's limits from the command line.
 fn limits(cli: &Cli) -> Limits {
-    Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives }
+    Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives, ..Limits::DEFAULT }
 }
 
 /// Prints a batch error, if any, and gives the exit code.

@@ -173,3 +173,60 @@ fn a_file_given_with_i_is_loaded_first() {
     session.expect("s = 8").unwrap();
     assert_eq!(leave(session), 0);
 }
+
+#[test]
+fn prompts_number_the_inputs_that_messages_name() {
+    let (mut session, _home) = plain();
+    session.send_line("let a = 1").unwrap();
+    session.expect("[2] ray> ").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("[3] ray> ").unwrap();
+    session.send_line("let b = nowhere").unwrap();
+    session.expect("<input 3>:1:9").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn a_broken_line_is_reported_at_once_and_the_entry_comes_back() {
+    let (mut session, _home) = plain();
+    session.send_line("proc p()").unwrap();
+    session.expect("...proc> ").unwrap();
+    // `sphre` could be an object's name, but not followed by `radius`.
+    session.send_line("  put sphre radius 1").unwrap();
+    session.expect("<input 1>:2:13").unwrap();
+    session.expect("the entry is back in the editor").unwrap();
+    session.expect("put sphre radius 1").unwrap();
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("(input dropped)").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn leaving_in_the_middle_of_an_entry_warns_first() {
+    let (mut session, _home) = plain();
+    session.send_line("proc p()").unwrap();
+    session.expect("...proc> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect("is not finished (`proc p()`, 1 line): Ctrl-D again leaves without it").unwrap();
+    session.expect("...proc> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
+}
+
+#[test]
+fn limits_are_raised_with_a_command_in_the_session() {
+    let (mut session, _home) = plain();
+    session.send_line(":limits calls 50").unwrap();
+    session.expect("calls = 50").unwrap();
+    session.send_line("proc f(n) f(n + 1) end").unwrap();
+    session.expect("defined proc f(n)").unwrap();
+    session.send_line("f(1)").unwrap();
+    session.expect("recursion deeper than 50 calls").unwrap();
+    session.expect("`:limits calls N`").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line("let ball = 1").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("`object ball2 = sphere ... end` names one").unwrap();
+    assert_eq!(leave(session), 0);
+}

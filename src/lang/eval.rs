@@ -65,6 +65,28 @@ pub struct Limits {
     pub max_call_depth: usize,
     /// Most primitives a program may create, in objects and in the scene.
     pub max_primitives: usize,
+    /// How the user raises these limits, for the help of the errors they cause.
+    pub raised_with: RaisedWith,
+}
+
+/// Where the limits are set: flags on the command line, or commands in the
+/// interactive session (where a flag cannot be given any more).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RaisedWith {
+    /// `--max-calls N`, `--max-primitives N`.
+    Flags,
+    /// `:limits calls N`, `:limits primitives N`.
+    Commands,
+}
+
+impl RaisedWith {
+    /// How to raise the limit on calls (`calls`) or primitives (`primitives`).
+    pub(crate) fn how(self, limit: &str) -> String {
+        match self {
+            RaisedWith::Flags => format!("`--max-{limit} N`"),
+            RaisedWith::Commands => format!("`:limits {limit} N`"),
+        }
+    }
 }
 
 impl Limits {
@@ -72,7 +94,8 @@ impl Limits {
     /// primitive limit is set so that a scene at the limit can also be
     /// rendered (the scene and its BVH) within a 24 GB machine, with room to
     /// spare; the README gives the memory it takes.
-    pub const DEFAULT: Limits = Limits { max_call_depth: 100_000, max_primitives: 10_000_000 };
+    pub const DEFAULT: Limits =
+        Limits { max_call_depth: 100_000, max_primitives: 10_000_000, raised_with: RaisedWith::Flags };
 }
 
 impl Default for Limits {

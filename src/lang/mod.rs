@@ -10,6 +10,6 @@ pub mod source;
 pub mod suggest;
 
 pub use diagnostic::{Diagnostic, Severity};
-pub use eval::{Interpreter, Limits};
-pub use parser::{is_incomplete, parse_file, parse_items};
+pub use eval::{Interpreter, Limits, RaisedWith};
+pub use parser::{EntryState, entry_state, is_incomplete, parse_file, parse_items};
 pub use source::{SourceFile, SourceId, SourceMap, Span};

@@ -92,6 +92,30 @@ pub(crate) fn push(mut instrs: Vec<Instr>, kind: InstrKind, span: Span) -> Vec<I
     instrs
 }
 
+/// What a typed entry of the session is, so far.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EntryState {
+    /// It parses: submit it.
+    Complete,
+    /// Everything typed so far starts a valid input: read another line.
+    Unfinished,
+    /// No continuation can make it valid: report the error now, at the line
+    /// that went wrong, instead of after the closing `end`.
+    Broken,
+}
+
+/// Where the session's entry `text` stands. The grammar is LR(1), so it
+/// stops at the first token that no valid input can have there: an error
+/// at the end of the text means only that more is needed.
+pub fn entry_state(text: &str) -> EntryState {
+    let source = SourceId::default();
+    match grammar::ItemsParser::new().parse(source, &ItemOrder::any(), Lexer::new(source, text)) {
+        Ok(_) => EntryState::Complete,
+        Err(ParseError::UnrecognizedEof { .. }) => EntryState::Unfinished,
+        Err(_) => EntryState::Broken,
+    }
+}
+
 /// Whether `text` is an unfinished input that the session should continue on
 /// the next line: a construct opened and not yet closed by `end`, or a line
 /// ending in a binary operator or a comma.
@@ -176,6 +200,17 @@ mod tests {
         }
         assert!(!is_incomplete("let x = (1)"));
         assert!(!is_incomplete("let x = 1 # +"));
+    }
+
+    #[test]
+    fn entries_are_broken_as_soon_as_no_continuation_can_fix_them() {
+        assert_eq!(entry_state("proc p()\n  put ball"), EntryState::Unfinished);
+        assert_eq!(entry_state("proc p()\n  put ball\nend"), EntryState::Complete);
+        assert_eq!(entry_state("proc p()\n  put sphre radius 1"), EntryState::Broken);
+        assert_eq!(entry_state("let x = 1 +"), EntryState::Unfinished);
+        assert_eq!(entry_state("let x = 1 $"), EntryState::Broken);
+        assert_eq!(entry_state("end"), EntryState::Broken);
+        assert_eq!(entry_state(""), EntryState::Complete);
     }
 
     #[test]

@@ -65,6 +65,7 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
     CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },
     CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
+    CommandSpec { name: ":limits", usage: ":limits [calls N] [primitives N]", run: limits },
     CommandSpec { name: ":load", usage: ":load FILE", run: load },
     CommandSpec { name: ":env", usage: ":env", run: env },
     CommandSpec { name: ":scene", usage: ":scene", run: scene },
@@ -336,6 +337,28 @@ fn samples(session: &mut Session, arguments: &[String], console: &mut Console) -
     Ok(Flow::Continue)
 }
 
+fn limits(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let mut limits = session.limits();
+    for pair in arguments.chunks(2) {
+        let [name, value] = pair else {
+            return Err(CommandError::Usage(format!("give a number after `{}`", pair[0])));
+        };
+        let value = value.parse::<usize>().ok().filter(|n| *n > 0);
+        let value = value.ok_or_else(|| CommandError::Usage(format!("`{name}` takes a whole number above 0")))?;
+        match name.as_str() {
+            "calls" => limits.max_call_depth = value,
+            "primitives" => limits.max_primitives = value,
+            _ => return Err(CommandError::Usage(format!("there is no limit `{name}`: `calls` or `primitives`"))),
+        }
+    }
+    session.set_limits(limits).map_err(|error| CommandError::Program(Box::new(error)))?;
+    console.say(format!(
+        "calls = {} (deepest chain of procedure calls), primitives = {}",
+        limits.max_call_depth, limits.max_primitives
+    ));
+    Ok(Flow::Continue)
+}
+
 fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     let [file] = arguments else {
         let problem = if arguments.is_empty() {
@@ -377,11 +400,21 @@ fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> Co
     let procedures: Vec<String> =
         session.procedures().iter().map(|(name, params)| format!("{name}({})", params.join(", "))).collect();
     console.say(format!("numbers:    {}", numbers.join(", ")));
-    let no_objects = "none yet: `object ball = sphere ... end` names one";
-    console.say(format!("objects:    {}", or_none(&objects, no_objects)));
+    let no_objects = format!("none yet: `object {} = sphere ... end` names one", free_name(session, "ball"));
+    console.say(format!("objects:    {}", or_none(&objects, &no_objects)));
     let no_procedures = "none yet: see `:help proc`";
     console.say(format!("procedures: {}", or_none(&procedures, no_procedures)));
     Ok(Flow::Continue)
+}
+
+/// `base`, or `base2`, `base3`...: the first that names nothing yet, so an
+/// example never suggests redefining a number or a procedure.
+fn free_name(session: &Session, base: &str) -> String {
+    let taken = |name: &str| {
+        session.numbers().iter().any(|(n, _)| &**n == name) || session.procedures().iter().any(|(n, _)| &**n == name)
+    };
+    let mut candidates = std::iter::once(base.to_string()).chain((2..).map(|n| format!("{base}{n}")));
+    candidates.find(|name| !taken(name)).unwrap_or_default()
 }
 
 fn or_none(items: &[String], none: &str) -> String {

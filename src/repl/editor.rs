@@ -15,7 +15,7 @@ use rustyline::hint::Hinter;
 use rustyline::validate::{ValidationContext, ValidationResult, Validator};
 use rustyline::{Context, Helper};
 
-use crate::lang::is_incomplete;
+use crate::lang::{EntryState, entry_state};
 
 use super::commands::{COMMANDS, is_command};
 use super::help;
@@ -146,7 +146,8 @@ impl Validator for RayHelper {
             return Ok(ValidationResult::Valid(None));
         }
         let whole = if self.pending.is_empty() { input.to_string() } else { format!("{}\n{input}", self.pending) };
-        Ok(if is_incomplete(&whole) { ValidationResult::Incomplete } else { ValidationResult::Valid(None) })
+        let unfinished = entry_state(&whole) == EntryState::Unfinished;
+        Ok(if unfinished { ValidationResult::Incomplete } else { ValidationResult::Valid(None) })
     }
 }
 

@@ -45,8 +45,8 @@ const GROUPS: &[(&str, &[&str])] = &[
     (
         "Commands",
         &[
-            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":load", ":env", ":scene",
-            ":undo", ":reset", ":quit",
+            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":limits", ":load", ":env",
+            ":scene", ":undo", ":reset", ":quit",
         ],
     ),
 ];
@@ -456,6 +456,20 @@ Example:
   but takes N times as long. `:samples` alone shows it.
 Example:
   :samples 4",
+    },
+    Topic {
+        name: ":limits",
+        aliases: &["limits", "max-calls", "max-primitives"],
+        summary: "raise the limits on recursion and on primitives",
+        text: "\
+:limits [calls N] [primitives N]
+  A procedure that calls itself forever, or a scene of billions of spheres,
+  stops with an error instead of filling the memory. `calls` is the deepest
+  chain of procedure calls (100000 unless changed), `primitives` the most
+  spheres, planes and boxes a program may make (10000000). `:limits` alone
+  shows them. From the command line: `--max-calls N`, `--max-primitives N`.
+Example:
+  :limits calls 500000",
     },
     Topic {
         name: ":load",

@@ -9,18 +9,19 @@ use rustyline::config::{ColorMode, CompletionType, Config};
 use rustyline::error::ReadlineError;
 use rustyline::history::FileHistory;
 
-use crate::lang::is_incomplete;
+use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 
 use super::cancel::CancelSwitch;
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::editor::RayHelper;
 use super::preview::Preview;
+use super::report::counted;
 use super::session::Session;
 use super::syntax::continuation_prompt;
 use super::{SessionOptions, handle_input, new_session};
 
-/// The prompt for a new input.
+/// The prompt for a new input, after its number.
 const PROMPT: &str = "ray> ";
 
 /// Why the interactive session could not run.
@@ -63,7 +64,9 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     console.preview = Preview::new(options.no_preview);
     console.progress = std::io::stderr().is_terminal();
     console.cancel = CancelSwitch::install();
-    let mut session = new_session(options);
+    // A flag cannot be given any more: errors point to `:limits` instead.
+    let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
+    let mut session = new_session(&SessionOptions { limits, ..options.clone() });
     console.say(format!(
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")
@@ -87,39 +90,75 @@ struct Repl {
 impl Repl {
     fn run(&mut self, console: &mut Console) -> Result<(), ReplError> {
         let mut pending = String::new();
+        // A broken entry of several lines, given back to the editor to fix.
+        let mut to_fix = String::new();
+        let mut quit_warned = false;
         loop {
             self.refresh_helper(&pending);
-            let prompt = if pending.is_empty() { PROMPT.to_string() } else { continuation_prompt(&pending) };
-            match self.editor.readline(&prompt) {
+            let prompt = if pending.is_empty() { self.prompt() } else { continuation_prompt(&pending) };
+            let fixing = !to_fix.is_empty();
+            let read = if fixing {
+                self.editor.readline_with_initial(&prompt, (&std::mem::take(&mut to_fix), ""))
+            } else {
+                self.editor.readline(&prompt)
+            };
+            match read {
                 Ok(line) => {
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
                     if is_command(&line) {
                         self.remember(&line);
-                        if commands::execute(&mut self.session, &line, console) == Ok(Flow::Quit) {
+                        if pending.is_empty() {
+                            self.inputs += 1;
+                        }
+                        let flow = commands::execute(&mut self.session, &line, console);
+                        if flow == Ok(Flow::Quit) && leave(&pending, &mut quit_warned, ":quit", console) {
                             return Ok(());
                         }
                         continue;
                     }
+                    quit_warned = false;
                     if !pending.is_empty() {
                         pending.push('\n');
                     }
                     pending.push_str(&line);
-                    if !is_incomplete(&pending) {
-                        let input = std::mem::take(&mut pending);
-                        self.submit(&input, console);
+                    match entry_state(&pending) {
+                        EntryState::Unfinished => {}
+                        EntryState::Complete => {
+                            let input = std::mem::take(&mut pending);
+                            self.submit(&input, console);
+                        }
+                        EntryState::Broken => {
+                            let input = std::mem::take(&mut pending);
+                            self.submit(&input, console);
+                            if input.contains('\n') {
+                                console.note("the entry is back in the editor: fix it, or Ctrl-C to drop it");
+                                to_fix = input;
+                            }
+                        }
                     }
                 }
                 Err(ReadlineError::Interrupted) => {
-                    if !pending.is_empty() {
+                    if !pending.is_empty() || fixing {
                         console.say("(input dropped)");
                     }
                     pending.clear();
+                    quit_warned = false;
                 }
-                Err(ReadlineError::Eof) => return Ok(()),
+                Err(ReadlineError::Eof) => {
+                    if leave(&pending, &mut quit_warned, "Ctrl-D", console) {
+                        return Ok(());
+                    }
+                }
                 Err(error) => return Err(ReplError::Terminal(error)),
             }
         }
+    }
+
+    /// The prompt for a new entry, with the number that names it in
+    /// messages (`<input 3>`), as IPython's `In [3]:`.
+    fn prompt(&self) -> String {
+        format!("[{}] {PROMPT}", self.inputs + 1)
     }
 
     fn submit(&mut self, input: &str, console: &mut Console) {
@@ -147,6 +186,23 @@ impl Repl {
             helper.set_names(&vocabulary);
         }
     }
+}
+
+/// Whether the session may end now that `how` (Ctrl-D, `:quit`) asks it
+/// to: not at once when an entry is half typed, which would be lost; the
+/// same request right after the warning ends it.
+fn leave(pending: &str, warned: &mut bool, how: &str, console: &mut Console) -> bool {
+    if pending.trim().is_empty() || *warned {
+        return true;
+    }
+    *warned = true;
+    let first = pending.lines().find(|line| !line.trim().is_empty()).unwrap_or_default().trim();
+    console.note(format!(
+        "the entry you are typing is not finished (`{first}`, {}): {how} again leaves without it, \
+         Ctrl-C drops it and stays",
+        counted(pending.lines().count(), "line")
+    ));
+    false
 }
 
 fn new_editor(color: bool) -> rustyline::Result<Editor<RayHelper, FileHistory>> {

@@ -130,6 +130,22 @@ impl Session {
         Ok(Accepted { program, warnings, procedures_before, counts_before })
     }
 
+    /// The limits on calls and primitives.
+    pub(crate) fn limits(&self) -> Limits {
+        self.limits
+    }
+
+    /// Changes the limits on calls and primitives: every input is evaluated
+    /// again under them, and if one fails (a lower limit) nothing changes.
+    pub(crate) fn set_limits(&mut self, limits: Limits) -> Result<(), Diagnostic> {
+        let previous = std::mem::replace(&mut self.limits, limits);
+        if let Err(error) = self.rebuild(self.history.clone()) {
+            self.limits = previous;
+            return Err(error);
+        }
+        Ok(())
+    }
+
     /// Takes back the last input, or the last `:reset`.
     pub(crate) fn undo(&mut self) -> Result<Undone, Diagnostic> {
         let Some(step) = self.undo_steps.pop() else {

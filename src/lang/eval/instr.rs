@@ -181,10 +181,10 @@ impl Interpreter {
         let limit = self.limits.max_call_depth;
         let diagnostic = Diagnostic::error(span, format!("recursion deeper than {limit} calls"))
             .with_label("this call goes too deep")
-            .with_help(
-                "check that the recursion stops (an `if` whose condition becomes false), \
-                 or raise the limit (`--max-calls`)",
-            );
+            .with_help(format!(
+                "check that the recursion stops (an `if` whose condition becomes false), or raise the limit ({})",
+                self.limits.raised_with.how("calls")
+            ));
         // The callers add themselves as the error unwinds (see `in_call`).
         Box::new(EvalError { diagnostic, chain: vec![(name.name.clone(), span)] })
     }

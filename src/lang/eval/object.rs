@@ -126,7 +126,10 @@ impl Interpreter {
                     ),
                 )
                 .with_label(format!("{n} more here"))
-                .with_help("make fewer objects, or raise the limit (`--max-primitives`)"),
+                .with_help(format!(
+                    "make fewer objects, or raise the limit ({})",
+                    self.limits.raised_with.how("primitives")
+                )),
             );
         }
         self.created = total;
