@@ -817,6 +817,20 @@ fn a_failed_input_changes_nothing() {
 }
 
 #[test]
+fn a_failed_input_gives_back_the_primitives_its_objects_held() {
+    let mut i = Interpreter::new(0.0, Limits { max_primitives: 4, ..Limits::default() });
+    let mut sources = SourceMap::new();
+    run_session_input(&mut i, &mut sources, "object o = sphere center 0, 0, 0 radius 1 $T end").unwrap();
+    let failing = "object o = group o o o end let x = 1 / 0";
+    assert_eq!(run_session_input(&mut i, &mut sources, failing).unwrap_err().message, "division by zero");
+    assert_eq!(i.global_object_size("o"), Some(1));
+    // 1 held by `o` and 2 in `p`: within the limit only if the failed `o` of 3 is forgotten.
+    run_session_input(&mut i, &mut sources, "object p = group o o end").unwrap();
+    let two_more = "object q = group o o end";
+    assert!(run_session_input(&mut i, &mut sources, two_more).is_err(), "5 primitives are over the limit");
+}
+
+#[test]
 fn a_spot_that_warned_in_a_failed_run_warns_again_when_it_succeeds() {
     let text = source("put sphere center 0, 0, 0 radius 1 kd 3 ks 0 phong 1 color 0, 0, 0 end let z = 1 / d");
     let mut sources = SourceMap::new();

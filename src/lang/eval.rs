@@ -117,6 +117,9 @@ pub struct Interpreter {
     env: Env,
     /// Procedures by name; a redefinition replaces.
     procs: NameMap<Rc<ProcDef>>,
+    /// What each procedure name held before each definition of the current
+    /// run, oldest first, so that a failed run takes them back.
+    procs_undo: Vec<(Rc<str>, Option<Rc<ProcDef>>)>,
     has_camera: bool,
     has_ambient: bool,
     /// Warnings not yet taken.
@@ -144,8 +147,6 @@ pub struct Interpreter {
 
 /// What a failed run restores.
 struct Snapshot {
-    globals: NameMap<Value>,
-    procs: NameMap<Rc<ProcDef>>,
     camera: Camera,
     ambient: f64,
     has_camera: bool,
@@ -178,6 +179,7 @@ impl Interpreter {
             limits,
             env,
             procs: NameMap::default(),
+            procs_undo: Vec::new(),
             has_camera: false,
             has_ambient: false,
             warnings: Vec::new(),
@@ -324,7 +326,8 @@ impl Interpreter {
                 self.scene.time_use.lights |= rotation_tainted | intensity.tainted | self.context_tainted;
             }
             Item::Proc(def) => {
-                self.procs.insert(def.name.name.clone(), def.clone());
+                let before = self.procs.insert(def.name.name.clone(), def.clone());
+                self.procs_undo.push((def.name.name.clone(), before));
                 self.last_proc = None;
             }
             Item::Instr(instr) => self.exec(instr)?,
@@ -341,22 +344,13 @@ impl Interpreter {
 
     /// Primitives alive now: in the scene and in global objects.
     fn live_primitives(&self) -> usize {
-        let in_objects: usize = self
-            .env
-            .globals
-            .values()
-            .map(|v| match &v.kind {
-                Kind::Object(primitives) => primitives.len(),
-                Kind::Number(_) => 0,
-            })
-            .sum();
-        self.scene.primitives.len() + self.scene.timed_primitives.len() + in_objects
+        self.scene.primitives.len() + self.scene.timed_primitives.len() + self.env.object_primitives()
     }
 
-    fn snapshot(&self) -> Snapshot {
+    fn snapshot(&mut self) -> Snapshot {
+        self.env.begin();
+        self.procs_undo.clear();
         Snapshot {
-            globals: self.env.globals.clone(),
-            procs: self.procs.clone(),
             camera: self.scene.camera,
             ambient: self.scene.ambient,
             has_camera: self.has_camera,
@@ -371,8 +365,13 @@ impl Interpreter {
     }
 
     fn restore(&mut self, snapshot: Snapshot) {
-        self.env.globals = snapshot.globals;
-        self.procs = snapshot.procs;
+        self.env.rollback();
+        while let Some((name, before)) = self.procs_undo.pop() {
+            match before {
+                Some(def) => self.procs.insert(name, def),
+                None => self.procs.remove(&name),
+            };
+        }
         self.last_proc = None;
         self.scene.camera = snapshot.camera;
         self.scene.ambient = snapshot.ambient;

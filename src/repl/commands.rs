@@ -476,7 +476,7 @@ fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
         Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
     }
-    console.say(format!("{} in the scene", counted(report::objects(&session.scene().counts()), "object")));
+    console.say(format!("{} in the scene", counted(report::objects(&session.counts()), "object")));
     Ok(Flow::Continue)
 }
 

@@ -17,7 +17,7 @@ pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<Strin
     if lines.len() > MAX_DEFINITION_LINES {
         lines = vec![format!("defined {}", definition_names(accepted).join(", "))];
     }
-    let after = session.scene().counts();
+    let after = session.counts();
     let before = accepted.counts_before;
     if after.lights > before.lights {
         lines.push(format!(

@@ -76,6 +76,9 @@ pub struct Session {
     descriptions: ObjectDescriptions,
     settings: RenderSettings,
     limits: Limits,
+    /// The scene's counts, kept up to date input by input (counting the
+    /// whole scene each time would make a long script quadratic).
+    counts: Counts,
 }
 
 impl Session {
@@ -90,6 +93,7 @@ impl Session {
             descriptions: ObjectDescriptions::default(),
             settings,
             limits,
+            counts: Counts::default(),
         }
     }
 
@@ -114,13 +118,22 @@ impl Session {
         if self.interpreter_time != self.settings.time {
             self.rebuild(self.history.clone())?;
         }
-        let counts_before = self.interpreter.scene().counts();
+        let counts_before = self.counts;
+        let scene = self.interpreter.scene();
+        let mark = (scene.primitives.len(), scene.timed_primitives.len());
         let procedures_before = self.interpreter.procedure_names();
         if let Err(error) = self.interpreter.run_with_sources(&program, &self.sources) {
             self.interpreter.take_warnings();
             return Err(error);
         }
         let warnings = self.interpreter.take_warnings();
+        let added = self.interpreter.scene().counts_after(mark.0, mark.1);
+        self.counts = Counts {
+            spheres: counts_before.spheres + added.spheres,
+            planes: counts_before.planes + added.planes,
+            boxes: counts_before.boxes + added.boxes,
+            lights: added.lights,
+        };
         self.descriptions.record(&program);
         let program = Rc::new(program);
         if !program.items.is_empty() {
@@ -128,6 +141,11 @@ impl Session {
             self.undo_steps.push(UndoStep::Input);
         }
         Ok(Accepted { program, warnings, procedures_before, counts_before })
+    }
+
+    /// How many primitives of each kind, and lights, the scene holds.
+    pub(crate) fn counts(&self) -> Counts {
+        self.counts
     }
 
     /// The limits on calls and primitives.
@@ -170,6 +188,7 @@ impl Session {
     pub(crate) fn reset(&mut self) {
         let cleared = std::mem::take(&mut self.history);
         self.interpreter = Interpreter::new(self.settings.time, self.limits);
+        self.counts = Counts::default();
         self.interpreter_time = self.settings.time;
         self.descriptions = ObjectDescriptions::default();
         self.undo_steps.push(UndoStep::Reset(cleared));
@@ -208,6 +227,7 @@ impl Session {
     fn rebuild(&mut self, history: Vec<Input>) -> Result<(), Diagnostic> {
         let time = self.settings.time;
         self.interpreter = self.replay(Interpreter::new(time, self.limits), &history)?;
+        self.counts = self.interpreter.scene().counts();
         self.interpreter_time = time;
         let mut descriptions = ObjectDescriptions::default();
         for input in &history {

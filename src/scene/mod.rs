@@ -133,8 +133,16 @@ impl Scene {
     /// How many primitives of each kind, and lights, the scene holds (static
     /// and timed primitives together): the `--check` summary.
     pub fn counts(&self) -> Counts {
+        self.counts_after(0, 0)
+    }
+
+    /// Like [`Scene::counts`], but of the primitives after the first
+    /// `primitives` static and `timed` timed ones (what one input added),
+    /// with every light.
+    pub fn counts_after(&self, primitives: usize, timed: usize) -> Counts {
         let mut counts = Counts { lights: self.lights.len(), ..Counts::default() };
-        for primitive in self.all_primitives() {
+        let added = self.primitives.get(primitives..).unwrap_or_default();
+        for primitive in added.iter().chain(self.timed_primitives.get(timed..).unwrap_or_default()) {
             match primitive.shape {
                 Shape::Sphere { .. } => counts.spheres += 1,
                 Shape::Plane { .. } => counts.planes += 1,

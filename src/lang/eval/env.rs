@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::rc::Rc;
 
-use super::value::Value;
+use super::value::{Kind, Value};
 
 /// A fast, non-cryptographic hasher for short names (the `FxHash` of rustc):
 /// the maps it serves hold names chosen by the program's author, so there is
@@ -79,6 +79,12 @@ pub(crate) struct Env {
     top: usize,
     /// Whether a procedure is running (so `let` binds a local).
     in_call: bool,
+    /// What each global held before each change since [`Env::begin`],
+    /// oldest first, so that a failed input is taken back in time
+    /// proportional to what it changed, not to all the globals.
+    undo: Vec<(Rc<str>, Option<Value>)>,
+    /// Primitives held by global objects, kept up to date on every change.
+    object_primitives: usize,
 }
 
 /// Whether two names are equal. Names are short, so the bytes are compared
@@ -104,7 +110,8 @@ impl Env {
     /// Binds `name`: a local inside a procedure call, a global at top level.
     pub fn bind(&mut self, name: &Rc<str>, value: Value) {
         if !self.in_call {
-            self.globals.insert(name.clone(), value);
+            let before = self.replace_global(name, Some(value));
+            self.undo.push((name.clone(), before));
             return;
         }
         let (base, top) = (self.base, self.top);
@@ -120,14 +127,49 @@ impl Env {
     /// Marks the variable `name` of the current scope (the call's locals, or
     /// the globals at top level) as depending on `time`, if it exists.
     pub fn taint(&mut self, name: &str) {
-        let slot = if self.in_call {
-            self.locals[self.base..self.top].iter_mut().find(|(n, _)| same_name(n, name)).map(|(_, v)| v)
-        } else {
-            self.globals.get_mut(name)
-        };
-        if let Some(value) = slot {
+        if !self.in_call {
+            if let Some((key, value)) = self.globals.get_key_value(name).filter(|(_, value)| !value.tainted) {
+                let (key, tainted) = (key.clone(), Value { tainted: true, ..value.clone() });
+                self.bind(&key, tainted);
+            }
+            return;
+        }
+        let slot = self.locals[self.base..self.top].iter_mut().find(|(n, _)| same_name(n, name));
+        if let Some((_, value)) = slot {
             value.tainted = true;
         }
+    }
+
+    /// Starts recording the changes to the globals that [`Env::rollback`] undoes.
+    pub fn begin(&mut self) {
+        self.undo.clear();
+    }
+
+    /// Gives every global changed since [`Env::begin`] its value from then.
+    pub fn rollback(&mut self) {
+        while let Some((name, before)) = self.undo.pop() {
+            self.replace_global(&name, before);
+        }
+    }
+
+    /// How many primitives the global objects hold.
+    pub fn object_primitives(&self) -> usize {
+        self.object_primitives
+    }
+
+    /// Sets (or with `None` removes) a global; returns what it held.
+    fn replace_global(&mut self, name: &Rc<str>, value: Option<Value>) -> Option<Value> {
+        let size = |value: Option<&Value>| match value.map(|v| &v.kind) {
+            Some(Kind::Object(primitives)) => primitives.len(),
+            _ => 0,
+        };
+        self.object_primitives += size(value.as_ref());
+        let before = match value {
+            Some(value) => self.globals.insert(name.clone(), value),
+            None => self.globals.remove(name),
+        };
+        self.object_primitives -= size(before.as_ref());
+        before
     }
 
     /// Starts preparing a call: returns the caller's frame, to give back to
@@ -182,8 +224,8 @@ mod tests {
 
     fn number(env: &Env, name: &str) -> Option<f64> {
         match env.lookup(name)?.kind {
-            super::super::value::Kind::Number(v) => Some(v),
-            super::super::value::Kind::Object(_) => None,
+            Kind::Number(v) => Some(v),
+            Kind::Object(_) => None,
         }
     }
 
@@ -206,6 +248,21 @@ mod tests {
         assert_eq!(number(&env, "y"), Some(2.0));
         env.leave(top);
         assert_eq!(number(&env, "x"), Some(1.0));
+        assert_eq!(number(&env, "y"), None);
+    }
+
+    #[test]
+    fn rollback_gives_back_the_globals_of_begin() {
+        let mut env = Env::default();
+        let (x, y): (Rc<str>, Rc<str>) = ("x".into(), "y".into());
+        env.bind(&x, Value::number(1.0, false));
+        env.begin();
+        env.bind(&x, Value::number(2.0, false));
+        env.bind(&y, Value::number(3.0, false));
+        env.taint("x");
+        env.rollback();
+        assert_eq!(number(&env, "x"), Some(1.0));
+        assert!(!env.lookup("x").expect("x is bound").tainted);
         assert_eq!(number(&env, "y"), None);
     }
 
