@@ -191,6 +191,9 @@ fn a_broken_line_is_reported_at_once_and_the_entry_comes_back() {
     let (mut session, _home) = plain();
     session.send_line("proc p()").unwrap();
     session.expect("...proc> ").unwrap();
+    // A person takes time to type a line (a line read at once was typed
+    // ahead or pasted, and does not come back to the editor).
+    std::thread::sleep(Duration::from_millis(100));
     // `sphre` could be an object's name, but not followed by `radius`.
     session.send_line("  put sphre radius 1").unwrap();
     session.expect("<input 1>:2:13").unwrap();
@@ -228,5 +231,18 @@ fn limits_are_raised_with_a_command_in_the_session() {
     session.expect("ray> ").unwrap();
     session.send_line(":env").unwrap();
     session.expect("`object ball2 = sphere ... end` names one").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn lines_typed_ahead_or_pasted_all_run_in_order() {
+    let (mut session, _home) = plain();
+    // Without bracketed paste: the lines arrive at once, one broken.
+    session.send("let a = 1\nproc p()\n  put sphre radius 1\nend\nlet b = a + 1\n:env\n").unwrap();
+    session.expect("<input 2>:2:13").unwrap();
+    session.expect("the arrow key up brings the entry back to fix it").unwrap();
+    session.expect("this `end` closes nothing").unwrap();
+    session.expect("b = 2").unwrap();
+    session.expect("numbers:    a = 1, b = 2, time = 0").unwrap();
     assert_eq!(leave(session), 0);
 }

@@ -3,6 +3,7 @@
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 use rustyline::Editor;
 use rustyline::config::{ColorMode, CompletionType, Config};
@@ -20,6 +21,10 @@ use super::report::counted;
 use super::session::Session;
 use super::syntax::continuation_prompt;
 use super::{SessionOptions, handle_input, new_session};
+
+/// A line read faster than this was not typed by a person but typed ahead
+/// or pasted, so more lines may follow it.
+const TYPING: Duration = Duration::from_millis(30);
 
 /// The prompt for a new input, after its number.
 const PROMPT: &str = "ray> ";
@@ -97,6 +102,7 @@ impl Repl {
             self.refresh_helper(&pending);
             let prompt = if pending.is_empty() { self.prompt() } else { continuation_prompt(&pending) };
             let fixing = !to_fix.is_empty();
+            let started = Instant::now();
             let read = if fixing {
                 self.editor.readline_with_initial(&prompt, (&std::mem::take(&mut to_fix), ""))
             } else {
@@ -131,9 +137,13 @@ impl Repl {
                         EntryState::Broken => {
                             let input = std::mem::take(&mut pending);
                             self.submit(&input, console);
-                            if input.contains('\n') {
+                            let typed = started.elapsed() >= TYPING;
+                            if input.contains('\n') && typed {
                                 console.note("the entry is back in the editor: fix it, or Ctrl-C to drop it");
                                 to_fix = input;
+                            } else if input.contains('\n') {
+                                // Typed ahead or pasted: what follows must not land in it.
+                                console.note("the arrow key up brings the entry back to fix it");
                             }
                         }
                     }
