@@ -29,6 +29,10 @@ const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim"];
 /// Keywords that are functions: they complete up to their parenthesis.
 const FUNCTIONS: &[&str] = &["sin", "cos", "sqrt"];
 
+/// Lines longer than this are not coloured: colouring repaints the line at
+/// every key, and a long pasted line would take seconds.
+const MAX_COLOURED: usize = 1000;
+
 /// The rustyline helper of the session.
 pub(crate) struct RayHelper {
     color: bool,
@@ -153,7 +157,7 @@ impl Validator for RayHelper {
 
 impl Highlighter for RayHelper {
     fn highlight<'l>(&self, line: &'l str, _pos: usize) -> Cow<'l, str> {
-        if !self.color {
+        if !self.color || line.len() > MAX_COLOURED {
             return Cow::Borrowed(line);
         }
         Cow::Owned(colorize(line))
@@ -168,8 +172,11 @@ impl Highlighter for RayHelper {
         Cow::Owned(format!("\x1b[{code}m{prompt}\x1b[0m"))
     }
 
-    fn highlight_char(&self, _line: &str, _pos: usize, _kind: CmdKind) -> bool {
-        self.color
+    /// Whether a key calls for the whole line to be drawn again. Without
+    /// that, rustyline writes just the key typed at the end of the line; with
+    /// it, a pasted line of n characters costs n repaints of up to n each.
+    fn highlight_char(&self, line: &str, _pos: usize, kind: CmdKind) -> bool {
+        self.color && line.len() <= MAX_COLOURED && kind != CmdKind::MoveCursor
     }
 }
 
