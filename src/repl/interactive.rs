@@ -4,6 +4,8 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
+use anstream::stream::RawStream;
+use anstream::{AutoStream, ColorChoice};
 use rustyline::Editor;
 use rustyline::config::{ColorMode, CompletionType, Config};
 use rustyline::error::ReadlineError;
@@ -51,51 +53,116 @@ impl std::error::Error for ReplError {
 /// the user's data directory (`rayrepl/history`); problems with that file
 /// are ignored.
 pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
-    let color = std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    // The editor draws prompts and highlighting on standard output.
+    let color = AutoStream::choice(&std::io::stdout()) != ColorChoice::Never;
     let mut editor = new_editor(color).map_err(ReplError::Terminal)?;
     let history = history_path();
     if let Some(path) = &history {
         let _ = editor.load_history(path);
     }
     let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
-    let mut console = Console::plain(&mut out, &mut err);
-    console.color = color && std::io::stderr().is_terminal();
+    let mut console = Console::new(&mut out, &mut err);
     console.preview = Preview::new(options.no_preview);
     console.progress = std::io::stderr().is_terminal();
     console.cancel = CancelSwitch::install();
-    let mut session = new_session(options);
     console.say(format!(
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")
     ));
-    if let Some(path) = &options.initial_file {
-        let _ = commands::load_reporting(&mut session, path, &mut console);
-    }
-    let mut repl = Repl { editor, session, history, inputs: 0 };
-    repl.run(&mut console)
+    run_entries(Terminal { editor, history }, &mut console, options)
 }
 
-/// The editor and the session it feeds.
-struct Repl {
+/// Runs the interactive session's entry loop on `lines` as if each was
+/// typed at the prompt and ended with Enter, then Ctrl-D: messages go to
+/// `out` and diagnostics to `err`, as on a terminal (without prompts,
+/// previews or progress bars). It shows what a person at the terminal sees
+/// without needing one: the tests of the session's messages use it.
+pub fn run_typed(
+    lines: impl IntoIterator<Item = String>,
+    out: &mut (impl RawStream + 'static),
+    err: &mut (impl RawStream + 'static),
+    options: &SessionOptions,
+) {
+    let mut console = Console::new(out, err);
+    let ended = run_entries(Typed(lines.into_iter()), &mut console, options);
+    ended.expect("typed lines never fail to be read");
+}
+
+/// Loads `options.initial_file`, then runs the session on what is typed.
+fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
+    let mut session = new_session(options);
+    if let Some(path) = &options.initial_file {
+        let _ = commands::load_reporting(&mut session, path, console);
+    }
+    Repl { lines, session, inputs: 0 }.run(console)
+}
+
+/// Where the session's lines come from: the line editor, or lines given in
+/// advance.
+trait Lines {
+    /// The next line typed after `prompt`. `pending` (the unfinished input)
+    /// and `session` feed the editor's highlighting and completion.
+    fn read(&mut self, prompt: &str, pending: &str, session: &Session) -> Result<String, ReadlineError>;
+
+    /// Keeps an entry in the history.
+    fn remember(&mut self, entry: &str);
+}
+
+/// The line editor on the terminal, with its history file.
+struct Terminal {
     editor: Editor<RayHelper, FileHistory>,
-    session: Session,
     history: Option<PathBuf>,
+}
+
+impl Lines for Terminal {
+    fn read(&mut self, prompt: &str, pending: &str, session: &Session) -> Result<String, ReadlineError> {
+        let vocabulary = session.vocabulary();
+        if let Some(helper) = self.editor.helper_mut() {
+            helper.set_pending(pending);
+            helper.set_names(&vocabulary);
+        }
+        self.editor.readline(prompt)
+    }
+
+    /// Adds an entry to the history, and to the history file.
+    fn remember(&mut self, entry: &str) {
+        let _ = self.editor.add_history_entry(entry);
+        if let Some(path) = &self.history {
+            let _ = self.editor.append_history(path);
+        }
+    }
+}
+
+/// Lines given in advance, typed one after the other; Ctrl-D after the last.
+struct Typed<I>(I);
+
+impl<I: Iterator<Item = String>> Lines for Typed<I> {
+    fn read(&mut self, _prompt: &str, _pending: &str, _session: &Session) -> Result<String, ReadlineError> {
+        self.0.next().ok_or(ReadlineError::Eof)
+    }
+
+    fn remember(&mut self, _entry: &str) {}
+}
+
+/// The session and the lines that feed it.
+struct Repl<L> {
+    lines: L,
+    session: Session,
     /// Inputs submitted so far, to name each one in diagnostics.
     inputs: usize,
 }
 
-impl Repl {
+impl<L: Lines> Repl<L> {
     fn run(&mut self, console: &mut Console) -> Result<(), ReplError> {
         let mut pending = String::new();
         loop {
-            self.refresh_helper(&pending);
             let prompt = if pending.is_empty() { PROMPT.to_string() } else { continuation_prompt(&pending) };
-            match self.editor.readline(&prompt) {
+            match self.lines.read(&prompt, &pending, &self.session) {
                 Ok(line) => {
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
                     if is_command(&line) {
-                        self.remember(&line);
+                        self.lines.remember(&line);
                         if commands::execute(&mut self.session, &line, console) == Ok(Flow::Quit) {
                             return Ok(());
                         }
@@ -126,26 +193,10 @@ impl Repl {
         if input.trim().is_empty() {
             return;
         }
-        self.remember(input);
+        self.lines.remember(input);
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
         let _ = handle_input(&mut self.session, console, &name, input, 0);
-    }
-
-    /// Adds an input to the history, and to the history file.
-    fn remember(&mut self, input: &str) {
-        let _ = self.editor.add_history_entry(input);
-        if let Some(path) = &self.history {
-            let _ = self.editor.append_history(path);
-        }
-    }
-
-    fn refresh_helper(&mut self, pending: &str) {
-        let vocabulary = self.session.vocabulary();
-        if let Some(helper) = self.editor.helper_mut() {
-            helper.set_pending(pending);
-            helper.set_names(&vocabulary);
-        }
     }
 }
 
