@@ -1,5 +1,6 @@
 //! The interactive session driven through a pseudo-terminal: multi-line
-//! input, completion, Ctrl-C, Ctrl-D, colours and the history file.
+//! input, completion, Ctrl-C, Ctrl-D, colours and the history file; and its
+//! entry loop fed typed lines in-process, for what it prints.
 
 use std::path::Path;
 use std::process::Command;
@@ -7,6 +8,8 @@ use std::time::Duration;
 
 use expectrl::process::unix::WaitStatus;
 use expectrl::{ControlCode, Eof, Expect, Session};
+use rayrepl::lang::Limits;
+use rayrepl::repl::{SessionOptions, run_typed};
 
 /// A session on a terminal, its history kept under `data_home`.
 fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsSession {
@@ -135,6 +138,32 @@ fn keywords_are_coloured_on_a_terminal() {
     session.expect("\x1b[1;34mput\x1b[0m").unwrap();
     session.send(ControlCode::EndOfText).unwrap();
     assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn diagnostics_are_coloured_on_a_terminal() {
+    let data_home = tempfile::tempdir().expect("temporary directory");
+    let mut session = spawn(&["--no-preview"], data_home.path(), true);
+    session.send_line("let a = nowhere").unwrap();
+    // `error` in bold bright red, as in every mode.
+    session.expect("\x1b[91merror").unwrap();
+    session.expect("not defined here").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn a_call_chain_across_inputs_is_in_call_order_and_names_the_inputs() {
+    anstream::ColorChoice::Never.write_global();
+    let lines = ["proc f(n)", "  g(n + 1)", "end", "proc g(n) f(n) end", "f(0)"];
+    let limits = Limits { max_call_depth: 20, ..Limits::default() };
+    let options = SessionOptions { no_preview: true, limits, ..SessionOptions::default() };
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    run_typed(lines.map(String::from), &mut out, &mut err, &options);
+    let err = String::from_utf8(err).expect("text");
+    assert!(err.contains(" --> <input 2>:1:11\n"), "{err}");
+    let chain = "call chain: f (<input 3>:1) -> g (<input 1>:2) -> f (line 1) -> \
+                 ... the cycle `g (<input 1>:2) -> f (line 1)` repeated 9 more times";
+    assert!(err.contains(&format!("  = note: {chain}\n")), "{err}");
 }
 
 #[test]

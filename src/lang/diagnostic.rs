@@ -93,6 +93,9 @@ impl Diagnostic {
     pub fn render(&self, sources: &SourceMap, color: bool) -> String {
         let renderer = if color { Renderer::styled() } else { Renderer::plain() };
         let notes: Vec<String> = self.notes.iter().map(|note| note.display(sources, self.span.source)).collect();
+        // annotate-snippets makes the message and the source printable, not
+        // the other texts: control characters could drive the terminal.
+        let (notes, help) = (notes.iter().map(|note| printable(note)), self.help.as_deref().map(printable));
         let level = match self.severity {
             Severity::Error => Level::ERROR,
             Severity::Warning => Level::WARNING,
@@ -100,8 +103,8 @@ impl Diagnostic {
         let group = level
             .primary_title(&self.message)
             .elements(self.snippets(sources))
-            .elements(notes.iter().map(|note| Level::NOTE.message(note)))
-            .elements(self.help.iter().map(|help| Level::HELP.message(help)));
+            .elements(notes.map(|note| Level::NOTE.message(note)))
+            .elements(help.map(|help| Level::HELP.message(help)));
         let mut out = renderer.render(&[group]);
         out.push('\n');
         out
@@ -115,7 +118,7 @@ impl Diagnostic {
         let related = self.related.iter().map(|(span, text)| (*span, AnnotationKind::Context, Some(text.as_str())));
         let mut by_source: Vec<(SourceId, Vec<Annotation<'a>>)> = Vec::new();
         for (span, kind, label) in std::iter::once(primary).chain(related) {
-            let annotation = kind.span(shown_range(&sources.get(span.source).text, span)).label(label);
+            let annotation = kind.span(shown_range(&sources.get(span.source).text, span)).label(label.map(printable));
             match by_source.iter_mut().find(|(source, _)| *source == span.source) {
                 Some((_, annotations)) => annotations.push(annotation),
                 None => by_source.push((span.source, vec![annotation])),
@@ -125,10 +128,7 @@ impl Diagnostic {
             .into_iter()
             .map(|(source, annotations)| {
                 let file = sources.get(source);
-                Snippet::source(&*file.text)
-                    .path(&file.name)
-                    .line_start(file.line_offset + 1)
-                    .annotations(annotations)
+                Snippet::source(&*file.text).path(&file.name).line_start(file.line_offset + 1).annotations(annotations)
             })
             .collect()
     }
@@ -145,6 +145,12 @@ where
 {
     let _ = out.write_all(diagnostic.render(sources, true).as_bytes());
     let _ = out.flush();
+}
+
+/// `text` with its control characters shown as symbols (`␛`), as
+/// annotate-snippets shows those of the source.
+fn printable(text: &str) -> String {
+    annotate_snippets::normalize_untrusted_str(text)
 }
 
 /// The byte range drawn for `span` in `text`: inside the text and on
