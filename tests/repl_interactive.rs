@@ -26,10 +26,10 @@ fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsS
     session
 }
 
-/// A plain session without previews, with its own history directory.
-fn plain() -> (expectrl::session::OsSession, tempfile::TempDir) {
+/// A session without previews, with its own history directory, in colour or not.
+fn fresh(color: bool) -> (expectrl::session::OsSession, tempfile::TempDir) {
     let data_home = tempfile::tempdir().expect("temporary directory");
-    let session = spawn(&["--no-preview"], data_home.path(), false);
+    let session = spawn(&["--no-preview"], data_home.path(), color);
     (session, data_home)
 }
 
@@ -48,7 +48,7 @@ fn leave(mut session: expectrl::session::OsSession) -> i32 {
 
 #[test]
 fn an_input_continues_while_a_construct_is_open() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("proc row(n)").unwrap();
     session.expect("...proc> ").unwrap();
     session.send_line("  put sphere center n, 0, 0").unwrap();
@@ -76,7 +76,7 @@ fn an_input_continues_while_a_construct_is_open() {
 
 #[test]
 fn an_error_leaves_the_session_running_and_unchanged() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("let a = 1").unwrap();
     session.expect("a = 1").unwrap();
     session.expect("ray> ").unwrap();
@@ -90,7 +90,7 @@ fn an_error_leaves_the_session_running_and_unchanged() {
 
 #[test]
 fn ctrl_c_drops_the_input_being_typed_and_stays() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("put sphere center 0, 0, 0").unwrap();
     session.expect("...sphere> ").unwrap();
     session.send(ControlCode::EndOfText).unwrap();
@@ -109,7 +109,7 @@ fn ctrl_c_drops_the_input_being_typed_and_stays() {
 
 #[test]
 fn tab_completes_names_procedures_and_commands() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("let spin = 2").unwrap();
     session.expect("spin = 2").unwrap();
     session.expect("ray> ").unwrap();
@@ -131,19 +131,12 @@ fn tab_completes_names_procedures_and_commands() {
 }
 
 #[test]
-fn keywords_are_coloured_on_a_terminal() {
-    let data_home = tempfile::tempdir().expect("temporary directory");
-    let mut session = spawn(&["--no-preview"], data_home.path(), true);
+fn keywords_and_diagnostics_are_coloured_on_a_terminal() {
+    let (mut session, _home) = fresh(true);
     session.send("put").unwrap();
     session.expect("\x1b[1;34mput\x1b[0m").unwrap();
     session.send(ControlCode::EndOfText).unwrap();
-    assert_eq!(leave(session), 0);
-}
-
-#[test]
-fn diagnostics_are_coloured_on_a_terminal() {
-    let data_home = tempfile::tempdir().expect("temporary directory");
-    let mut session = spawn(&["--no-preview"], data_home.path(), true);
+    session.expect("ray> ").unwrap();
     session.send_line("let a = nowhere").unwrap();
     // `error` in bold bright red, as in every mode.
     session.expect("\x1b[91merror").unwrap();
