@@ -92,10 +92,11 @@ impl Diagnostic {
     /// styles if `color`, in plain text otherwise (the same characters).
     pub fn render(&self, sources: &SourceMap, color: bool) -> String {
         let renderer = if color { Renderer::styled() } else { Renderer::plain() };
-        let notes: Vec<String> = self.notes.iter().map(|note| note.display(sources, self.span.source)).collect();
         // annotate-snippets makes the message and the source printable, not
         // the other texts: control characters could drive the terminal.
-        let (notes, help) = (notes.iter().map(|note| printable(note)), self.help.as_deref().map(printable));
+        let notes: Vec<String> =
+            self.notes.iter().map(|note| printable(&note.display(sources, self.span.source))).collect();
+        let help = self.help.as_deref().map(printable);
         let level = match self.severity {
             Severity::Error => Level::ERROR,
             Severity::Warning => Level::WARNING,
@@ -103,9 +104,14 @@ impl Diagnostic {
         let group = level
             .primary_title(&self.message)
             .elements(self.snippets(sources))
-            .elements(notes.map(|note| Level::NOTE.message(note)))
+            .elements(notes.iter().map(|note| Level::NOTE.message(note.as_str())))
             .elements(help.map(|help| Level::HELP.message(help)));
-        let mut out = renderer.render(&[group]);
+        let rendered = renderer.render(&[group]);
+        // annotate-snippets shows C0 controls as symbols but lets C1 ones
+        // (U+0080 to U+009F, which some terminals obey) through, counting
+        // each one column wide, as `�` is.
+        let mut out: String =
+            rendered.chars().map(|c| if ('\u{80}'..='\u{9f}').contains(&c) { '\u{fffd}' } else { c }).collect();
         out.push('\n');
         out
     }
@@ -418,13 +424,22 @@ error: unexpected character `$`
 
     #[test]
     fn control_characters_are_not_sent_to_the_terminal() {
-        let (map, id) = map_with("a.ray", "let x = \u{1b}[31m", 0);
-        let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `\u{1b}`").with_label("\u{7}");
+        let (map, id) = map_with("a.ray", "let x = \u{1b}[31m \u{9b}2J", 0);
+        let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `\u{1b}`")
+            .with_label("\u{7}")
+            .with_related(Span::new(id, 14, 16), "\u{9b}");
         for color in [false, true] {
             let rendered = diagnostic.render(&map, color);
-            assert!(!rendered.contains("\u{1b}[31m") && !rendered.contains('\u{7}'), "{rendered}");
+            assert!(!rendered.contains("\u{1b}[31m") && !rendered.contains(['\u{7}', '\u{9b}']), "{rendered}");
         }
-        assert!(diagnostic.render(&map, false).contains("let x = ␛[31m"));
+        let expected = "\
+error: unexpected character `␛`
+ --> a.ray:1:9
+  |
+1 | let x = ␛[31m �2J
+  |         ^ ␇   - �
+";
+        assert_eq!(diagnostic.render(&map, false), expected);
     }
 
     #[test]

@@ -9,7 +9,7 @@ pub mod parser;
 pub mod source;
 pub mod suggest;
 
-pub use diagnostic::{Diagnostic, Severity};
+pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits};
 pub use parser::{is_incomplete, parse_file, parse_items};
 pub use source::{SourceFile, SourceId, SourceMap, Span};
