@@ -14,6 +14,7 @@ use image::RgbImage;
 use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::lang::ast::Program;
+use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
 use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::progress::Progress;
@@ -70,11 +71,30 @@ fn limits(cli: &Cli) -> Limits {
     Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives, ..Limits::DEFAULT }
 }
 
+/// Why a check or a render failed.
+#[derive(Debug)]
+enum BatchError {
+    /// A diagnostic about the scene, with the texts it points into.
+    Scene(Box<Diagnostic>, SourceMap),
+    /// Any other problem, in one message (`rayrepl: cannot read ...`).
+    Other(String),
+}
+
+impl From<String> for BatchError {
+    fn from(message: String) -> BatchError {
+        BatchError::Other(message)
+    }
+}
+
 /// Prints a batch error, if any, and gives the exit code.
-fn exit_code(result: Result<(), String>) -> ExitCode {
+fn exit_code(result: Result<(), BatchError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
+        Err(BatchError::Scene(diagnostic, sources)) => {
+            emit(&mut anstream::stderr(), &diagnostic, &sources);
+            ExitCode::FAILURE
+        }
+        Err(BatchError::Other(message)) => {
             eprintln!("{}", message.trim_end());
             ExitCode::FAILURE
         }
@@ -82,7 +102,7 @@ fn exit_code(result: Result<(), String>) -> ExitCode {
 }
 
 /// Checks or renders one scene file.
-fn run_file(cli: &Cli, path: &Path) -> Result<(), String> {
+fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
     let parsed = ParsedScene::parse(sources, id, cli)?;
@@ -109,31 +129,30 @@ struct ParsedScene {
 
 impl ParsedScene {
     /// Parses the file `id` of `sources`.
-    fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<ParsedScene, String> {
-        let program = parse_file(id, &sources.get(id).text).map_err(|d| show(&sources, &d))?;
-        Ok(ParsedScene { sources, program, limits: limits(cli), warned: RefCell::default() })
+    fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<ParsedScene, BatchError> {
+        match parse_file(id, &sources.get(id).text) {
+            Ok(program) => Ok(ParsedScene { sources, program, limits: limits(cli), warned: RefCell::default() }),
+            Err(diagnostic) => Err(BatchError::Scene(Box::new(diagnostic), sources)),
+        }
     }
 
     /// Evaluates the program at `time`, printing warnings on stderr. With
     /// `skip_static`, primitives that do not depend on `time` are not kept
     /// (an animation's later frames reuse the first frame's).
     /// A warning is printed once per run, however many frames raise it.
-    fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, String> {
+    fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, BatchError> {
         let mut interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
-        let result = interpreter.run_with_sources(&self.program, &self.sources);
+        let result = interpreter.run(&self.program);
         for warning in interpreter.take_warnings() {
             if self.warned.borrow_mut().insert((warning.span, warning.message.clone())) {
-                eprint!("{}", show(&self.sources, &warning));
+                emit(&mut anstream::stderr(), &warning, &self.sources);
             }
         }
-        result.map_err(|d| show(&self.sources, &d))?;
-        Ok(interpreter.into_scene())
+        match result {
+            Ok(()) => Ok(interpreter.into_scene()),
+            Err(diagnostic) => Err(BatchError::Scene(Box::new(diagnostic), self.sources.clone())),
+        }
     }
-}
-
-/// A diagnostic rendered for stderr (coloured on a terminal).
-fn show(sources: &SourceMap, diagnostic: &Diagnostic) -> String {
-    diagnostic.render(sources, std::io::stderr().is_terminal())
 }
 
 /// Reads a scene file (or standard input for `-`) into `sources`.
@@ -206,7 +225,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
 }
 
 /// Renders one image at `--time`.
-fn still(cli: &Cli, parsed: &ParsedScene, output: &Path) -> Result<(), String> {
+fn still(cli: &Cli, parsed: &ParsedScene, output: &Path) -> Result<(), BatchError> {
     let start = Instant::now();
     let scene = parsed.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
@@ -269,15 +288,15 @@ fn render_frame(
 /// Renders frames `--frames` (default all) of an animation of `count`
 /// frames, frame k with `time = k`, to numbered images or one GIF (see
 /// [`animation`] for what is computed once and what per frame).
-fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result<(), String> {
+fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result<(), BatchError> {
     let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
-        return Err(format!(
+        return Err(BatchError::Other(format!(
             "rayrepl: --frames {}..{} goes past the last frame, {count}",
             frames.start(),
             frames.end()
-        ));
+        )));
     }
     let options = render_options(cli);
     let per_frame = u64::from(options.width) * u64::from(options.height);
@@ -286,7 +305,9 @@ fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result
     let control = RenderControl { progress: Some(&tick), cancel: None };
     let mut frames_out = FrameSink::new(output, count as usize);
     let evaluate = |k: u32, skip_static: bool| parsed.evaluate(f64::from(k), skip_static);
-    let sink = |k: u32, image: RgbImage| frames_out.add(k as usize, image).map_err(|e| format!("rayrepl: {e}"));
+    let sink = |k: u32, image: RgbImage| {
+        frames_out.add(k as usize, image).map_err(|e| BatchError::Other(format!("rayrepl: {e}")))
+    };
     let total = match render_animation(frames.clone(), evaluate, &options, &control, sink) {
         Ok(total) => total,
         Err(AnimationError::Failed(message)) => return Err(message),

@@ -23,7 +23,7 @@ fn evaluate(text: &str, time: u32, skip_static: bool) -> Result<Scene, String> {
     let id = sources.add("test.ray", text.to_string(), 0);
     let program = parse_file(id, text).map_err(|d| d.message)?;
     let mut interpreter = Interpreter::new(f64::from(time), Limits::default()).skip_static(skip_static);
-    interpreter.run_with_sources(&program, &sources).map_err(|d| d.message)?;
+    interpreter.run(&program).map_err(|d| d.message)?;
     Ok(interpreter.into_scene())
 }
 

@@ -4,21 +4,12 @@
 //! invalid ones with `# expect-error: line L`. An invalid file must exit with
 //! status 1 and a diagnostic that points at line L; no file may panic.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-/// The `.ray` files of one folder of `tests/cases`, sorted.
-fn cases(folder: &str) -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cases").join(folder);
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("tests/cases exists")
-        .map(|entry| entry.expect("readable entry").path())
-        .filter(|path| path.extension().is_some_and(|e| e == "ray"))
-        .collect();
-    files.sort();
-    assert!(!files.is_empty(), "no cases in {}", dir.display());
-    files
-}
+mod common;
+
+use common::cases::cases;
 
 /// The value after `prefix` on the file's first line.
 fn expectation(path: &Path, prefix: &str) -> String {

@@ -313,6 +313,34 @@ fn a_syntax_error_shows_file_line_column_and_caret() {
 }
 
 #[test]
+fn colours_follow_the_conventions_in_checks_and_scripts() {
+    let text = "camera distance 10 angle 1 end\nambient 0.2\nlet a = 1 / 0\n";
+    let (_dir, path) = scene(text);
+    // Standard error is a pipe here: no colours unless forced, and `NO_COLOR` wins.
+    let cases: [(&[(&str, &str)], bool); 4] = [
+        (&[], false),
+        (&[("CLICOLOR_FORCE", "1")], true),
+        (&[("CLICOLOR_FORCE", "1"), ("NO_COLOR", "1")], false),
+        (&[("CLICOLOR_FORCE", "1"), ("CLICOLOR", "0")], true),
+    ];
+    for (variables, coloured) in cases {
+        for script in [false, true] {
+            let mut command = rayrepl();
+            command.env_remove("NO_COLOR").env_remove("CLICOLOR_FORCE").env_remove("CLICOLOR").envs(variables.to_vec());
+            if script {
+                command.write_stdin(text);
+            } else {
+                command.arg("--check").arg(&path);
+            }
+            let output = command.assert().code(1).get_output().clone();
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert_eq!(stderr.contains("\x1b["), coloured, "{variables:?}, script {script}: {stderr}");
+            assert!(stderr.contains("division by zero"), "{stderr}");
+        }
+    }
+}
+
+#[test]
 fn an_evaluation_error_writes_no_image() {
     let (dir, path) = scene("camera distance 10 angle 1 end\nambient 0.2\nlet a = 1 / 0\n");
     let out = dir.path().join("out.png");

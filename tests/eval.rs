@@ -26,7 +26,7 @@ fn run_at(text: &str, time: f64, limits: Limits) -> (Interpreter, Result<(), Dia
     let id = sources.add("test.ray", text.clone(), 0);
     let program = parse_items(id, &text).unwrap_or_else(|d| panic!("syntax error: {}\n{text}", d.message));
     let mut interpreter = Interpreter::new(time, limits);
-    let result = interpreter.run_with_sources(&program, &sources);
+    let result = interpreter.run(&program);
     (interpreter, result, sources)
 }
 
@@ -49,6 +49,13 @@ fn error_with(text: &str, limits: Limits) -> (Diagnostic, usize, usize) {
     let d = result.expect_err("the program should fail");
     let (line, col) = sources.get(d.span.source).line_col(d.span.start as usize);
     (d, line, col)
+}
+
+/// The notes of the error of a program that must fail, as a person reads them.
+fn notes(text: &str, limits: Limits) -> Vec<String> {
+    let (_, result, sources) = run_at(text, 0.0, limits);
+    let d = result.expect_err("the program should fail");
+    d.notes.iter().map(|note| note.display(&sources, d.span.source)).collect()
 }
 
 /// Where a diagnostic points, as (line, column, spanned text).
@@ -899,18 +906,22 @@ f(0)";
     let (d, line, col) = error(text);
     assert_eq!(d.message, "recursion deeper than 100000 calls");
     assert_eq!((line, col), (3, 3));
-    assert_eq!(d.notes, ["call chain: f (line 5) -> f (line 3) -> ... `f (line 3)` repeated 99999 more times"]);
+    assert_eq!(
+        notes(text, Limits::default()),
+        ["call chain: f (line 5) -> f (line 3) -> ... `f (line 3)` repeated 99999 more times"]
+    );
     assert!(d.help.is_some());
 }
 
 #[test]
 fn the_call_limit_is_configurable_and_mutual_recursion_is_summarised() {
     let limits = Limits { max_call_depth: 50, ..Limits::default() };
-    let (d, line, _) = error_with("proc even() odd() end\nproc odd() even() end\neven()", limits);
+    let text = "proc even() odd() end\nproc odd() even() end\neven()";
+    let (d, line, _) = error_with(text, limits);
     assert_eq!(d.message, "recursion deeper than 50 calls");
     assert_eq!(line, 2);
     assert_eq!(
-        d.notes,
+        notes(text, limits),
         [
             "call chain: even (line 3) -> odd (line 1) -> even (line 2) -> ... the cycle `odd (line 1) -> even (line 2)` repeated 24 more times"
         ]

@@ -384,7 +384,8 @@ fn a_file_must_start_with_the_camera() {
     assert_error(&file_error("put s\n"), "a scenario file must start with `camera ... end`", 1, 1);
     assert_error(&file_error("\n  ambient 1\n"), "a scenario file must start with `camera ... end`", 2, 3);
     assert_error(&file_error("  sphere"), "a scenario file must start with `camera ... end`", 1, 3);
-    assert_error(&file_error("# only a comment\n"), "a scenario file must start with `camera ... end`", 1, 16);
+    // The file ends just after its last character.
+    assert_error(&file_error("# only a comment\n"), "a scenario file must start with `camera ... end`", 1, 17);
     assert_error(&file_error(""), "a scenario file must start with `camera ... end`", 1, 1);
 }
 
@@ -393,7 +394,7 @@ fn ambient_comes_right_after_the_camera() {
     let text = "camera distance 1 angle 1 end\nlight vector 0, 0, 0 intensity 1 end\n";
     assert_error(&file_error(text), "`ambient` must come right after the camera", 2, 1);
     let text = "camera distance 1 angle 1 end\n";
-    assert_error(&file_error(text), "unexpected end of file: `ambient` must come right after the camera", 1, 29);
+    assert_error(&file_error(text), "unexpected end of file: `ambient` must come right after the camera", 1, 30);
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! The interactive session driven through a pseudo-terminal: multi-line
-//! input, completion, Ctrl-C, Ctrl-D, colours and the history file.
+//! input, completion, Ctrl-C, Ctrl-D, colours and the history file; and its
+//! entry loop fed typed lines in-process, for what it prints.
 
 use std::path::Path;
 use std::process::Command;
@@ -7,6 +8,8 @@ use std::time::Duration;
 
 use expectrl::process::unix::WaitStatus;
 use expectrl::{ControlCode, Eof, Expect, Session};
+use rayrepl::lang::Limits;
+use rayrepl::repl::{SessionOptions, run_typed};
 
 /// A session on a terminal, its history kept under `data_home`.
 fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsSession {
@@ -23,10 +26,10 @@ fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsS
     session
 }
 
-/// A plain session without previews, with its own history directory.
-fn plain() -> (expectrl::session::OsSession, tempfile::TempDir) {
+/// A session without previews, with its own history directory, in colour or not.
+fn fresh(color: bool) -> (expectrl::session::OsSession, tempfile::TempDir) {
     let data_home = tempfile::tempdir().expect("temporary directory");
-    let session = spawn(&["--no-preview"], data_home.path(), false);
+    let session = spawn(&["--no-preview"], data_home.path(), color);
     (session, data_home)
 }
 
@@ -45,7 +48,7 @@ fn leave(mut session: expectrl::session::OsSession) -> i32 {
 
 #[test]
 fn an_input_continues_while_a_construct_is_open() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("proc row(n)").unwrap();
     session.expect("...proc> ").unwrap();
     session.send_line("  put sphere center n, 0, 0").unwrap();
@@ -73,7 +76,7 @@ fn an_input_continues_while_a_construct_is_open() {
 
 #[test]
 fn an_error_leaves_the_session_running_and_unchanged() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("let a = 1").unwrap();
     session.expect("a = 1").unwrap();
     session.expect("ray> ").unwrap();
@@ -87,7 +90,7 @@ fn an_error_leaves_the_session_running_and_unchanged() {
 
 #[test]
 fn ctrl_c_drops_the_input_being_typed_and_stays() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("put sphere center 0, 0, 0").unwrap();
     session.expect("...sphere> ").unwrap();
     session.send(ControlCode::EndOfText).unwrap();
@@ -106,7 +109,7 @@ fn ctrl_c_drops_the_input_being_typed_and_stays() {
 
 #[test]
 fn tab_completes_names_procedures_and_commands() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("let spin = 2").unwrap();
     session.expect("spin = 2").unwrap();
     session.expect("ray> ").unwrap();
@@ -128,13 +131,32 @@ fn tab_completes_names_procedures_and_commands() {
 }
 
 #[test]
-fn keywords_are_coloured_on_a_terminal() {
-    let data_home = tempfile::tempdir().expect("temporary directory");
-    let mut session = spawn(&["--no-preview"], data_home.path(), true);
+fn keywords_and_diagnostics_are_coloured_on_a_terminal() {
+    let (mut session, _home) = fresh(true);
     session.send("put").unwrap();
     session.expect("\x1b[1;34mput\x1b[0m").unwrap();
     session.send(ControlCode::EndOfText).unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line("let a = nowhere").unwrap();
+    // `error` in bold bright red, as in every mode.
+    session.expect("\x1b[91merror").unwrap();
+    session.expect("not defined here").unwrap();
     assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn a_call_chain_across_inputs_is_in_call_order_and_names_the_inputs() {
+    anstream::ColorChoice::Never.write_global();
+    let lines = ["proc f(n)", "  g(n + 1)", "end", "proc g(n) f(n) end", "f(0)"];
+    let limits = Limits { max_call_depth: 20, ..Limits::default() };
+    let options = SessionOptions { no_preview: true, limits, ..SessionOptions::default() };
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    run_typed(lines.map(String::from), &mut out, &mut err, &options);
+    let err = String::from_utf8(err).expect("text");
+    assert!(err.contains(" --> <input 2>:1:11\n"), "{err}");
+    let chain = "call chain: f (<input 3>:1) -> g (<input 1>:2) -> f (line 1) -> \
+                 ... the cycle `g (<input 1>:2) -> f (line 1)` repeated 9 more times";
+    assert!(err.contains(&format!("  = note: {chain}\n")), "{err}");
 }
 
 #[test]
@@ -176,7 +198,7 @@ fn a_file_given_with_i_is_loaded_first() {
 
 #[test]
 fn prompts_number_the_inputs_that_messages_name() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("let a = 1").unwrap();
     session.expect("[2] ray> ").unwrap();
     session.send_line(":env").unwrap();
@@ -188,7 +210,7 @@ fn prompts_number_the_inputs_that_messages_name() {
 
 #[test]
 fn a_broken_line_is_reported_at_once_and_the_entry_comes_back() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("proc p()").unwrap();
     session.expect("...proc> ").unwrap();
     // A person takes time to type a line (a line read at once was typed
@@ -206,7 +228,7 @@ fn a_broken_line_is_reported_at_once_and_the_entry_comes_back() {
 
 #[test]
 fn leaving_in_the_middle_of_an_entry_warns_first() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("proc p()").unwrap();
     session.expect("...proc> ").unwrap();
     session.send(ControlCode::EndOfTransmission).unwrap();
@@ -218,7 +240,7 @@ fn leaving_in_the_middle_of_an_entry_warns_first() {
 
 #[test]
 fn limits_are_raised_with_a_command_in_the_session() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line(":limits calls 50").unwrap();
     session.expect("calls = 50").unwrap();
     session.send_line("proc f(n) f(n + 1) end").unwrap();
@@ -236,7 +258,7 @@ fn limits_are_raised_with_a_command_in_the_session() {
 
 #[test]
 fn lines_typed_ahead_or_pasted_all_run_in_order() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     // Without bracketed paste: the lines arrive at once, one broken.
     session.send("let a = 1\nproc p()\n  put sphre radius 1\nend\nlet b = a + 1\n:env\n").unwrap();
     session.expect("<input 2>:2:13").unwrap();

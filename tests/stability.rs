@@ -37,7 +37,7 @@ fn eval(text: &str) -> Scene {
     let id = sources.add("stability.ray", text.to_string(), 0);
     let program = parse_items(id, text).unwrap_or_else(|d| panic!("syntax error: {}\n{text}", d.message));
     let mut interpreter = Interpreter::new(0.0, Limits::default());
-    if let Err(d) = interpreter.run_with_sources(&program, &sources) {
+    if let Err(d) = interpreter.run(&program) {
         panic!("evaluation error: {}\n{text}", d.message);
     }
     interpreter.into_scene()

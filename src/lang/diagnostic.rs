@@ -1,12 +1,21 @@
 //! Errors and warnings about a program, and how they are shown to people.
 //!
-//! A [`Diagnostic`] points at a [`Span`]; [`Diagnostic::render`] prints it the
-//! way a learner needs it: file, line and column, the source line, a caret
-//! under the spot, and a `help:` line when there is an obvious fix.
+//! A [`Diagnostic`] points at a [`Span`]; [`Diagnostic::render`] draws it the
+//! way rustc does, with annotate-snippets: the message, ` --> file:line:col`,
+//! the source lines in a gutter, `^` under the spot, `-` under related places,
+//! then `= note:` and `= help:` lines. Positions are never part of the text:
+//! they are read from spans when the diagnostic is rendered, in the
+//! coordinates of the source the user sees. [`emit`] is how every mode
+//! prints a diagnostic.
 
-use ariadne::{Color, Fmt};
+use std::io::Write;
+use std::ops::Range;
 
-use super::source::{SourceMap, Span};
+use annotate_snippets::{Annotation, AnnotationKind, Level, Renderer, Snippet};
+use anstream::AutoStream;
+use anstream::stream::RawStream;
+
+use super::source::{SourceId, SourceMap, Span};
 
 /// How serious a diagnostic is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,7 +31,7 @@ pub enum Severity {
 pub struct Diagnostic {
     /// Error or warning.
     pub severity: Severity,
-    /// What is wrong, in plain words ("expected `end` to close the `sphere` opened at line 12").
+    /// What is wrong, in plain words ("expected `end` to close the `sphere`").
     pub message: String,
     /// The spot the caret points at.
     pub span: Span,
@@ -31,7 +40,7 @@ pub struct Diagnostic {
     /// Other places worth showing (where a `sphere` was opened, where a procedure was called from...).
     pub related: Vec<(Span, String)>,
     /// Extra lines of explanation (a call chain, ...).
-    pub notes: Vec<String>,
+    pub notes: Vec<Note>,
     /// An obvious fix ("did you mean `sphere`?").
     pub help: Option<String>,
 }
@@ -67,8 +76,8 @@ impl Diagnostic {
         self
     }
 
-    /// Adds a line of explanation.
-    pub fn with_note(mut self, note: impl Into<String>) -> Diagnostic {
+    /// Adds a line of explanation: a text, or a [`Note`] that names places.
+    pub fn with_note(mut self, note: impl Into<Note>) -> Diagnostic {
         self.notes.push(note.into());
         self
     }
@@ -79,253 +88,189 @@ impl Diagnostic {
         self
     }
 
-    /// Renders the diagnostic for a person: a header naming file, line and
-    /// column, the source line with a caret, then notes and help. `color`
-    /// turns ANSI colours on (for terminals only); without it the output is
-    /// plain text whose frame is drawn in ASCII.
-    ///
-    /// The header is `error: <message>` then ` --> file:line:column`, as in
-    /// rustc; ariadne draws the source lines and labels in between; notes and
-    /// help follow as `note: ...` and `help: ...` lines.
+    /// The diagnostic drawn for a person, ending with a newline: with ANSI
+    /// styles if `color`, in plain text otherwise (the same characters).
     pub fn render(&self, sources: &SourceMap, color: bool) -> String {
-        let mut out = self.header(color);
-        out.push_str(&render::snippet(self, sources, color));
-        let notes = self.notes.iter().map(|note| ("note", note));
-        for (kind, text) in notes.chain(self.help.iter().map(|help| ("help", help))) {
-            out.push_str(&paint(kind, Color::Cyan, color));
-            out.push_str(": ");
-            out.push_str(text);
-            out.push('\n');
-        }
+        let renderer = if color { Renderer::styled() } else { Renderer::plain() };
+        // annotate-snippets makes the message and the source printable, not
+        // the other texts: control characters could drive the terminal.
+        let notes: Vec<String> =
+            self.notes.iter().map(|note| printable(&note.display(sources, self.span.source))).collect();
+        let help = self.help.as_deref().map(printable);
+        let level = match self.severity {
+            Severity::Error => Level::ERROR,
+            Severity::Warning => Level::WARNING,
+        };
+        let group = level
+            .primary_title(&self.message)
+            .elements(self.snippets(sources))
+            .elements(notes.iter().map(|note| Level::NOTE.message(note.as_str())))
+            .elements(help.map(|help| Level::HELP.message(help)));
+        let rendered = renderer.render(&[group]);
+        // annotate-snippets shows C0 controls as symbols but lets C1 ones
+        // (U+0080 to U+009F, which some terminals obey) through, counting
+        // each one column wide, as `�` is.
+        let mut out: String =
+            rendered.chars().map(|c| if ('\u{80}'..='\u{9f}').contains(&c) { '\u{fffd}' } else { c }).collect();
+        out.push('\n');
         out
     }
 
-    /// `error: <message>`, the first line of the rendering.
-    fn header(&self, color: bool) -> String {
-        let (kind, kind_color) = match self.severity {
-            Severity::Error => ("error", Color::Red),
-            Severity::Warning => ("warning", Color::Yellow),
-        };
-        format!("{}: {}\n", paint(kind, kind_color, color), self.message)
-    }
-}
-
-/// `text` in `color` when colours are on, as is otherwise.
-fn paint(text: &str, color: Color, enabled: bool) -> String {
-    if enabled { text.fg(color).to_string() } else { text.to_string() }
-}
-
-/// The source snippet drawn by ariadne, with the location line in rustc's style.
-mod render {
-    use std::collections::HashMap;
-    use std::fmt;
-    use std::ops::Range;
-
-    use ariadne::{CharSet, Color, Config, IndexType, Label, Report, ReportKind, Source};
-
-    use super::{Diagnostic, Severity};
-    use crate::lang::source::{SourceId, SourceMap, Span};
-
-    /// The texts a diagnostic refers to, in the shape ariadne reads them.
-    ///
-    /// ariadne 0.6 applies `with_display_line_offset` to the location line but
-    /// not to the line numbers in the margin, so a text with a `line_offset`
-    /// is instead padded with that many empty lines in front, and spans are
-    /// shifted by as many bytes.
-    struct Texts {
-        files: HashMap<SourceId, (String, Source<String>)>,
-    }
-
-    impl Texts {
-        /// The texts of every source that `diagnostic` points into.
-        fn of(diagnostic: &Diagnostic, sources: &SourceMap) -> Texts {
-            let mut files = HashMap::new();
-            let spans = std::iter::once(diagnostic.span).chain(diagnostic.related.iter().map(|(s, _)| *s));
-            for span in spans {
-                files.entry(span.source).or_insert_with(|| {
-                    let file = sources.get(span.source);
-                    let padded = "\n".repeat(file.line_offset) + &printable(&file.text);
-                    (file.name.clone(), Source::from(padded))
-                });
+    /// One snippet per source the diagnostic points into, the primary
+    /// span's first, each with its marks: `^` for the primary span, `-`
+    /// for the related places.
+    fn snippets<'a>(&'a self, sources: &'a SourceMap) -> Vec<Snippet<'a, Annotation<'a>>> {
+        let primary = (self.span, AnnotationKind::Primary, self.label.as_deref());
+        let related = self.related.iter().map(|(span, text)| (*span, AnnotationKind::Context, Some(text.as_str())));
+        let mut by_source: Vec<(SourceId, Vec<Annotation<'a>>)> = Vec::new();
+        for (span, kind, label) in std::iter::once(primary).chain(related) {
+            let annotation = kind.span(shown_range(&sources.get(span.source).text, span)).label(label.map(printable));
+            match by_source.iter_mut().find(|(source, _)| *source == span.source) {
+                Some((_, annotations)) => annotations.push(annotation),
+                None => by_source.push((span.source, vec![annotation])),
             }
-            Texts { files }
         }
-    }
-
-    /// `text` with its control characters (an escape could drive the
-    /// terminal) replaced by as many `?` as they take bytes, so that byte
-    /// offsets stay valid.
-    fn printable(text: &str) -> String {
-        text.chars()
-            .flat_map(|c| {
-                let shown = if c.is_control() && !matches!(c, '\n' | '\t' | '\r') { None } else { Some(c) };
-                let count = if shown.is_some() { 1 } else { c.len_utf8() };
-                std::iter::repeat_n(shown.unwrap_or('?'), count)
+        by_source
+            .into_iter()
+            .map(|(source, annotations)| {
+                let file = sources.get(source);
+                Snippet::source(&*file.text).path(&file.name).line_start(file.line_offset + 1).annotations(annotations)
             })
             .collect()
     }
+}
 
-    impl ariadne::Cache<SourceId> for Texts {
-        type Storage = String;
+/// Prints `diagnostic` on `out`: the one way batch runs, scripts and the
+/// session print diagnostics, so that they look the same everywhere. The
+/// rendering carries styles; `out`, an anstream stream, keeps or strips
+/// them as the terminal and `NO_COLOR` / `CLICOLOR_FORCE` say. Output
+/// errors (a closed pipe) are ignored: the exit status tells what happened.
+pub fn emit<S: RawStream>(out: &mut AutoStream<S>, diagnostic: &Diagnostic, sources: &SourceMap)
+where
+    AutoStream<S>: Write,
+{
+    let _ = out.write_all(diagnostic.render(sources, true).as_bytes());
+    let _ = out.flush();
+}
 
-        fn fetch(&mut self, id: &SourceId) -> Result<&Source<String>, impl fmt::Debug> {
-            self.files.get(id).map(|(_, source)| source).ok_or("unknown source")
-        }
+/// `text` with its control characters shown as symbols (`␛`), as
+/// annotate-snippets shows those of the source.
+fn printable(text: &str) -> String {
+    annotate_snippets::normalize_untrusted_str(text)
+}
 
-        fn display<'a>(&self, id: &'a SourceId) -> Option<impl fmt::Display + 'a> {
-            self.files.get(id).map(|(name, _)| name.clone())
-        }
+/// The byte range drawn for `span` in `text`: inside the text and on
+/// character boundaries. A span in the blank end of the text (where "the
+/// file ends here" points) is drawn just after its last character.
+fn shown_range(text: &str, span: Span) -> Range<usize> {
+    let content_end = text.trim_end().len();
+    let start = floor_boundary(text, span.start as usize);
+    if start >= content_end {
+        return content_end..content_end;
+    }
+    start..ceil_boundary(text, (span.end as usize).clamp(start, text.len()))
+}
+
+/// The largest character boundary at or before `offset` (and at most the
+/// text's length).
+fn floor_boundary(text: &str, offset: usize) -> usize {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    offset
+}
+
+/// The smallest character boundary at or after `offset` (at most the text's length).
+fn ceil_boundary(text: &str, offset: usize) -> usize {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset += 1;
+    }
+    offset
+}
+
+/// A line of explanation that may name places: text and spans, each span
+/// shown as `line 12` when it is in the file of the diagnostic's primary
+/// span and as `<input 3>:2` when it is in another, computed only when the
+/// diagnostic is rendered.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Note {
+    pieces: Vec<NotePiece>,
+}
+
+/// A part of a [`Note`].
+#[derive(Debug, Clone, PartialEq)]
+enum NotePiece {
+    Text(String),
+    Place(Span),
+}
+
+impl Note {
+    /// Adds text at the end.
+    pub fn text(mut self, text: impl Into<String>) -> Note {
+        self.pieces.push(NotePiece::Text(text.into()));
+        self
     }
 
-    /// The lines ariadne draws for `diagnostic`, after the header: the
-    /// location, the source lines with their labels, and the closing line.
-    pub(super) fn snippet(diagnostic: &Diagnostic, sources: &SourceMap, color: bool) -> String {
-        if !color {
-            return plain_snippet(diagnostic, sources);
-        }
-        let file = sources.get(diagnostic.span.source);
-        let (line, column) = file.line_col(floor_boundary(&file.text, diagnostic.span.start as usize));
-        let location = format!("{}:{line}:{column}", file.name);
-        let Some(primary) = label_range(sources, diagnostic.span) else {
-            return format!(" --> {location}\n");
-        };
-        let drawn = draw(diagnostic, sources, color, primary);
-        // ariadne's first line is its own header and its second the
-        // location inside a box; both are replaced by the rustc-style line.
-        let mut lines = drawn.lines().skip(1);
-        let boxed_location = lines.next().unwrap_or("");
-        let margin = boxed_location.len() - boxed_location.trim_start().len();
-        let mut out = format!("{}--> {location}\n", " ".repeat(margin.saturating_sub(1)));
-        for line in lines {
-            out.push_str(line.trim_end());
-            out.push('\n');
-        }
-        out
+    /// Adds the place of `span` at the end (`line 12` or `<input 3>:2`).
+    pub fn place(mut self, span: Span) -> Note {
+        self.pieces.push(NotePiece::Place(span));
+        self
     }
 
-    /// The snippet in plain text, for pipes, logs and files (ariadne's ASCII
-    /// drawing is hard to read): rustc's layout, each labelled line once with
-    /// `^` under the spot and `-` under the related places.
-    fn plain_snippet(diagnostic: &Diagnostic, sources: &SourceMap) -> String {
-        let mut marks = vec![(diagnostic.span, '^', diagnostic.label.as_deref().unwrap_or(""))];
-        marks.extend(diagnostic.related.iter().map(|(span, text)| (*span, '-', text.as_str())));
-        marks.sort_by_key(|(span, _, _)| (span.source != diagnostic.span.source, span.source.0, span.start));
-        let place = |span: Span| {
-            let file = sources.get(span.source);
-            let start = floor_boundary(&file.text, span.start as usize);
-            let (line, column) = file.line_col(start);
-            (file, start, line, column)
-        };
-        let width = marks.iter().map(|(span, _, _)| place(*span).2.to_string().len()).max().unwrap_or(1);
-        let gutter = " ".repeat(width);
-        let (file, _, line, column) = place(diagnostic.span);
-        let mut out = format!("{gutter}--> {}:{line}:{column}\n{gutter} |\n", file.name);
-        let mut current = diagnostic.span.source;
-        for (span, mark, text) in marks {
-            let (file, start, line, column) = place(span);
-            if span.source != current {
-                current = span.source;
-                out.push_str(&format!("{gutter}::: {}:{line}:{column}\n{gutter} |\n", file.name));
+    /// Adds another note's pieces at the end.
+    pub fn then(mut self, other: Note) -> Note {
+        self.pieces.extend(other.pieces);
+        self
+    }
+
+    /// The notes one after the other, with `separator` between them.
+    pub fn joined(notes: impl IntoIterator<Item = Note>, separator: &str) -> Note {
+        let mut joined = Note::default();
+        for (index, note) in notes.into_iter().enumerate() {
+            if index > 0 {
+                joined = joined.text(separator);
             }
-            let line_start = file.text[..start].rfind('\n').map_or(0, |i| i + 1);
-            let line_end = file.text[start..].find('\n').map_or(file.text.len(), |i| start + i);
-            let shown = printable(file.text[line_start..line_end].trim_end_matches('\r')).replace('\t', " ");
-            let end = floor_boundary(&file.text, (span.end as usize).clamp(start, line_end));
-            let marks = mark.to_string().repeat(file.text[start..end].chars().count().max(1));
-            let under = format!("{gutter} | {}{marks} {text}", " ".repeat(column - 1));
-            let source_line = format!("{line:>width$} | {shown}");
-            out.push_str(&format!("{}\n{}\n", source_line.trim_end(), under.trim_end()));
+            joined = joined.then(note);
         }
-        out
+        joined
     }
 
-    /// Runs ariadne over the diagnostic's labels.
-    fn draw(diagnostic: &Diagnostic, sources: &SourceMap, color: bool, primary: Range<usize>) -> String {
-        let (primary_color, secondary_color) = match diagnostic.severity {
-            Severity::Error => (Color::Red, Color::Blue),
-            Severity::Warning => (Color::Yellow, Color::Blue),
-        };
-        let config = Config::new()
-            .with_color(color)
-            .with_char_set(if color { CharSet::Unicode } else { CharSet::Ascii })
-            .with_index_type(IndexType::Byte);
-        let source = diagnostic.span.source;
-        let mut primary_label = Label::new((source, primary.clone())).with_color(primary_color);
-        primary_label = primary_label.with_order(label_order(sources, diagnostic.span, source));
-        // ariadne draws no underline for a label without a message.
-        primary_label = primary_label.with_message(diagnostic.label.as_deref().unwrap_or("here"));
-        let mut report =
-            Report::build(ReportKind::Error, (source, primary)).with_config(config).with_label(primary_label);
-        for (span, text) in &diagnostic.related {
-            if let Some(range) = label_range(sources, *span) {
-                let label = Label::new((span.source, range))
-                    .with_message(text)
-                    .with_color(secondary_color)
-                    .with_order(label_order(sources, *span, source));
-                report = report.with_label(label);
-            }
-        }
-        let mut bytes = Vec::new();
-        let written = report.finish().write(Texts::of(diagnostic, sources), &mut bytes);
-        match written {
-            Ok(()) => String::from_utf8_lossy(&bytes).into_owned(),
-            Err(_) => String::new(),
-        }
+    /// The note as the user reads it in a diagnostic whose primary span is
+    /// in `primary`: places in a file of the same name (one text, or pieces
+    /// of one script) are `line N`, others `name:N`.
+    pub fn display(&self, sources: &SourceMap, primary: SourceId) -> String {
+        let primary_name = &sources.get(primary).name;
+        self.pieces
+            .iter()
+            .map(|piece| match piece {
+                NotePiece::Text(text) => text.clone(),
+                NotePiece::Place(span) => {
+                    let file = sources.get(span.source);
+                    let (line, _) = file.line_col(floor_boundary(&file.text, span.start as usize));
+                    if file.name == *primary_name { format!("line {line}") } else { format!("{}:{line}", file.name) }
+                }
+            })
+            .collect()
     }
+}
 
-    /// Labels are drawn in this order: by line in the primary source, which
-    /// keeps them in one box, then the other sources.
-    fn label_order(sources: &SourceMap, span: Span, primary_source: SourceId) -> i32 {
-        let file = sources.get(span.source);
-        let (line, _) = file.line_col(floor_boundary(&file.text, span.start as usize));
-        let line = i32::try_from(line).unwrap_or(i32::MAX / 4).min(i32::MAX / 4);
-        if span.source == primary_source { line } else { i32::MAX / 2 + line / 2 }
+impl From<String> for Note {
+    fn from(text: String) -> Note {
+        Note::default().text(text)
     }
+}
 
-    /// The byte range of `span` in the padded text: clamped to the text, on
-    /// character boundaries, and at least one character wide when the text
-    /// has any (an empty range would not be drawn). `None` for an empty text.
-    fn label_range(sources: &SourceMap, span: Span) -> Option<Range<usize>> {
-        let file = sources.get(span.source);
-        let text: &str = &file.text;
-        if text.is_empty() {
-            return None;
-        }
-        let mut start = floor_boundary(text, (span.start as usize).min(text.len()));
-        let mut end = ceil_boundary(text, (span.end as usize).clamp(start, text.len()));
-        if start == end {
-            if start == text.len() {
-                start = floor_boundary(text, start - 1);
-            } else {
-                end = ceil_boundary(text, start + 1);
-            }
-        }
-        Some(start + file.line_offset..end + file.line_offset)
-    }
-
-    /// The largest character boundary at or before `offset` (and at most
-    /// the text's length).
-    fn floor_boundary(text: &str, offset: usize) -> usize {
-        let mut offset = offset.min(text.len());
-        while !text.is_char_boundary(offset) {
-            offset -= 1;
-        }
-        offset
-    }
-
-    /// The smallest character boundary at or after `offset`.
-    fn ceil_boundary(text: &str, mut offset: usize) -> usize {
-        while !text.is_char_boundary(offset) {
-            offset += 1;
-        }
-        offset
+impl From<&str> for Note {
+    fn from(text: &str) -> Note {
+        Note::default().text(text)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::source::SourceId;
 
     fn map_with(name: &str, text: &str, line_offset: usize) -> (SourceMap, SourceId) {
         let mut map = SourceMap::new();
@@ -345,7 +290,8 @@ error: unknown object `spher`
   |
 2 | put spher
   |     ^^^^^ not defined
-help: did you mean `sphere`?
+  |
+  = help: did you mean `sphere`?
 ";
         assert_eq!(diagnostic.render(&map, false), expected);
     }
@@ -379,31 +325,91 @@ error: `p` takes 1 argument, but 2 are given
   |
 1 | p(1, 2)
   | ^^^^^^^ 2 arguments
+  |
  ::: scene.ray:1:1
   |
 1 | proc p(a)
   | --------- `p` is defined here
-note: called from the top level
+  |
+  = note: called from the top level
 ";
         assert_eq!(diagnostic.render(&map, false), expected);
     }
 
     #[test]
-    fn warnings_say_so() {
-        let (map, id) = map_with("a.ray", "color 300, 0, 0", 0);
-        let rendered = Diagnostic::warning(Span::new(id, 6, 9), "clamped to 255").render(&map, false);
-        assert!(rendered.starts_with("warning: clamped to 255\n --> a.ray:1:7\n"), "{rendered}");
+    fn a_line_with_two_marks_is_shown_once() {
+        let (map, id) = map_with("a.ray", "put sphere center 0, 0, 0 radius r end", 0);
+        let diagnostic = Diagnostic::error(Span::new(id, 33, 34), "unknown variable `r`")
+            .with_label("not defined")
+            .with_related(Span::new(id, 4, 10), "in this `sphere`");
+        let expected = "\
+error: unknown variable `r`
+ --> a.ray:1:34
+  |
+1 | put sphere center 0, 0, 0 radius r end
+  |     ------ in this `sphere`      ^ not defined
+";
+        assert_eq!(diagnostic.render(&map, false), expected);
     }
 
     #[test]
-    fn colours_only_when_asked() {
+    fn the_end_of_the_file_is_just_after_its_last_character() {
+        let (map, id) = map_with("a.ray", "camera distance 10\n  angle 1\n\n", 0);
+        for span in [Span::new(id, 29, 29), Span::new(id, 31, 31), Span::new(id, 30, 31)] {
+            let rendered = Diagnostic::error(span, "unexpected end of file").with_label("the file ends here");
+            let expected = "\
+error: unexpected end of file
+ --> a.ray:2:10
+  |
+2 |   angle 1
+  |          ^ the file ends here
+";
+            assert_eq!(rendered.render(&map, false), expected);
+        }
+    }
+
+    #[test]
+    fn tabs_and_wide_characters_keep_the_caret_under_the_spot() {
+        let (map, id) = map_with("a.ray", "let é =\t$", 0);
+        let rendered = Diagnostic::error(Span::new(id, 9, 10), "unexpected character `$`").render(&map, false);
+        let expected = "\
+error: unexpected character `$`
+ --> a.ray:1:9
+  |
+1 | let é =    $
+  |            ^
+";
+        assert_eq!(rendered, expected);
+    }
+
+    #[test]
+    fn warnings_have_the_same_format() {
+        let (map, id) = map_with("a.ray", "color 300, 0, 0", 0);
+        let warning = Diagnostic::warning(Span::new(id, 6, 9), "clamped to 255").render(&map, false);
+        let error = Diagnostic::error(Span::new(id, 6, 9), "clamped to 255").render(&map, false);
+        assert_eq!(warning.strip_prefix("warning"), error.strip_prefix("error"));
+    }
+
+    #[test]
+    fn colours_only_when_asked_and_the_text_is_the_same() {
         let (map, id) = map_with("a.ray", "let x = $", 0);
         let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `$`").with_help("remove it");
-        assert!(!diagnostic.render(&map, false).contains('\u{1b}'));
-        assert!(diagnostic.render(&map, false).is_ascii());
+        let plain = diagnostic.render(&map, false);
+        assert!(plain.is_ascii() && !plain.contains('\u{1b}'));
         let coloured = diagnostic.render(&map, true);
         assert!(coloured.contains('\u{1b}'));
-        assert!(coloured.contains("a.ray:1:9"));
+        let mut stripped = Vec::new();
+        anstream::StripStream::new(&mut stripped).write_all(coloured.as_bytes()).expect("writes to memory");
+        assert_eq!(String::from_utf8(stripped).expect("text"), plain);
+    }
+
+    #[test]
+    fn emit_strips_styles_from_a_stream_without_colours() {
+        let (map, id) = map_with("a.ray", "let x = $", 0);
+        let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `$`");
+        let mut out = AutoStream::never(Vec::new());
+        emit(&mut out, &diagnostic, &map);
+        assert_eq!(String::from_utf8(out.into_inner()).expect("text"), diagnostic.render(&map, false));
     }
 
     #[test]
@@ -418,9 +424,34 @@ note: called from the top level
 
     #[test]
     fn control_characters_are_not_sent_to_the_terminal() {
-        let (map, id) = map_with("a.ray", "let x = \u{1b}[31m", 0);
-        let rendered = Diagnostic::error(Span::new(id, 8, 9), "unexpected character").render(&map, false);
-        assert!(!rendered.contains('\u{1b}'));
-        assert!(rendered.contains("let x = ?[31m"), "{rendered}");
+        let (map, id) = map_with("a.ray", "let x = \u{1b}[31m \u{9b}2J", 0);
+        let diagnostic = Diagnostic::error(Span::new(id, 8, 9), "unexpected character `\u{1b}`")
+            .with_label("\u{7}")
+            .with_related(Span::new(id, 14, 16), "\u{9b}");
+        for color in [false, true] {
+            let rendered = diagnostic.render(&map, color);
+            assert!(!rendered.contains("\u{1b}[31m") && !rendered.contains(['\u{7}', '\u{9b}']), "{rendered}");
+        }
+        let expected = "\
+error: unexpected character `␛`
+ --> a.ray:1:9
+  |
+1 | let x = ␛[31m �2J
+  |         ^ ␇   - �
+";
+        assert_eq!(diagnostic.render(&map, false), expected);
+    }
+
+    #[test]
+    fn notes_name_places_from_the_sources() {
+        let mut map = SourceMap::new();
+        let first = map.add("<input 1>", "proc f()\n  f()\nend", 0);
+        let second = map.add("<input 2>", "f()", 0);
+        let note = Note::from("calls: ").place(Span::new(second, 0, 3)).text(", ").place(Span::new(first, 11, 14));
+        assert_eq!(note.display(&map, first), "calls: <input 2>:1, line 2");
+        assert_eq!(note.display(&map, second), "calls: line 1, <input 1>:2");
+        // Pieces of one script share its name and its line numbers.
+        let piece = map.add("<input 1>", "let a = 1", 7);
+        assert_eq!(Note::default().place(Span::new(piece, 0, 1)).display(&map, first), "line 8");
     }
 }

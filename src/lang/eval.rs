@@ -34,8 +34,8 @@ use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
 
 use super::ast::{Item, ProcDef, Program};
-use super::diagnostic::Diagnostic;
-use super::source::{SourceMap, Span};
+use super::diagnostic::{Diagnostic, Note};
+use super::source::Span;
 use crate::scene::transform::rotated_up;
 use crate::scene::{Camera, Light, Primitive, Scene, TimeUse};
 
@@ -204,15 +204,26 @@ impl Interpreter {
         self
     }
 
-    /// Runs every item of `program`; on error the interpreter is unchanged.
+    /// Runs every item of `program`; on error the interpreter is unchanged
+    /// and the error explains itself (a recursion error names the chain of
+    /// calls).
     pub fn run(&mut self, program: &Program) -> Result<(), Diagnostic> {
-        self.run_inner(program, None)
-    }
-
-    /// Like [`Interpreter::run`], but a recursion error's call chain names the
-    /// line of each call, read from `sources`.
-    pub fn run_with_sources(&mut self, program: &Program, sources: &SourceMap) -> Result<(), Diagnostic> {
-        self.run_inner(program, Some(sources))
+        let snapshot = self.snapshot();
+        self.created = self.live_primitives();
+        let result = program.items.iter().try_for_each(|item| self.run_item(item));
+        self.env.reset_locals();
+        self.depth = 0;
+        self.context_tainted = false;
+        result.map_err(|error| {
+            self.restore(snapshot);
+            let mut diagnostic = error.diagnostic;
+            if !error.chain.is_empty() {
+                // Collected while unwinding, innermost first.
+                let chain: Vec<_> = error.chain.into_iter().rev().collect();
+                diagnostic = diagnostic.with_note(Note::from("call chain: ").then(summarise_chain(&chain)));
+            }
+            diagnostic
+        })
     }
 
     /// The warnings (clamped colours, ...) raised since the last call.
@@ -280,26 +291,6 @@ impl Interpreter {
             Kind::Object(primitives) => Some(primitives.len()),
             Kind::Number(_) => None,
         }
-    }
-
-    /// Runs the items; on error, restores the snapshot and explains the error.
-    fn run_inner(&mut self, program: &Program, sources: Option<&SourceMap>) -> Result<(), Diagnostic> {
-        let snapshot = self.snapshot();
-        self.created = self.live_primitives();
-        let result = program.items.iter().try_for_each(|item| self.run_item(item));
-        self.env.reset_locals();
-        self.depth = 0;
-        self.context_tainted = false;
-        result.map_err(|error| {
-            self.restore(snapshot);
-            let mut diagnostic = error.diagnostic;
-            if !error.chain.is_empty() {
-                // Collected while unwinding, innermost first.
-                let chain: Vec<_> = error.chain.into_iter().rev().collect();
-                diagnostic = diagnostic.with_note(format!("call chain: {}", summarise_chain(&chain, sources)));
-            }
-            diagnostic
-        })
     }
 
     /// Runs one top-level item.

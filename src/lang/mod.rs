@@ -9,7 +9,7 @@ pub mod parser;
 pub mod source;
 pub mod suggest;
 
-pub use diagnostic::{Diagnostic, Severity};
+pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};
 pub use parser::{EntryState, entry_state, is_incomplete, parse_file, parse_items};
 pub use source::{SourceFile, SourceId, SourceMap, Span};

@@ -42,7 +42,7 @@ pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> 
 /// of what the user sees (see [`super::source::SourceFile::line_offset`]), so
 /// that messages such as "opened at line 12" give the user's line numbers.
 pub fn parse_file_with_line_offset(source: SourceId, text: &str, line_offset: usize) -> Result<Program, Diagnostic> {
-    parse(source, text, &ItemOrder::file(source, text, line_offset), line_offset)
+    parse(source, text, &ItemOrder::file(source, text), line_offset)
 }
 
 /// Like [`parse_items`], for a text whose first line is line `line_offset + 1`.

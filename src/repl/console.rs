@@ -1,9 +1,14 @@
 //! Where the session writes: messages to one stream, errors and diagnostics
-//! to another, with colours only for terminals.
+//! to another, each with colours where anstream finds they belong.
 
 use std::fmt::Display;
 use std::io::Write;
 
+use annotate_snippets::renderer::{DEFAULT_EMPHASIS_STYLE, DEFAULT_ERROR_STYLE, DEFAULT_NOTE_STYLE};
+use anstream::AutoStream;
+use anstream::stream::RawStream;
+
+use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
 
 use super::cancel::CancelSwitch;
@@ -11,10 +16,8 @@ use super::preview::Preview;
 
 /// The session's output and what it may do on the terminal.
 pub(crate) struct Console<'a> {
-    out: &'a mut dyn Write,
-    err: &'a mut dyn Write,
-    /// ANSI colours in messages and diagnostics.
-    pub color: bool,
+    out: AutoStream<&'a mut (dyn Write + 'static)>,
+    err: AutoStream<&'a mut (dyn Write + 'static)>,
     /// Where renders are shown; `None` when previews are off.
     pub preview: Option<Preview>,
     /// Progress bars on standard error for long renders.
@@ -24,9 +27,19 @@ pub(crate) struct Console<'a> {
 }
 
 impl<'a> Console<'a> {
-    /// A plain console: no colours, previews, progress bars or Ctrl-C handling.
-    pub(crate) fn plain(out: &'a mut dyn Write, err: &'a mut dyn Write) -> Console<'a> {
-        Console { out, err, color: false, preview: None, progress: false, cancel: None }
+    /// A console writing messages to `out` and errors to `err`, each styled
+    /// only if it is a terminal that wants colours (`NO_COLOR`,
+    /// `CLICOLOR_FORCE` and `CLICOLOR` are followed); no previews, progress
+    /// bars or Ctrl-C handling.
+    pub(crate) fn new<O: RawStream + 'static, E: RawStream + 'static>(out: &'a mut O, err: &'a mut E) -> Console<'a> {
+        let (out_choice, err_choice) = (AutoStream::choice(&*out), AutoStream::choice(&*err));
+        Console {
+            out: AutoStream::new(out as &mut dyn Write, out_choice),
+            err: AutoStream::new(err as &mut dyn Write, err_choice),
+            preview: None,
+            progress: false,
+            cancel: None,
+        }
     }
 
     /// Writes one line of information. Output errors (a closed pipe) are
@@ -36,31 +49,22 @@ impl<'a> Console<'a> {
         let _ = self.out.flush();
     }
 
-    /// Writes a one-line note that helps a learner along.
+    /// Writes a one-line note that helps a learner along, styled as the
+    /// notes of diagnostics.
     pub(crate) fn note(&mut self, text: impl Display) {
-        let label = self.paint("note:", "36");
-        self.say(format_args!("{label} {text}"));
+        self.say(format_args!("{DEFAULT_NOTE_STYLE}note:{DEFAULT_NOTE_STYLE:#} {text}"));
     }
 
-    /// Writes an error message that is not about program text.
+    /// Writes an error message that is not about program text, styled as
+    /// the first line of a diagnostic.
     pub(crate) fn error(&mut self, text: impl Display) {
-        let label = self.paint("error:", "1;31");
-        let _ = writeln!(self.err, "{label} {text}");
+        let (error, emphasis) = (DEFAULT_ERROR_STYLE, DEFAULT_EMPHASIS_STYLE);
+        let _ = writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}");
         let _ = self.err.flush();
     }
 
     /// Writes a diagnostic about program text.
     pub(crate) fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
-        let text = diagnostic.render(sources, self.color);
-        let _ = write!(self.err, "{text}");
-        if !text.ends_with('\n') {
-            let _ = writeln!(self.err);
-        }
-        let _ = self.err.flush();
-    }
-
-    /// `text` in the ANSI style `code` when colours are on.
-    pub(crate) fn paint(&self, text: &str, code: &str) -> String {
-        if self.color { format!("\x1b[{code}m{text}\x1b[0m") } else { text.to_string() }
+        emit(&mut self.err, diagnostic, sources);
     }
 }

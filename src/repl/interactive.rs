@@ -5,6 +5,8 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+use anstream::stream::RawStream;
+use anstream::{AutoStream, ColorChoice};
 use rustyline::Editor;
 use rustyline::config::{ColorMode, CompletionType, Config};
 use rustyline::error::ReadlineError;
@@ -22,12 +24,12 @@ use super::session::Session;
 use super::syntax::continuation_prompt;
 use super::{SessionOptions, handle_input, new_session};
 
+/// The prompt for a new input, after its number.
+const PROMPT: &str = "ray> ";
+
 /// A line read faster than this was not typed by a person but typed ahead
 /// or pasted, so more lines may follow it.
 const TYPING: Duration = Duration::from_millis(30);
-
-/// The prompt for a new input, after its number.
-const PROMPT: &str = "ray> ";
 
 /// Why the interactive session could not run.
 #[derive(Debug)]
@@ -57,63 +59,132 @@ impl std::error::Error for ReplError {
 /// the user's data directory (`rayrepl/history`); problems with that file
 /// are ignored.
 pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
-    let color = std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    // The editor draws prompts and highlighting on standard output.
+    let color = AutoStream::choice(&std::io::stdout()) != ColorChoice::Never;
     let mut editor = new_editor(color).map_err(ReplError::Terminal)?;
     let history = history_path();
     if let Some(path) = &history {
         let _ = editor.load_history(path);
     }
     let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
-    let mut console = Console::plain(&mut out, &mut err);
-    console.color = color && std::io::stderr().is_terminal();
+    let mut console = Console::new(&mut out, &mut err);
     console.preview = Preview::new(options.no_preview);
     console.progress = std::io::stderr().is_terminal();
     console.cancel = CancelSwitch::install();
-    // A flag cannot be given any more: errors point to `:limits` instead.
-    let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
-    let mut session = new_session(&SessionOptions { limits, ..options.clone() });
     console.say(format!(
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")
     ));
-    if let Some(path) = &options.initial_file {
-        let _ = commands::load_reporting(&mut session, path, &mut console);
-    }
-    let mut repl = Repl { editor, session, history, inputs: 0 };
-    repl.run(&mut console)
+    run_entries(Terminal { editor, history }, &mut console, options)
 }
 
-/// The editor and the session it feeds.
-struct Repl {
+/// Runs the interactive session's entry loop on `lines` as if each was
+/// typed at the prompt and ended with Enter, then Ctrl-D: messages go to
+/// `out` and diagnostics to `err`, as on a terminal (without prompts,
+/// previews or progress bars). It shows what a person at the terminal sees
+/// without needing one: the tests of the session's messages use it.
+pub fn run_typed(
+    lines: impl IntoIterator<Item = String>,
+    out: &mut (impl RawStream + 'static),
+    err: &mut (impl RawStream + 'static),
+    options: &SessionOptions,
+) {
+    let mut console = Console::new(out, err);
+    let ended = run_entries(Typed(lines.into_iter()), &mut console, options);
+    ended.expect("typed lines never fail to be read");
+}
+
+/// Loads `options.initial_file`, then runs the session on what is typed.
+fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
+    // A flag cannot be given any more: errors point to `:limits` instead.
+    let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
+    let mut session = new_session(&SessionOptions { limits, ..options.clone() });
+    if let Some(path) = &options.initial_file {
+        let _ = commands::load_reporting(&mut session, path, console);
+    }
+    Repl { lines, session, inputs: 0 }.run(console)
+}
+
+/// Where the session's lines come from: the line editor, or lines given in
+/// advance.
+trait Lines {
+    /// The next line typed after `prompt`, starting from `initial` (an entry
+    /// given back to fix), and whether a person typed it (rather than typed
+    /// it ahead or pasted it). `pending` (the unfinished input) and `session`
+    /// feed the editor's highlighting and completion.
+    fn read(&mut self, prompt: &str, initial: &str, pending: &str, session: &Session) -> Result<Line, ReadlineError>;
+
+    /// Keeps an entry in the history.
+    fn remember(&mut self, entry: &str);
+}
+
+/// The line editor on the terminal, with its history file.
+struct Terminal {
     editor: Editor<RayHelper, FileHistory>,
-    session: Session,
     history: Option<PathBuf>,
+}
+
+/// A line read, and whether a person typed it.
+struct Line {
+    text: String,
+    typed: bool,
+}
+
+impl Lines for Terminal {
+    fn read(&mut self, prompt: &str, initial: &str, pending: &str, session: &Session) -> Result<Line, ReadlineError> {
+        let vocabulary = session.vocabulary();
+        if let Some(helper) = self.editor.helper_mut() {
+            helper.set_pending(pending);
+            helper.set_names(&vocabulary);
+        }
+        let started = Instant::now();
+        let text = self.editor.readline_with_initial(prompt, (initial, ""))?;
+        Ok(Line { text, typed: started.elapsed() >= TYPING })
+    }
+
+    /// Adds an entry to the history, and to the history file.
+    fn remember(&mut self, entry: &str) {
+        let _ = self.editor.add_history_entry(entry);
+        if let Some(path) = &self.history {
+            let _ = self.editor.append_history(path);
+        }
+    }
+}
+
+/// Lines given in advance, typed one after the other; Ctrl-D after the last.
+struct Typed<I>(I);
+
+impl<I: Iterator<Item = String>> Lines for Typed<I> {
+    fn read(&mut self, _: &str, _: &str, _: &str, _: &Session) -> Result<Line, ReadlineError> {
+        self.0.next().map(|text| Line { text, typed: true }).ok_or(ReadlineError::Eof)
+    }
+
+    fn remember(&mut self, _entry: &str) {}
+}
+
+/// The session and the lines that feed it.
+struct Repl<L> {
+    lines: L,
+    session: Session,
     /// Inputs submitted so far, to name each one in diagnostics.
     inputs: usize,
 }
 
-impl Repl {
+impl<L: Lines> Repl<L> {
     fn run(&mut self, console: &mut Console) -> Result<(), ReplError> {
         let mut pending = String::new();
         // A broken entry of several lines, given back to the editor to fix.
         let mut to_fix = String::new();
         let mut quit_warned = false;
         loop {
-            self.refresh_helper(&pending);
             let prompt = if pending.is_empty() { self.prompt() } else { continuation_prompt(&pending) };
             let fixing = !to_fix.is_empty();
-            let started = Instant::now();
-            let read = if fixing {
-                self.editor.readline_with_initial(&prompt, (&std::mem::take(&mut to_fix), ""))
-            } else {
-                self.editor.readline(&prompt)
-            };
-            match read {
-                Ok(line) => {
+            match self.lines.read(&prompt, &std::mem::take(&mut to_fix), &pending, &self.session) {
+                Ok(Line { text: line, typed }) => {
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
                     if is_command(&line) {
-                        self.remember(&line);
+                        self.lines.remember(&line);
                         if pending.is_empty() {
                             self.inputs += 1;
                         }
@@ -137,7 +208,6 @@ impl Repl {
                         EntryState::Broken => {
                             let input = std::mem::take(&mut pending);
                             self.submit(&input, console);
-                            let typed = started.elapsed() >= TYPING;
                             if input.contains('\n') && typed {
                                 console.note("the entry is back in the editor: fix it, or Ctrl-C to drop it");
                                 to_fix = input;
@@ -175,26 +245,10 @@ impl Repl {
         if input.trim().is_empty() {
             return;
         }
-        self.remember(input);
+        self.lines.remember(input);
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
         let _ = handle_input(&mut self.session, console, &name, input, 0);
-    }
-
-    /// Adds an input to the history, and to the history file.
-    fn remember(&mut self, input: &str) {
-        let _ = self.editor.add_history_entry(input);
-        if let Some(path) = &self.history {
-            let _ = self.editor.append_history(path);
-        }
-    }
-
-    fn refresh_helper(&mut self, pending: &str) {
-        let vocabulary = self.session.vocabulary();
-        if let Some(helper) = self.editor.helper_mut() {
-            helper.set_pending(pending);
-            helper.set_names(&vocabulary);
-        }
     }
 }
 

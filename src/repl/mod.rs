@@ -6,8 +6,9 @@
 //!
 //! - [`run_interactive`]: the line editor (history, multi-line input,
 //!   completion, colours) and previews of renders in the terminal;
+//!   [`run_typed`] runs its entry loop on lines given in advance;
 //! - [`run_script`]: the same session fed line by line from a reader, with
-//!   no prompts, colours or previews, for `cat script | rayrepl`;
+//!   no prompts or previews, for `cat script | rayrepl`;
 //! - [`run`]: picks one of the two, as `main` needs.
 //!
 //! Commands (`:render`, `:save`, `:time`, ...) live in `commands`, one
@@ -33,7 +34,7 @@ use std::process::ExitCode;
 
 use crate::lang::Limits;
 
-pub use interactive::{ReplError, run_interactive};
+pub use interactive::{ReplError, run_interactive, run_typed};
 pub use rendering::RenderSettings;
 pub use script::run_script;
 pub use session::Session;

@@ -1,8 +1,10 @@
 //! Scripts on standard input: `cat script | rayrepl` runs items and commands
-//! line by line, without prompts, colours or previews. Lines accumulate while
-//! an input is unfinished; diagnostics carry the script's own line numbers.
+//! line by line, without prompts or previews. Lines accumulate while an input
+//! is unfinished; diagnostics carry the script's own line numbers.
 
-use std::io::{BufRead, Write};
+use std::io::BufRead;
+
+use anstream::stream::RawStream;
 
 use crate::lang::is_incomplete;
 
@@ -15,13 +17,19 @@ use super::{SessionOptions, handle_input, new_session};
 const SCRIPT_NAME: &str = "<stdin>";
 
 /// Runs the script read from `input`, writing messages to `out` and
-/// diagnostics to `err`. The first error stops the script unless
+/// diagnostics to `err` (with colours only where the stream is a terminal
+/// that wants them). The first error stops the script unless
 /// `options.keep_going`; `options.initial_file` is loaded first. A script
 /// that succeeds without writing an image ends with a note on how to write
 /// one. Returns the exit status: 0 if everything succeeded, 1 otherwise.
-pub fn run_script(input: impl BufRead, out: &mut dyn Write, err: &mut dyn Write, options: &SessionOptions) -> i32 {
+pub fn run_script(
+    input: impl BufRead,
+    out: &mut (impl RawStream + 'static),
+    err: &mut (impl RawStream + 'static),
+    options: &SessionOptions,
+) -> i32 {
     let mut session = new_session(options);
-    let mut console = Console::plain(out, err);
+    let mut console = Console::new(out, err);
     let mut script = Script {
         session: &mut session,
         console: &mut console,

@@ -5,6 +5,7 @@
 use std::rc::Rc;
 
 use crate::lang::ast::Program;
+use crate::lang::parser::parse_items_with_line_offset;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, parse_items};
 use crate::scene::{Counts, Scene};
 
@@ -102,7 +103,7 @@ impl Session {
     /// error the session is unchanged (SPEC 7).
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
-        let program = parse_items(source, text)?;
+        let program = parse_items_with_line_offset(source, text, line_offset)?;
         self.run(text.to_string(), program)
     }
 
@@ -122,7 +123,7 @@ impl Session {
         let scene = self.interpreter.scene();
         let mark = (scene.primitives.len(), scene.timed_primitives.len());
         let procedures_before = self.interpreter.procedure_names();
-        if let Err(error) = self.interpreter.run_with_sources(&program, &self.sources) {
+        if let Err(error) = self.interpreter.run(&program) {
             self.interpreter.take_warnings();
             return Err(error);
         }
@@ -240,7 +241,7 @@ impl Session {
 
     fn replay(&self, mut interpreter: Interpreter, history: &[Input]) -> Result<Interpreter, Diagnostic> {
         for input in history {
-            interpreter.run_with_sources(&input.program, &self.sources)?;
+            interpreter.run(&input.program)?;
         }
         interpreter.take_warnings();
         Ok(interpreter)

@@ -3,6 +3,7 @@
 // Each test crate compiles this module and uses only some of it.
 #![allow(dead_code)]
 
+pub mod cases;
 pub mod limited;
 pub mod scenes;
 pub mod sexpr;

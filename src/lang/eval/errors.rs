@@ -2,8 +2,8 @@
 
 use std::rc::Rc;
 
-use crate::lang::diagnostic::Diagnostic;
-use crate::lang::source::{SourceMap, Span};
+use crate::lang::diagnostic::{Diagnostic, Note};
+use crate::lang::source::Span;
 use crate::lang::suggest;
 
 /// An evaluation error on its way up to [`super::Interpreter::run`].
@@ -58,47 +58,43 @@ pub(crate) fn wrong_arity(span: Span, name: &str, params: &[&str], given: usize)
     Diagnostic::error(span, format!("`{name}` takes {takes} but was given {given}"))
 }
 
-/// The summary of a call chain: `f (line 9) -> f (line 3) -> ... `f (line 3)`
-/// repeated 99998 more times`. Runs of a repeated call, or of a repeated
-/// cycle of up to four calls (mutual recursion), are folded.
-pub(crate) fn summarise_chain(chain: &[(Rc<str>, Span)], sources: Option<&SourceMap>) -> String {
-    let describe = |(name, span): &(Rc<str>, Span)| match sources {
-        Some(map) => {
-            let (line, _) = map.get(span.source).line_col(span.start as usize);
-            format!("{name} (line {line})")
-        }
-        None => name.to_string(),
+/// The summary of a call chain, outermost call first, each call named with
+/// its place: `f (line 9) -> f (line 3) -> ... `f (line 3)` repeated 99998
+/// more times`. Runs of a repeated call, or of a repeated cycle of up to four
+/// calls (mutual recursion), are folded.
+pub(crate) fn summarise_chain(chain: &[(Rc<str>, Span)]) -> Note {
+    let calls = |calls: &[(Rc<str>, Span)]| {
+        Note::joined(calls.iter().map(|(name, span)| Note::from(format!("{name} (")).place(*span).text(")")), " -> ")
     };
-    let same = |a: &(Rc<str>, Span), b: &(Rc<str>, Span)| a.1 == b.1 && a.0 == b.0;
     let mut parts = Vec::new();
     let mut i = 0;
     while i < chain.len() {
-        match longest_cycle(chain, i, same) {
+        match longest_cycle(chain, i) {
             Some((period, repeats)) => {
-                let cycle: Vec<String> = chain[i..i + period].iter().map(describe).collect();
-                let cycle = cycle.join(" -> ");
+                let cycle = calls(&chain[i..i + period]);
                 parts.push(cycle.clone());
-                let what = if period == 1 { format!("`{cycle}`") } else { format!("the cycle `{cycle}`") };
-                parts.push(format!("... {what} repeated {} more times", repeats - 1));
+                let what = if period == 1 { "`" } else { "the cycle `" };
+                let folded = Note::from(format!("... {what}")).then(cycle);
+                parts.push(folded.text(format!("` repeated {} more times", repeats - 1)));
                 i += period * repeats;
             }
             None => {
-                parts.push(describe(&chain[i]));
+                parts.push(calls(&chain[i..=i]));
                 i += 1;
             }
         }
     }
-    parts.join(" -> ")
+    Note::joined(parts, " -> ")
 }
 
 /// The period (1..=4) and repeat count of the longest run of a repeated cycle
 /// starting at `start`, if it repeats at least three times.
-fn longest_cycle<T>(chain: &[T], start: usize, same: impl Fn(&T, &T) -> bool) -> Option<(usize, usize)> {
+fn longest_cycle<T: PartialEq>(chain: &[T], start: usize) -> Option<(usize, usize)> {
     let mut best: Option<(usize, usize)> = None;
     for period in 1..=4 {
         let mut repeats = 1;
         while start + (repeats + 1) * period <= chain.len()
-            && (0..period).all(|k| same(&chain[start + k], &chain[start + repeats * period + k]))
+            && (0..period).all(|k| chain[start + k] == chain[start + repeats * period + k])
         {
             repeats += 1;
         }
@@ -113,39 +109,52 @@ fn longest_cycle<T>(chain: &[T], start: usize, same: impl Fn(&T, &T) -> bool) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::source::SourceId;
+    use crate::lang::source::{SourceId, SourceMap};
 
-    fn call(name: &str, line: u32) -> (Rc<str>, Span) {
-        (name.into(), Span { source: SourceId(0), start: line, end: line + 1 })
+    /// A call of `name` at byte `offset` of source 0.
+    fn call(name: &str, offset: u32) -> (Rc<str>, Span) {
+        (name.into(), Span { source: SourceId(0), start: offset, end: offset + 1 })
+    }
+
+    /// The chain as read in a diagnostic about source 0 of `map`.
+    fn read(chain: &[(Rc<str>, Span)], map: &SourceMap) -> String {
+        summarise_chain(chain).display(map, SourceId(0))
+    }
+
+    fn lines() -> SourceMap {
+        let mut map = SourceMap::new();
+        map.add("a.ray", "a\nb\nc\n", 0);
+        map
     }
 
     #[test]
     fn repeated_calls_are_folded() {
         let mut chain = vec![call("f", 0)];
-        chain.extend(std::iter::repeat_n(call("f", 5), 10));
-        assert_eq!(summarise_chain(&chain, None), "f -> f -> ... `f` repeated 9 more times");
+        chain.extend(std::iter::repeat_n(call("f", 2), 10));
+        assert_eq!(read(&chain, &lines()), "f (line 1) -> f (line 2) -> ... `f (line 2)` repeated 9 more times");
     }
 
     #[test]
     fn mutual_recursion_folds_the_cycle() {
         let mut chain = vec![call("main", 0)];
         for _ in 0..5 {
-            chain.push(call("even", 1));
-            chain.push(call("odd", 2));
+            chain.push(call("even", 2));
+            chain.push(call("odd", 4));
         }
-        chain.push(call("even", 1));
+        chain.push(call("even", 2));
         assert_eq!(
-            summarise_chain(&chain, None),
-            "main -> even -> odd -> ... the cycle `even -> odd` repeated 4 more times -> even"
+            read(&chain, &lines()),
+            "main (line 1) -> even (line 2) -> odd (line 3) -> ... the cycle `even (line 2) -> odd (line 3)` \
+             repeated 4 more times -> even (line 2)"
         );
     }
 
     #[test]
-    fn lines_come_from_the_sources() {
-        let mut map = SourceMap::new();
-        let id = map.add("a.ray", "a\nb\nc\n", 0);
-        let chain = vec![(Rc::from("f"), Span::new(id, 2, 3)), (Rc::from("g"), Span::new(id, 4, 5))];
-        assert_eq!(summarise_chain(&chain, Some(&map)), "f (line 2) -> g (line 3)");
+    fn calls_in_other_inputs_are_named_with_them() {
+        let mut map = lines();
+        let other = map.add("<input 2>", "f()", 0);
+        let chain = vec![(Rc::from("f"), Span::new(other, 0, 3)), call("g", 2)];
+        assert_eq!(read(&chain, &map), "f (<input 2>:1) -> g (line 2)");
     }
 
     #[test]

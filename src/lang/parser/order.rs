@@ -49,13 +49,12 @@ pub(crate) struct ItemOrder<'t> {
 struct FileText<'t> {
     source: SourceId,
     text: &'t str,
-    line_offset: usize,
 }
 
 impl<'t> ItemOrder<'t> {
     /// The order check for a whole file.
-    pub(crate) fn file(source: SourceId, text: &'t str, line_offset: usize) -> ItemOrder<'t> {
-        ItemOrder { file: Some(FileText { source, text, line_offset }), ..ItemOrder::any() }
+    pub(crate) fn file(source: SourceId, text: &'t str) -> ItemOrder<'t> {
+        ItemOrder { file: Some(FileText { source, text }), ..ItemOrder::any() }
     }
 
     /// No check: a session input takes items in any order.
@@ -162,12 +161,9 @@ impl<'t> ItemOrder<'t> {
     fn only_one(&self, at: Span, what: &str, first: Option<Span>) -> Diagnostic {
         let error =
             Diagnostic::error(at, format!("a file has only one `{what}`")).with_label(format!("a second `{what}`"));
-        match (first, self.file) {
-            (Some(first), Some(file)) => {
-                let line = line_of(file, first.start as usize);
-                error.with_related(first, format!("the first `{what}`, at line {line}"))
-            }
-            _ => error,
+        match first {
+            Some(first) => error.with_related(first, format!("the first `{what}`")),
+            None => error,
         }
     }
 }
@@ -201,23 +197,15 @@ fn first_word(file: FileText<'_>, span: Span) -> Span {
     Span::new(file.source, start, start + len.max(1).min(rest.len()))
 }
 
-/// The 1-based line number, as the user sees it, of byte `offset`.
-fn line_of(file: FileText<'_>, offset: usize) -> usize {
-    line_number(file.text, offset, file.line_offset)
-}
-
 /// The 1-based line number, as the user sees it, of byte `offset` of `text`.
 pub(super) fn line_number(text: &str, offset: usize, line_offset: usize) -> usize {
     let before = text.as_bytes().get(..offset).unwrap_or(text.as_bytes());
     before.iter().filter(|&&b| b == b'\n').count() + 1 + line_offset
 }
 
-/// The span of the last character of `text` that is not blank (empty at 0
-/// for a blank text): where an "unexpected end of file" points.
+/// The empty span just after the last character of `text` that is not
+/// blank: where an "unexpected end of file" points.
 pub(crate) fn end_of_text(source: SourceId, text: &str) -> Span {
-    let trimmed = text.trim_end();
-    match trimmed.chars().next_back() {
-        Some(last) => Span::new(source, trimmed.len() - last.len_utf8(), trimmed.len()),
-        None => Span::new(source, 0, 0),
-    }
+    let end = text.trim_end().len();
+    Span::new(source, end, end)
 }
