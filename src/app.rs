@@ -42,18 +42,15 @@ pub fn run(cli: Cli) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    if !cli.starts_session() || !std::io::stdin().is_terminal() {
-        // The interactive session installs its own handler, which cancels renders.
-        let _ = ctrlc::set_handler(|| output::exit_discarding_unfinished(INTERRUPTED_EXIT_CODE));
+    if !cli.starts_session() {
+        // Sessions and scripts install their own handler, which stops what an entry does.
+        let _ = ctrlc::set_handler(|| output::exit_discarding_unfinished(output::INTERRUPTED_EXIT_CODE));
     }
     match cli.scene.clone() {
         Some(path) if !cli.interactive => pool.install(|| exit_code(run_file(&cli, &path))),
         _ => pool.install(|| repl::run(&session_options(&cli))),
     }
 }
-
-/// The exit code after Ctrl-C or `kill` (128 + SIGINT, as shells report it).
-const INTERRUPTED_EXIT_CODE: i32 = 130;
 
 /// The session's options from the command line.
 fn session_options(cli: &Cli) -> SessionOptions {

@@ -396,6 +396,9 @@ fn unfinished() -> MutexGuard<'static, Vec<PathBuf>> {
     UNFINISHED.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
+/// The exit code after Ctrl-C or `kill` (128 + SIGINT, as shells report it).
+pub(crate) const INTERRUPTED_EXIT_CODE: i32 = 130;
+
 /// Removes the temporary files of unfinished writes and ends the process
 /// with `code`: what an interruption (Ctrl-C, `kill`) does, so that it
 /// leaves no temporary file behind and every target as it was.

@@ -268,3 +268,24 @@ fn lines_typed_ahead_or_pasted_all_run_in_order() {
     session.expect("numbers:    a = 1, b = 2, time = 0").unwrap();
     assert_eq!(leave(session), 0);
 }
+
+#[test]
+fn ctrl_c_stops_a_runaway_evaluation_and_keeps_the_session() {
+    let (mut session, _home) = fresh(false);
+    session.send_line("let keep = 7").unwrap();
+    session.expect("keep = 7").unwrap();
+    session.send_line(":limits calls 100000000").unwrap();
+    session.expect("calls = 100000000").unwrap();
+    session.send_line("proc f(n) f(n + 1) end").unwrap();
+    session.expect("defined proc f(n)").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line("f(1)").unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("stopped by Ctrl-C").unwrap();
+    session.expect("nothing of this input was kept").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("numbers:    keep = 7").unwrap();
+    assert_eq!(leave(session), 0);
+}

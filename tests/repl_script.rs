@@ -611,3 +611,34 @@ mod binary {
         rayrepl().arg("-i").arg(&file).write_stdin("let s = r * 2\n").assert().success().stdout(contains("s = 8\n"));
     }
 }
+
+#[test]
+fn ctrl_c_stops_a_piped_script_with_status_130_and_says_where() {
+    use std::io::{BufRead, BufReader, Write};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let script = ":limits calls 100000000\nproc f(n) f(n + 1) end\nf(1)\nlet never = 1\n";
+    child.stdin.take().expect("stdin").write_all(script.as_bytes()).expect("the script is sent");
+    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    let mut line = String::new();
+    while !line.contains("defined proc f(n)") {
+        line.clear();
+        assert!(stdout.read_line(&mut line).expect("stdout is readable") > 0, "the proc is defined");
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let pid = child.id().to_string();
+    Command::new("kill").args(["-INT", &pid]).status().expect("kill runs");
+    let output = child.wait_with_output().expect("the script ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("stopped by Ctrl-C"), "{stderr}");
+    assert!(stderr.contains("interrupted by Ctrl-C: the script stopped at line 3"), "{stderr}");
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stdout, &mut rest).expect("stdout is readable");
+    assert!(!rest.contains("never"), "nothing after the interrupted line runs: {rest}");
+}

@@ -26,6 +26,7 @@ mod value;
 
 use std::collections::HashSet;
 use std::rc::Rc;
+use std::sync::atomic::AtomicBool;
 
 use glam::{DMat3, DVec3};
 
@@ -115,6 +116,8 @@ pub struct Interpreter {
     limits: Limits,
     /// Globals and the locals of active calls.
     env: Env,
+    /// Raised (by Ctrl-C) to stop the evaluation at the next procedure call.
+    interrupt: Option<&'static AtomicBool>,
     /// Procedures by name; a redefinition replaces.
     procs: NameMap<Rc<ProcDef>>,
     /// What each procedure name held before each definition of the current
@@ -178,6 +181,7 @@ impl Interpreter {
             },
             limits,
             env,
+            interrupt: None,
             procs: NameMap::default(),
             procs_undo: Vec::new(),
             has_camera: false,
@@ -201,6 +205,14 @@ impl Interpreter {
     /// set, so they only hold the timed primitives.
     pub fn skip_static(mut self, skip: bool) -> Interpreter {
         self.skip_static = skip;
+        self
+    }
+
+    /// Makes the evaluation stop with an error at the next procedure call
+    /// once `flag` is raised (the session's Ctrl-C): a runaway program can
+    /// be stopped without losing what came before it.
+    pub fn interruptible(mut self, flag: &'static AtomicBool) -> Interpreter {
+        self.interrupt = Some(flag);
         self
     }
 

@@ -1,16 +1,14 @@
-//! Cancelling a render with Ctrl-C without leaving the session.
+//! Stopping what an entry does with Ctrl-C without leaving the session.
 //!
 //! At the prompt the terminal is in raw mode and rustyline reads Ctrl-C as a
-//! key. During a render it is not, so Ctrl-C raises SIGINT. One handler is
-//! installed per process (the `ctrlc` crate allows no more); while a render
-//! runs it raises the cancel flag the render polls, and at any other time it
+//! key. While an entry runs (evaluation, a render, the writing of a file) it
+//! is not, so Ctrl-C raises SIGINT. One handler is installed per process (the
+//! `ctrlc` crate allows no more); while the switch is armed it raises the
+//! cancel flag that evaluation and renders poll, and at any other time it
 //! does what Ctrl-C does by default: end the program.
 
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Exit status of a program ended by Ctrl-C (128 + SIGINT).
-const INTERRUPTED_EXIT_CODE: i32 = 130;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// The switch, once the handler is installed; `None` inside if installing failed.
 static SWITCH: OnceLock<Option<CancelSwitch>> = OnceLock::new();
@@ -18,10 +16,10 @@ static SWITCH: OnceLock<Option<CancelSwitch>> = OnceLock::new();
 /// The process-wide Ctrl-C switch.
 #[derive(Debug, Default)]
 pub(crate) struct CancelSwitch {
-    /// Raised by Ctrl-C while `armed`; polled by renders.
+    /// Raised by Ctrl-C while armed; polled by evaluation and renders.
     cancel: AtomicBool,
-    /// Whether a cancellable job is running.
-    armed: AtomicBool,
+    /// How many cancellable jobs are running (an entry, a render inside it).
+    armed: AtomicUsize,
 }
 
 impl CancelSwitch {
@@ -31,11 +29,18 @@ impl CancelSwitch {
         SWITCH.get_or_init(|| ctrlc::set_handler(on_ctrl_c).is_ok().then(CancelSwitch::default)).as_ref()
     }
 
-    /// Arms the switch for one job; it is disarmed when the guard drops.
+    /// Arms the switch for one job; it is disarmed when the guard drops. A
+    /// job inside another (a render inside an entry) shares its flag.
     pub(crate) fn arm(&'static self) -> ArmedSwitch {
-        self.cancel.store(false, Ordering::SeqCst);
-        self.armed.store(true, Ordering::SeqCst);
+        if self.armed.fetch_add(1, Ordering::SeqCst) == 0 {
+            self.cancel.store(false, Ordering::SeqCst);
+        }
         ArmedSwitch { switch: self }
+    }
+
+    /// The flag Ctrl-C raises while the switch is armed.
+    pub(crate) fn flag(&'static self) -> &'static AtomicBool {
+        &self.cancel
     }
 }
 
@@ -50,18 +55,24 @@ impl ArmedSwitch {
     pub(crate) fn flag(&self) -> &AtomicBool {
         &self.switch.cancel
     }
+
+    /// Whether Ctrl-C was pressed since the outermost job started.
+    pub(crate) fn pressed(&self) -> bool {
+        self.switch.cancel.load(Ordering::SeqCst)
+    }
 }
 
 impl Drop for ArmedSwitch {
     fn drop(&mut self) {
-        self.switch.armed.store(false, Ordering::SeqCst);
-        self.switch.cancel.store(false, Ordering::SeqCst);
+        if self.switch.armed.fetch_sub(1, Ordering::SeqCst) == 1 {
+            self.switch.cancel.store(false, Ordering::SeqCst);
+        }
     }
 }
 
 fn on_ctrl_c() {
     match SWITCH.get() {
-        Some(Some(switch)) if switch.armed.load(Ordering::SeqCst) => switch.cancel.store(true, Ordering::SeqCst),
-        _ => crate::output::exit_discarding_unfinished(INTERRUPTED_EXIT_CODE),
+        Some(Some(switch)) if switch.armed.load(Ordering::SeqCst) > 0 => switch.cancel.store(true, Ordering::SeqCst),
+        _ => crate::output::exit_discarding_unfinished(crate::output::INTERRUPTED_EXIT_CODE),
     }
 }

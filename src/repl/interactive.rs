@@ -98,7 +98,7 @@ pub fn run_typed(
 fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
     // A flag cannot be given any more: errors point to `:limits` instead.
     let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
-    let mut session = new_session(&SessionOptions { limits, ..options.clone() });
+    let mut session = new_session(&SessionOptions { limits, ..options.clone() }, console.cancel);
     if let Some(path) = &options.initial_file {
         let _ = commands::load_reporting(&mut session, path, console);
     }
@@ -188,7 +188,9 @@ impl<L: Lines> Repl<L> {
                         if pending.is_empty() {
                             self.inputs += 1;
                         }
+                        let armed = console.cancel.map(|switch| switch.arm());
                         let flow = commands::execute(&mut self.session, &line, console);
+                        drop(armed);
                         if flow == Ok(Flow::Quit) && leave(&pending, &mut quit_warned, ":quit", console) {
                             return Ok(());
                         }
@@ -248,6 +250,7 @@ impl<L: Lines> Repl<L> {
         self.lines.remember(input);
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
+        let _armed = console.cancel.map(|switch| switch.arm());
         let _ = handle_input(&mut self.session, console, &name, input, 0);
     }
 }

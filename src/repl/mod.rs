@@ -60,8 +60,8 @@ pub struct SessionOptions {
 /// Runs a session the way `rayrepl` without a scene to render does:
 /// interactively when standard input is a terminal, otherwise as a script
 /// read from standard input (messages on standard output, diagnostics on
-/// standard error). Fails after an error in a script, or when the terminal
-/// cannot be used.
+/// standard error). Fails after an error in a script (status 1, or 130 when
+/// Ctrl-C stopped it), or when the terminal cannot be used.
 pub fn run(options: &SessionOptions) -> ExitCode {
     let code = if std::io::stdin().is_terminal() {
         match run_interactive(options) {
@@ -75,7 +75,7 @@ pub fn run(options: &SessionOptions) -> ExitCode {
         let stdin = std::io::stdin();
         run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
     };
-    if code == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE }
+    ExitCode::from(u8::try_from(code).unwrap_or(1))
 }
 
 /// Runs one input of program text and prints what it did, or its error.
@@ -117,7 +117,12 @@ fn bare_command(text: &str) -> Option<String> {
     commands::COMMANDS.iter().any(|c| c.name == command).then_some(command)
 }
 
-/// A session set up with `options`' settings and limits.
-fn new_session(options: &SessionOptions) -> Session {
-    Session::new(options.settings, options.limits)
+/// A session set up with `options`' settings and limits, whose evaluations
+/// `cancel` (Ctrl-C) can stop.
+fn new_session(options: &SessionOptions, cancel: Option<&'static cancel::CancelSwitch>) -> Session {
+    let session = Session::new(options.settings, options.limits);
+    match cancel {
+        Some(switch) => session.interruptible(switch.flag()),
+        None => session,
+    }
 }

@@ -8,10 +8,12 @@ use anstream::stream::RawStream;
 
 use crate::lang::is_incomplete;
 
+use super::cancel::{ArmedSwitch, CancelSwitch};
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::session::Session;
 use super::{SessionOptions, handle_input, new_session};
+use crate::output::INTERRUPTED_EXIT_CODE;
 
 /// The name scripts' diagnostics show.
 const SCRIPT_NAME: &str = "<stdin>";
@@ -28,14 +30,16 @@ pub fn run_script(
     err: &mut (impl RawStream + 'static),
     options: &SessionOptions,
 ) -> i32 {
-    let mut session = new_session(options);
     let mut console = Console::new(out, err);
+    console.cancel = CancelSwitch::install();
+    let mut session = new_session(options, console.cancel);
     let mut script = Script {
         session: &mut session,
         console: &mut console,
         keep_going: options.keep_going,
         errors: 0,
         wrote: false,
+        interrupted: false,
     };
     if let Some(path) = &options.initial_file {
         let loaded = commands::load_reporting(script.session, path, script.console);
@@ -45,6 +49,9 @@ pub fn run_script(
     }
     script.run(input);
     let (errors, wrote) = (script.errors, script.wrote);
+    if script.interrupted {
+        return INTERRUPTED_EXIT_CODE;
+    }
     if errors > 0 {
         return 1;
     }
@@ -70,6 +77,8 @@ struct Script<'s, 'c> {
     errors: usize,
     /// Whether a command wrote an image file.
     wrote: bool,
+    /// Whether Ctrl-C stopped the script.
+    interrupted: bool,
 }
 
 impl Script<'_, '_> {
@@ -86,7 +95,7 @@ impl Script<'_, '_> {
             let line = line.strip_suffix('\r').unwrap_or(&line);
             if pending.is_empty() {
                 if is_command(line) {
-                    if self.command(line) == Step::Stop {
+                    if self.command(line, number) == Step::Stop {
                         return;
                     }
                     continue;
@@ -113,12 +122,21 @@ impl Script<'_, '_> {
         if text.trim().is_empty() {
             return Step::Next;
         }
+        let armed = self.console.cancel.map(|switch| switch.arm());
         let result = handle_input(self.session, self.console, SCRIPT_NAME, text, first_line.saturating_sub(1));
+        if self.stopped_by_ctrl_c(armed, first_line) {
+            return Step::Stop;
+        }
         self.after(result.is_ok())
     }
 
-    fn command(&mut self, line: &str) -> Step {
-        match commands::execute(self.session, line, self.console) {
+    fn command(&mut self, line: &str, number: usize) -> Step {
+        let armed = self.console.cancel.map(|switch| switch.arm());
+        let result = commands::execute(self.session, line, self.console);
+        if self.stopped_by_ctrl_c(armed, number) {
+            return Step::Stop;
+        }
+        match result {
             Ok(Flow::Quit) => Step::Stop,
             Ok(Flow::Continue) => {
                 self.wrote |= commands::writes_files(line);
@@ -126,6 +144,16 @@ impl Script<'_, '_> {
             }
             Err(()) => self.after(false),
         }
+    }
+
+    /// Whether Ctrl-C was pressed while the entry at `line` ran: if so the
+    /// script says where it stopped.
+    fn stopped_by_ctrl_c(&mut self, armed: Option<ArmedSwitch>, line: usize) -> bool {
+        self.interrupted = armed.is_some_and(|armed| armed.pressed());
+        if self.interrupted {
+            self.console.error(format!("interrupted by Ctrl-C: the script stopped at line {line}"));
+        }
+        self.interrupted
     }
 
     fn after(&mut self, succeeded: bool) -> Step {

@@ -3,6 +3,7 @@
 //! accepted inputs that `:undo` and `:time` replay.
 
 use std::rc::Rc;
+use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::Program;
 use crate::lang::parser::parse_items_with_line_offset;
@@ -77,6 +78,8 @@ pub struct Session {
     descriptions: ObjectDescriptions,
     settings: RenderSettings,
     limits: Limits,
+    /// Raised by Ctrl-C: evaluation stops at the next procedure call.
+    interrupt: Option<&'static AtomicBool>,
     /// The scene's counts, kept up to date input by input (counting the
     /// whole scene each time would make a long script quadratic).
     counts: Counts,
@@ -95,6 +98,23 @@ impl Session {
             settings,
             limits,
             counts: Counts::default(),
+            interrupt: None,
+        }
+    }
+
+    /// Lets Ctrl-C (raising `flag`) stop any evaluation of the session.
+    pub(crate) fn interruptible(mut self, flag: &'static AtomicBool) -> Session {
+        self.interrupt = Some(flag);
+        self.interpreter = self.new_interpreter(self.settings.time);
+        self
+    }
+
+    /// An empty interpreter with the session's limits and Ctrl-C.
+    fn new_interpreter(&self, time: f64) -> Interpreter {
+        let interpreter = Interpreter::new(time, self.limits);
+        match self.interrupt {
+            Some(flag) => interpreter.interruptible(flag),
+            None => interpreter,
         }
     }
 
@@ -188,7 +208,7 @@ impl Session {
     /// Forgets every input; `:undo` brings them back.
     pub(crate) fn reset(&mut self) {
         let cleared = std::mem::take(&mut self.history);
-        self.interpreter = Interpreter::new(self.settings.time, self.limits);
+        self.interpreter = self.new_interpreter(self.settings.time);
         self.counts = Counts::default();
         self.interpreter_time = self.settings.time;
         self.descriptions = ObjectDescriptions::default();
@@ -220,14 +240,14 @@ impl Session {
     /// `skip_static`, the scene holds only the primitives that depend on
     /// `time` (the other frames of an animation).
     pub(crate) fn replay_at(&self, time: f64, skip_static: bool) -> Result<Interpreter, Diagnostic> {
-        let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
+        let interpreter = self.new_interpreter(time).skip_static(skip_static);
         self.replay(interpreter, &self.history)
     }
 
     /// Replaces the interpreter by one that ran `history` at the current time.
     fn rebuild(&mut self, history: Vec<Input>) -> Result<(), Diagnostic> {
         let time = self.settings.time;
-        self.interpreter = self.replay(Interpreter::new(time, self.limits), &history)?;
+        self.interpreter = self.replay(self.new_interpreter(time), &history)?;
         self.counts = self.interpreter.scene().counts();
         self.interpreter_time = time;
         let mut descriptions = ObjectDescriptions::default();

@@ -2,6 +2,7 @@
 
 use std::mem;
 use std::rc::Rc;
+use std::sync::atomic::Ordering;
 
 use super::env::same_name;
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
@@ -135,6 +136,13 @@ impl Interpreter {
         }
         if self.depth >= self.limits.max_call_depth {
             return Err(self.too_deep(name, span));
+        }
+        if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+            return fail(
+                Diagnostic::error(span, "stopped by Ctrl-C")
+                    .with_label(format!("it was calling `{}` here", name.name))
+                    .with_note("nothing of this input was kept"),
+            );
         }
         let caller = self.env.prepare_call();
         for (param, arg) in proc.params.iter().zip(args) {
