@@ -238,6 +238,11 @@ impl FrameSink {
         }
     }
 
+    /// The numbered images written so far.
+    pub fn written(&self) -> &[PathBuf] {
+        &self.written
+    }
+
     /// Finishes the GIF, if any; returns the files written.
     pub fn finish(mut self) -> Result<Vec<PathBuf>, OutputError> {
         match self.gif.take() {

@@ -265,7 +265,15 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let started = Instant::now();
     let mut sink = FrameSink::new(&path, frames as usize);
     let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
-    render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write))?;
+    let rendered =
+        render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write));
+    if let Err(error) = rendered {
+        // Numbered frames already written stay: say which (an unfinished GIF is removed).
+        if !sink.written().is_empty() {
+            console.say(format!("{} written before it stopped", output::describe_files(sink.written())));
+        }
+        return Err(error);
+    }
     let written = sink.finish().map_err(cannot_write)?;
     let names = output::describe_files(&written);
     console.say(format!(
