@@ -16,6 +16,7 @@ use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH
 
 use super::console::Console;
 use super::help;
+use super::preview::{Preview, PreviewSize};
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
@@ -65,6 +66,7 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
     CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },
     CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
+    CommandSpec { name: ":preview", usage: ":preview [fit|small|off]", run: preview },
     CommandSpec { name: ":limits", usage: ":limits [calls N] [primitives N]", run: limits },
     CommandSpec { name: ":load", usage: ":load FILE", run: load },
     CommandSpec { name: ":env", usage: ":env", run: env },
@@ -215,7 +217,7 @@ fn help_command(_session: &mut Session, arguments: &[String], console: &mut Cons
 fn render(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     let configured = Size { width: session.settings().width, height: session.settings().height };
     let size = match arguments {
-        [] => console.preview.map_or(configured, |preview| preview.render_size(configured)),
+        [] => shown(console).map_or(configured, |preview| preview.render_size(configured)),
         [width, height] => parse_size(width, height)?,
         _ => {
             return Err(CommandError::Usage("give both a width and a height, or neither".to_string()));
@@ -223,13 +225,37 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
     };
     explain_defaults(session, console);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    match console.preview {
+    match shown(console) {
         Some(preview) => {
             preview.show(&image).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
             console.say(format!("{size} in {}", duration(took)));
         }
         None => console.say(format!("rendered {size} in {} (previews are off)", duration(took))),
     }
+    Ok(Flow::Continue)
+}
+
+/// The previewer, unless previews are off.
+fn shown(console: &Console) -> Option<Preview> {
+    console.preview.filter(|preview| preview.size != PreviewSize::Off)
+}
+
+fn preview(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let Some(preview) = console.preview.as_mut() else {
+        return Err(CommandError::Failed(
+            "previews need a terminal on standard output (and no `--no-preview`)".to_string(),
+        ));
+    };
+    match arguments {
+        [] => {}
+        [name] => {
+            preview.size = PreviewSize::parse(name)
+                .ok_or_else(|| CommandError::Usage(format!("`{name}`: give `fit`, `small` or `off`")))?;
+        }
+        _ => return Err(CommandError::Usage("give one of `fit`, `small` or `off`".to_string())),
+    }
+    let size = preview.size.name();
+    console.say(format!("preview = {size}"));
     Ok(Flow::Continue)
 }
 

@@ -45,8 +45,8 @@ const GROUPS: &[(&str, &[&str])] = &[
     (
         "Commands",
         &[
-            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":limits", ":load", ":env",
-            ":scene", ":undo", ":reset", ":quit",
+            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":preview", ":limits",
+            ":load", ":env", ":scene", ":undo", ":reset", ":quit",
         ],
     ),
 ];
@@ -456,6 +456,19 @@ Example:
   but takes N times as long. `:samples` alone shows it.
 Example:
   :samples 4",
+    },
+    Topic {
+        name: ":preview",
+        aliases: &["preview"],
+        summary: "choose how big the picture of `:render` is in the terminal",
+        text: "\
+:preview [fit|small|off]
+  `small` (the default) shows renders in a third of the terminal, so the
+  lines you just typed stay on screen above the picture; `fit` fills the
+  terminal; `off` shows none (`:save` still writes files). A small render
+  (`:size 40 30`) stays small. `:preview` alone shows the setting.
+Example:
+  :preview fit",
     },
     Topic {
         name: ":limits",

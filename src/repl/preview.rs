@@ -10,6 +10,8 @@ use super::rendering::Size;
 
 /// Rows kept free under a preview: one for the message after it, one for the prompt.
 const ROWS_KEPT_FREE: u32 = 2;
+/// The fewest rows a small preview takes, on a small terminal.
+const SMALL_MIN_ROWS: u32 = 8;
 /// Pixels rendered per terminal column when the terminal shows real images:
 /// a cell is about 8 pixels wide and 16 high.
 const PIXELS_PER_CELL_WITH_GRAPHICS: u32 = 8;
@@ -23,11 +25,48 @@ pub(crate) enum Method {
     HalfBlocks,
 }
 
+/// How much of the terminal a preview takes (`:preview`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PreviewSize {
+    /// The whole terminal.
+    Fit,
+    /// A third of its rows and half its columns, so that what was just typed
+    /// stays on screen above it.
+    Small,
+    /// No preview.
+    Off,
+}
+
+impl PreviewSize {
+    /// The setting named `name` (`fit`, `small`, `off`).
+    pub(crate) fn parse(name: &str) -> Option<PreviewSize> {
+        match name {
+            "fit" => Some(PreviewSize::Fit),
+            "small" => Some(PreviewSize::Small),
+            "off" => Some(PreviewSize::Off),
+            _ => None,
+        }
+    }
+
+    /// Its name, as `:preview` takes it.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            PreviewSize::Fit => "fit",
+            PreviewSize::Small => "small",
+            PreviewSize::Off => "off",
+        }
+    }
+}
+
 /// Previews images in the terminal on standard output.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Preview {
     /// Inside tmux, which does not pass kitty or iTerm images through.
     in_tmux: bool,
+    /// Whether half-blocks may use 24-bit colours.
+    truecolor: bool,
+    /// How much of the terminal a preview takes.
+    pub(crate) size: PreviewSize,
 }
 
 impl Preview {
@@ -38,7 +77,8 @@ impl Preview {
         if no_preview || dumb || !std::io::stdout().is_terminal() {
             return None;
         }
-        Some(Preview { in_tmux: std::env::var_os("TMUX").is_some() })
+        let env = |name: &str| std::env::var(name).ok();
+        Some(Preview { in_tmux: env("TMUX").is_some(), truecolor: has_truecolor(env), size: PreviewSize::Small })
     }
 
     /// How this terminal shows images. The first call asks the terminal, so it
@@ -49,10 +89,19 @@ impl Preview {
         if kitty || iterm || viuer::is_sixel_supported() { Method::Graphics } else { Method::HalfBlocks }
     }
 
-    /// The terminal's size in cells (columns, rows) available for a preview.
+    /// The cells (columns, rows) a preview may take: the terminal's, less
+    /// the lines under it, or a part of them for a small preview.
     fn cells(&self) -> Size {
         let (columns, rows) = viuer::terminal_size();
-        Size { width: u32::from(columns).max(1), height: u32::from(rows).saturating_sub(ROWS_KEPT_FREE).max(1) }
+        let all =
+            Size { width: u32::from(columns).max(1), height: u32::from(rows).saturating_sub(ROWS_KEPT_FREE).max(1) };
+        match self.size {
+            PreviewSize::Small => Size {
+                width: (all.width / 2).max(SMALL_MIN_ROWS * 2).min(all.width),
+                height: (all.height / 3).max(SMALL_MIN_ROWS).min(all.height),
+            },
+            PreviewSize::Fit | PreviewSize::Off => all,
+        }
     }
 
     /// The image size worth rendering for a preview of an image shaped like
@@ -69,10 +118,15 @@ impl Preview {
         Size { width: size.width.min(shape.width).max(1), height: size.height.min(shape.height).max(1) }
     }
 
-    /// Prints `image` scaled to fit the terminal.
+    /// Prints `image` scaled to fit its part of the terminal, never more
+    /// than one cell per pixel across (a small render stays small).
     pub(crate) fn show(&self, image: &RgbImage) -> Result<(), String> {
-        let cells = fit_in_cells(Size { width: image.width(), height: image.height() }, self.cells());
+        let shape = Size { width: image.width(), height: image.height() };
+        let most = self.cells();
+        let bounds = Size { width: most.width.min(shape.width), height: most.height.min(shape.height.div_ceil(2)) };
+        let cells = fit_in_cells(shape, bounds);
         let config = viuer::Config {
+            truecolor: self.truecolor,
             absolute_offset: false,
             width: Some(cells.width),
             height: Some(cells.height),
@@ -82,6 +136,21 @@ impl Preview {
         };
         viuer::print(&DynamicImage::ImageRgb8(image.clone()), &config).map(|_| ()).map_err(|e| e.to_string())
     }
+}
+
+/// Whether the terminal shows 24-bit colours, from its environment
+/// (`env` reads a variable). viuer (like most crates) trusts `COLORTERM`
+/// only, which tmux, ssh and sudo often drop; the terminals that set other
+/// variables are recognised too, and the rest get 256 colours.
+fn has_truecolor(env: impl Fn(&str) -> Option<String>) -> bool {
+    let says = |name: &str, words: &[&str]| env(name).is_some_and(|value| words.iter().any(|w| value.contains(w)));
+    says("COLORTERM", &["truecolor", "24bit"])
+        || env("TMUX").is_some()
+        || says("TERM", &["direct", "truecolor", "kitty", "alacritty", "foot", "wezterm", "ghostty", "contour"])
+        || says("TERM_PROGRAM", &["iTerm.app", "WezTerm", "vscode", "ghostty", "Hyper", "tmux"])
+        || env("VTE_VERSION").and_then(|v| v.parse::<u32>().ok()).is_some_and(|version| version >= 3600)
+        || env("KONSOLE_VERSION").is_some()
+        || env("WT_SESSION").is_some()
 }
 
 /// The largest size with the proportions of `shape` that fits in `bounds`.
@@ -110,6 +179,19 @@ mod tests {
         assert_eq!(fit(Size { width: 640, height: 480 }, bounds), Size { width: 58, height: 44 });
         assert_eq!(fit(Size { width: 800, height: 200 }, bounds), Size { width: 80, height: 20 });
         assert_eq!(fit(Size { width: 1, height: 10000 }, bounds), Size { width: 1, height: 44 });
+    }
+
+    #[test]
+    fn truecolor_is_recognised_without_colorterm() {
+        let with = |pairs: &'static [(&'static str, &'static str)]| {
+            has_truecolor(move |name| pairs.iter().find(|(n, _)| *n == name).map(|(_, v)| v.to_string()))
+        };
+        assert!(with(&[("COLORTERM", "truecolor")]));
+        assert!(with(&[("TMUX", "/tmp/tmux-0/default,1,0"), ("TERM", "screen")]));
+        assert!(with(&[("TERM", "xterm-kitty")]));
+        assert!(with(&[("VTE_VERSION", "7402"), ("TERM", "xterm-256color")]));
+        assert!(!with(&[("TERM", "xterm-256color")]));
+        assert!(!with(&[("TERM", "linux")]));
     }
 
     #[test]
