@@ -11,7 +11,7 @@ use std::borrow::Cow;
 
 use rustyline::completion::{Completer, FilenameCompleter, Pair};
 use rustyline::highlight::{CmdKind, Highlighter};
-use rustyline::hint::Hinter;
+use rustyline::hint::{Hinter, HistoryHinter};
 use rustyline::validate::{ValidationContext, ValidationResult, Validator};
 use rustyline::{Context, Helper};
 
@@ -138,8 +138,17 @@ impl Completer for RayHelper {
     }
 }
 
+/// Fish-style hints: the rest of the latest history entry that starts with
+/// the line typed, in grey after the cursor (→ or End takes it), up to the
+/// end of that entry's line.
 impl Hinter for RayHelper {
     type Hint = String;
+
+    fn hint(&self, line: &str, pos: usize, ctx: &Context<'_>) -> Option<String> {
+        let hint = HistoryHinter::new().hint(line, pos, ctx)?;
+        let first_line = hint.split('\n').next().unwrap_or_default();
+        (!first_line.is_empty()).then(|| first_line.to_string())
+    }
 }
 
 impl Validator for RayHelper {
@@ -175,6 +184,10 @@ impl Highlighter for RayHelper {
     /// Whether a key calls for the whole line to be drawn again. Without
     /// that, rustyline writes just the key typed at the end of the line; with
     /// it, a pasted line of n characters costs n repaints of up to n each.
+    fn highlight_hint<'h>(&self, hint: &'h str) -> Cow<'h, str> {
+        if self.color { Cow::Owned(format!("\x1b[2m{hint}\x1b[0m")) } else { Cow::Borrowed(hint) }
+    }
+
     fn highlight_char(&self, line: &str, _pos: usize, kind: CmdKind) -> bool {
         self.color && line.len() <= MAX_COLOURED && kind != CmdKind::MoveCursor
     }
@@ -207,7 +220,7 @@ pub(crate) fn colorize(line: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rustyline::history::DefaultHistory;
+    use rustyline::history::{DefaultHistory, History};
 
     fn complete(helper: &RayHelper, line: &str) -> (usize, Vec<String>) {
         let history = DefaultHistory::new();
@@ -239,6 +252,19 @@ mod tests {
         assert_eq!(found, expected.map(String::from));
         assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
         assert_eq!(complete(&helper, "spir").1, vec!["spiral(n, r)".to_string()]);
+    }
+
+    #[test]
+    fn hints_come_from_history_one_line_at_a_time() {
+        let helper = RayHelper::new(false);
+        let mut history = DefaultHistory::new();
+        history.add("put sphere center 0, 0, 0 radius 1\n  kd 1 ks 0 phong 1 color 255, 0, 0 end").unwrap();
+        history.add("let radius = 2").unwrap();
+        let ctx = Context::new(&history);
+        assert_eq!(helper.hint("let r", 5, &ctx).as_deref(), Some("adius = 2"));
+        assert_eq!(helper.hint("put s", 5, &ctx).as_deref(), Some("phere center 0, 0, 0 radius 1"));
+        assert_eq!(helper.hint("let radius = 2", 14, &ctx), None);
+        assert_eq!(helper.hint("let r", 2, &ctx), None, "only at the end of the line");
     }
 
     #[test]
