@@ -182,6 +182,15 @@ pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
     pending.commit()
 }
 
+/// Writes `text` to `path` atomically, as images are written (a scene file
+/// written back by the session).
+pub(crate) fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
+    let (pending, mut writer) = PendingFile::create(path)?;
+    writer.write_all(text.as_bytes()).and_then(|()| writer.flush()).map_err(|e| io_error(path, e))?;
+    drop(writer);
+    pending.commit()
+}
+
 /// Writes `image` as binary PPM (P6) to `writer` (used for `-o -`).
 pub(crate) fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
     write!(writer, "P6\n{} {}\n255\n", image.width(), image.height())?;

@@ -16,35 +16,12 @@ use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH
 
 use super::console::Console;
 use super::help;
+pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
+use super::write_back;
 use crate::animation::{AnimationError, render_animation};
-
-/// What the session does after a command.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Flow {
-    /// Read the next input.
-    Continue,
-    /// Leave.
-    Quit,
-}
-
-/// Why a command did not do what was asked.
-#[derive(Debug)]
-pub(crate) enum CommandError {
-    /// The arguments were wrong; the command's usage follows the message.
-    Usage(String),
-    /// It could not be done, for the reason given.
-    Failed(String),
-    /// Program text failed (`:load`, `:time` re-evaluation); already located.
-    Program(Box<Diagnostic>),
-    /// Ctrl-C stopped it; the session is as it was.
-    Cancelled(String),
-}
-
-/// The result of a command.
-pub(crate) type CommandResult = Result<Flow, CommandError>;
 
 /// A command: its name, its usage line and the function that runs it.
 pub(crate) struct CommandSpec {
@@ -67,6 +44,7 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
     CommandSpec { name: ":limits", usage: ":limits [calls N] [primitives N]", run: limits },
     CommandSpec { name: ":load", usage: ":load FILE", run: load },
+    CommandSpec { name: ":write", usage: ":write FILE.ray", run: write_back::write },
     CommandSpec { name: ":env", usage: ":env", run: env },
     CommandSpec { name: ":scene", usage: ":scene", run: scene },
     CommandSpec { name: ":undo", usage: ":undo", run: undo },
@@ -381,7 +359,7 @@ pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut C
 fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
     let text = std::fs::read_to_string(path)
         .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))?;
-    let accepted = session.load(&path.display().to_string(), &text).map_err(|d| CommandError::Program(Box::new(d)))?;
+    let accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
     }
@@ -475,6 +453,7 @@ fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         Undone::Nothing => console.say("nothing to undo"),
         Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
         Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
+        Undone::Reload(path) => console.say(format!("took back the :reload of {}", path.display())),
     }
     console.say(format!("{} in the scene", counted(report::objects(&session.scene().counts()), "object")));
     Ok(Flow::Continue)

@@ -18,14 +18,17 @@ mod commands;
 mod console;
 mod describe;
 mod editor;
+mod excerpt;
 mod help;
 mod interactive;
+mod outcome;
 mod preview;
 mod rendering;
 mod report;
 mod script;
 mod session;
 mod syntax;
+mod write_back;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;

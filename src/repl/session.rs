@@ -2,22 +2,28 @@
 //! and scene accumulate across inputs, the source texts, and the history of
 //! accepted inputs that `:undo` and `:time` replay.
 
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use crate::lang::ast::Program;
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, parse_items};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_items};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
 
-/// One accepted input, kept so the session can be rebuilt without it.
+/// One accepted input, kept so the session can be rebuilt without it, and
+/// written back, listed or shown.
 #[derive(Debug, Clone)]
-struct Input {
+pub(crate) struct Input {
     /// The text as typed (`:load FILE` for a file), for `:undo`'s message.
-    text: String,
+    pub text: String,
+    /// The file it was read from, for an input of `:load`, `:reload` or `:watch`.
+    pub loaded_from: Option<PathBuf>,
+    /// The source text the items were parsed from.
+    pub source: SourceId,
     /// The parsed items.
-    program: Rc<Program>,
+    pub program: Rc<Program>,
 }
 
 /// What `:undo` takes back.
@@ -27,6 +33,8 @@ enum UndoStep {
     Input,
     /// A `:reset`, with the history it cleared.
     Reset(Vec<Input>),
+    /// A `:reload` of the file, with the history before it.
+    Reload(Vec<Input>, PathBuf),
 }
 
 /// What an accepted input did, for the confirmation printed after it.
@@ -51,6 +59,8 @@ pub(crate) enum Undone {
     Input(String),
     /// A `:reset` was taken back: this many inputs are back.
     Reset(usize),
+    /// The `:reload` of this file was taken back.
+    Reload(PathBuf),
 }
 
 /// Names defined by the session, for completion.
@@ -73,6 +83,8 @@ pub struct Session {
     sources: SourceMap,
     history: Vec<Input>,
     undo_steps: Vec<UndoStep>,
+    /// The programs of the inputs the last `:write` wrote.
+    written: Vec<Rc<Program>>,
     descriptions: ObjectDescriptions,
     settings: RenderSettings,
     limits: Limits,
@@ -87,6 +99,7 @@ impl Session {
             sources: SourceMap::new(),
             history: Vec::new(),
             undo_steps: Vec::new(),
+            written: Vec::new(),
             descriptions: ObjectDescriptions::default(),
             settings,
             limits,
@@ -99,35 +112,86 @@ impl Session {
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
         let program = parse_items(source, text)?;
-        self.run(text.to_string(), program)
+        self.run(Input { text: text.to_string(), loaded_from: None, source, program: Rc::new(program) })
     }
 
-    /// Runs the text of a file, all of it as one input (its items in any order).
-    pub(crate) fn load(&mut self, name: &str, text: &str) -> Result<Accepted, Diagnostic> {
-        let source = self.sources.add(name, text, 0);
+    /// Runs the text of the file at `path`, all of it as one input (its
+    /// items in any order).
+    pub(crate) fn load(&mut self, path: &Path, text: &str) -> Result<Accepted, Diagnostic> {
+        let input = self.parse_file_input(path, text)?;
+        self.run(input)
+    }
+
+    /// Replaces what the last `:load` of `path` brought by `text`, the
+    /// file's new content, where it stood among the inputs, so the inputs
+    /// typed after it run again on top of it; loads it if nothing came
+    /// from `path` yet. On error the session is unchanged.
+    pub(crate) fn reload(&mut self, path: &Path, text: &str) -> Result<Accepted, Diagnostic> {
+        let Some(index) = self.history.iter().rposition(|input| input.loaded_from.as_deref() == Some(path)) else {
+            return self.load(path, text);
+        };
+        let input = self.parse_file_input(path, text)?;
+        let program = Rc::clone(&input.program);
+        let counts_before = self.interpreter.scene().counts();
+        let procedures_before = self.interpreter.procedure_names();
+        let previous = self.history.clone();
+        let mut history = previous.clone();
+        history[index] = Input { text: std::mem::take(&mut history[index].text), ..input };
+        self.rebuild(history)?;
+        self.undo_steps.push(UndoStep::Reload(previous, path.to_path_buf()));
+        Ok(Accepted { program, warnings: Vec::new(), procedures_before, counts_before })
+    }
+
+    /// The file that the last loaded input still in the session came from.
+    pub(crate) fn last_loaded(&self) -> Option<&Path> {
+        self.history.iter().rev().find_map(|input| input.loaded_from.as_deref())
+    }
+
+    /// The input holding the text of the file at `path`, parsed.
+    fn parse_file_input(&mut self, path: &Path, text: &str) -> Result<Input, Diagnostic> {
+        let name = path.display().to_string();
+        let source = self.sources.add(name.as_str(), text, 0);
         let program = parse_items(source, text)?;
-        self.run(format!(":load {name}"), program)
+        let text = format!(":load {name}");
+        Ok(Input { text, loaded_from: Some(path.to_path_buf()), source, program: Rc::new(program) })
     }
 
-    /// Runs an already parsed input and records it in the history.
-    fn run(&mut self, text: String, program: Program) -> Result<Accepted, Diagnostic> {
+    /// Runs a parsed input and records it in the history.
+    fn run(&mut self, input: Input) -> Result<Accepted, Diagnostic> {
         if self.interpreter_time != self.settings.time {
             self.rebuild(self.history.clone())?;
         }
         let counts_before = self.interpreter.scene().counts();
         let procedures_before = self.interpreter.procedure_names();
-        if let Err(error) = self.interpreter.run_with_sources(&program, &self.sources) {
+        if let Err(error) = self.interpreter.run_with_sources(&input.program, &self.sources) {
             self.interpreter.take_warnings();
             return Err(error);
         }
         let warnings = self.interpreter.take_warnings();
-        self.descriptions.record(&program);
-        let program = Rc::new(program);
+        self.descriptions.record(&input.program);
+        let program = Rc::clone(&input.program);
         if !program.items.is_empty() {
-            self.history.push(Input { text, program: Rc::clone(&program) });
+            self.history.push(input);
             self.undo_steps.push(UndoStep::Input);
         }
         Ok(Accepted { program, warnings, procedures_before, counts_before })
+    }
+
+    /// The accepted inputs, in the order they ran.
+    pub(crate) fn inputs(&self) -> &[Input] {
+        &self.history
+    }
+
+    /// Records that the inputs the session holds now were written to a file.
+    pub(crate) fn mark_written(&mut self) {
+        self.written = self.history.iter().map(|input| Rc::clone(&input.program)).collect();
+    }
+
+    /// How many typed inputs (not loaded from a file) the last `:write`
+    /// did not write: what leaving now would lose.
+    pub(crate) fn unwritten(&self) -> usize {
+        let written = |input: &Input| self.written.iter().any(|program| Rc::ptr_eq(program, &input.program));
+        self.history.iter().filter(|input| input.loaded_from.is_none() && !written(input)).count()
     }
 
     /// The limits on calls and primitives.
@@ -157,6 +221,10 @@ impl Session {
             UndoStep::Reset(cleared) => {
                 history = cleared.clone();
                 Undone::Reset(history.len())
+            }
+            UndoStep::Reload(previous, path) => {
+                history = previous.clone();
+                Undone::Reload(path.clone())
             }
         };
         if let Err(error) = self.rebuild(history) {
