@@ -21,6 +21,7 @@ use super::rendering::{RenderError, RenderSettings, Size, render_image, render_o
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 use super::write_back;
+use super::reload;
 use crate::animation::{AnimationError, render_animation};
 
 /// A command: its name, its usage line and the function that runs it.
@@ -44,6 +45,8 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
     CommandSpec { name: ":limits", usage: ":limits [calls N] [primitives N]", run: limits },
     CommandSpec { name: ":load", usage: ":load FILE", run: load },
+    CommandSpec { name: ":reload", usage: ":reload", run: reload::reload },
+    CommandSpec { name: ":watch", usage: ":watch FILE", run: watch },
     CommandSpec { name: ":write", usage: ":write FILE.ray", run: write_back::write },
     CommandSpec { name: ":env", usage: ":env", run: env },
     CommandSpec { name: ":scene", usage: ":scene", run: scene },
@@ -73,7 +76,7 @@ pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) 
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
-            report_error(error, session, console);
+            error.report(session, console);
             Err(())
         }
     }
@@ -101,14 +104,6 @@ fn unknown_command(name: &str) -> CommandError {
     }
     message.push_str("\n`:help` lists the commands");
     CommandError::Failed(message)
-}
-
-fn report_error(error: CommandError, session: &Session, console: &mut Console) {
-    match error {
-        CommandError::Usage(message) | CommandError::Failed(message) => console.error(message),
-        CommandError::Program(diagnostic) => console.diagnostic(&diagnostic, session.sources()),
-        CommandError::Cancelled(message) => console.say(message),
-    }
 }
 
 /// Splits a command line into words. Double quotes keep spaces in a word,
@@ -166,7 +161,7 @@ fn usage(error: SettingError) -> CommandError {
 
 /// Checks that `path` can receive `content` before any work is done.
 fn check_output(path: &Path, content: Content) -> Result<(), CommandError> {
-    output::check_output(path, content).map(drop).map_err(|e| CommandError::Usage(e.to_string()))
+    output::check_output(path, content).map(drop).map_err(|e| CommandError::Failed(e.to_string()))
 }
 
 // ---------------------------------------------------------------- commands
@@ -352,13 +347,12 @@ fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 /// Runs the file at `path` into the session, reporting any failure on the
 /// console; `Err(())` if it failed (the session is then unchanged).
 pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
-    load_file(session, path, console).map(|_| ()).map_err(|error| report_error(error, session, console))
+    load_file(session, path, console).map(|_| ()).map_err(|error| error.report(session, console))
 }
 
 /// Runs the file at `path` into the session, as one input.
 fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))?;
+    let text = reload::read(path)?;
     let accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
@@ -368,6 +362,11 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
         console.say(line);
     }
     Ok(Flow::Continue)
+}
+
+/// `:watch FILE`, rendering each version as `:render` does.
+fn watch(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    reload::watch(session, arguments, console, render)
 }
 
 fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {

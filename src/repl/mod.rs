@@ -23,6 +23,7 @@ mod help;
 mod interactive;
 mod outcome;
 mod preview;
+mod reload;
 mod rendering;
 mod report;
 mod script;

@@ -4,6 +4,9 @@
 
 use crate::lang::Diagnostic;
 
+use super::console::Console;
+use super::session::Session;
+
 /// What the session does after a command.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Flow {
@@ -28,3 +31,14 @@ pub(crate) enum CommandError {
 
 /// The result of a command.
 pub(crate) type CommandResult = Result<Flow, CommandError>;
+
+impl CommandError {
+    /// Says on the console what went wrong.
+    pub(crate) fn report(self, session: &Session, console: &mut Console) {
+        match self {
+            CommandError::Usage(message) | CommandError::Failed(message) => console.error(message),
+            CommandError::Program(diagnostic) => console.diagnostic(&diagnostic, session.sources()),
+            CommandError::Cancelled(message) => console.say(message),
+        }
+    }
+}
