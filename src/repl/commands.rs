@@ -16,6 +16,7 @@ use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH
 
 use super::console::Console;
 use super::help;
+use super::inspect;
 pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
@@ -50,6 +51,9 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":write", usage: ":write FILE.ray", run: write_back::write },
     CommandSpec { name: ":env", usage: ":env", run: env },
     CommandSpec { name: ":scene", usage: ":scene", run: scene },
+    CommandSpec { name: ":show", usage: ":show NAME", run: inspect::show },
+    CommandSpec { name: ":list", usage: ":list", run: inspect::list },
+    CommandSpec { name: ":history", usage: ":history [LINES]", run: inspect::history },
     CommandSpec { name: ":undo", usage: ":undo", run: undo },
     CommandSpec { name: ":reset", usage: ":reset", run: reset },
     CommandSpec { name: ":quit", usage: ":quit", run: quit },

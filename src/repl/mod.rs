@@ -20,6 +20,7 @@ mod describe;
 mod editor;
 mod excerpt;
 mod help;
+mod inspect;
 mod interactive;
 mod outcome;
 mod preview;

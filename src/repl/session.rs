@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use crate::lang::ast::Program;
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_items};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, parse_items};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
@@ -20,8 +20,6 @@ pub(crate) struct Input {
     pub text: String,
     /// The file it was read from, for an input of `:load`, `:reload` or `:watch`.
     pub loaded_from: Option<PathBuf>,
-    /// The source text the items were parsed from.
-    pub source: SourceId,
     /// The parsed items.
     pub program: Rc<Program>,
 }
@@ -112,7 +110,7 @@ impl Session {
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
         let program = parse_items(source, text)?;
-        self.run(Input { text: text.to_string(), loaded_from: None, source, program: Rc::new(program) })
+        self.run(Input { text: text.to_string(), loaded_from: None, program: Rc::new(program) })
     }
 
     /// Runs the text of the file at `path`, all of it as one input (its
@@ -153,7 +151,7 @@ impl Session {
         let source = self.sources.add(name.as_str(), text, 0);
         let program = parse_items(source, text)?;
         let text = format!(":load {name}");
-        Ok(Input { text, loaded_from: Some(path.to_path_buf()), source, program: Rc::new(program) })
+        Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Rc::new(program) })
     }
 
     /// Runs a parsed input and records it in the history.

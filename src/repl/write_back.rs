@@ -56,6 +56,13 @@ pub(crate) fn write(session: &mut Session, arguments: &[String], console: &mut C
     Ok(Flow::Continue)
 }
 
+/// The note for leaving with `unwritten` typed inputs not written to a
+/// file, when `how` (Ctrl-D, `:quit`) asked to leave.
+pub(crate) fn unwritten_note(unwritten: usize, how: &str) -> String {
+    let inputs = if unwritten == 1 { "1 input is".to_string() } else { format!("{unwritten} inputs are") };
+    format!("{inputs} not written to a file: `:write FILE.ray` keeps them; {how} again leaves without them")
+}
+
 /// A camera, ambient light or light, with whether `time` was rebound
 /// (`let time = ...`) before it, and where.
 struct Header<'s, T> {
