@@ -39,6 +39,7 @@ use std::process::ExitCode;
 use crate::lang::Limits;
 
 pub use interactive::{ReplError, run_interactive};
+pub(crate) use preview::Preview;
 pub use rendering::RenderSettings;
 pub use script::run_script;
 pub use session::Session;
