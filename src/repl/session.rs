@@ -399,3 +399,42 @@ impl Session {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BALL: &str = "put sphere center x, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end";
+
+    #[test]
+    fn a_reload_replaces_the_file_where_it_stood_and_keeps_typed_inputs() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        let path = Path::new("part.ray");
+        session.load(path, &format!("proc ball(x) {BALL} end ball(0)")).expect("loads");
+        session.submit("<input 2>", "ball(3)", 0).expect("runs");
+        assert_eq!(session.scene().counts().spheres, 2);
+        // Each ball is now two: the typed call runs again on the new version.
+        let two = format!("proc ball(x) {BALL} {BALL} end ball(0)");
+        session.reload(path, &two).expect("reloads");
+        assert_eq!((session.scene().counts().spheres, session.inputs().len()), (4, 2));
+        // A version that fails changes nothing.
+        assert!(session.reload(path, "ball(").is_err());
+        assert_eq!(session.scene().counts().spheres, 4);
+        assert_eq!(session.undo().ok(), Some(Undone::Reload(path.to_path_buf())));
+        assert_eq!(session.scene().counts().spheres, 2);
+        assert_eq!(session.last_loaded(), Some(path));
+    }
+
+    #[test]
+    fn typed_inputs_are_unwritten_until_written() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        session.load(Path::new("part.ray"), "let a = 1").expect("loads");
+        assert_eq!(session.unwritten(), 0);
+        session.submit("<input 2>", "let b = 2", 0).expect("runs");
+        session.submit("<input 3>", "let c = 3", 0).expect("runs");
+        assert_eq!(session.unwritten(), 2);
+        session.mark_written();
+        session.undo().expect("undoes");
+        assert_eq!(session.unwritten(), 0);
+    }
+}
