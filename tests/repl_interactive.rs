@@ -158,6 +158,10 @@ fn history_is_kept_between_sessions() {
     session.send("\x1b[A").unwrap();
     session.send_line("").unwrap();
     session.expect("kept = 42").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":history 1").unwrap();
+    session.expect("(1 line before these: `:history 2` shows them all)").unwrap();
+    session.expect("   2  :history 1").unwrap();
     assert_eq!(leave(session), 0);
 }
 
@@ -237,4 +241,49 @@ fn limits_are_raised_with_a_command_in_the_session() {
     session.send_line(":env").unwrap();
     session.expect("`object ball2 = sphere ... end` names one").unwrap();
     assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn leaving_with_inputs_not_written_says_how_to_keep_them() {
+    let (mut session, home) = plain();
+    session.send_line("let a = 1").unwrap();
+    session.expect("a = 1").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":quit").unwrap();
+    session.expect("1 input is not written to a file: `:write FILE.ray` keeps them").unwrap();
+    session.expect("ray> ").unwrap();
+    let file = home.path().join("kept.ray");
+    session.send_line(&format!(":write {}", file.display())).unwrap();
+    session.expect("wrote").unwrap();
+    session.expect("ray> ").unwrap();
+    // Everything is written now: the first Ctrl-D leaves.
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
+    assert!(std::fs::read_to_string(&file).expect("written").contains("let a = 1"));
+}
+
+#[test]
+fn watch_renders_at_every_save_until_ctrl_c() {
+    let (mut session, home) = plain();
+    let file = home.path().join("watched.ray");
+    let scene = "let r = 1\nput sphere center 0, 0, 0 radius r kd 1 ks 0 phong 1 color 255, 0, 0 end\n";
+    std::fs::write(&file, scene).expect("written");
+    session.send_line(":size 16 12").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(&format!(":watch {}", file.display())).unwrap();
+    session.expect("(1 object and 0 lights in the scene)").unwrap();
+    session.expect("rendered 16×12").unwrap();
+    std::fs::write(&file, format!("{scene}put sphere center 2, 0, 0 radius r kd 1 ks 0 phong 1 color 0, 0, 255 end\n"))
+        .expect("saved");
+    session.expect("(2 objects and 0 lights in the scene)").unwrap();
+    session.expect("rendered 16×12").unwrap();
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("stopped watching").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":scene").unwrap();
+    session.expect("objects:  2 ").unwrap();
+    // A loaded file is no typed input: nothing to write before leaving.
+    session.expect("ray> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
 }
