@@ -99,7 +99,7 @@ impl FileWatcher {
             EventKind::Access(AccessKind::Close(AccessMode::Write)) => true,
             EventKind::Access(_) | EventKind::Remove(_) | EventKind::Any | EventKind::Other => false,
         };
-        writes && event.paths.iter().any(|path| *path == self.file)
+        writes && event.paths.contains(&self.file)
     }
 }
 

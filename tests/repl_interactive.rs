@@ -36,7 +36,7 @@ fn plain() -> (expectrl::session::OsSession, tempfile::TempDir) {
 /// again would reach the terminal in its normal mode, where Ctrl-D means
 /// something else.)
 fn leave(mut session: expectrl::session::OsSession) -> i32 {
-    const NOTE: &str = "Ctrl-D again leaves without them";
+    const NOTE: &str = "not written to a file";
     session.expect("ray> ").expect("a prompt");
     session.send(ControlCode::EndOfTransmission).expect("Ctrl-D is sent");
     let found = session.expect(Any::boxed(vec![Box::new(Eof), Box::new(NOTE)])).expect("the session ends or warns");
@@ -250,10 +250,12 @@ fn leaving_with_inputs_not_written_says_how_to_keep_them() {
     session.expect("a = 1").unwrap();
     session.expect("ray> ").unwrap();
     session.send_line(":quit").unwrap();
-    session.expect("1 input is not written to a file: `:write FILE.ray` keeps them").unwrap();
+    session
+        .expect("1 input is not written to a file: `:write FILE.ray` keeps it; :quit again leaves without it")
+        .unwrap();
     session.expect("ray> ").unwrap();
     let file = home.path().join("kept.ray");
-    session.send_line(&format!(":write {}", file.display())).unwrap();
+    session.send_line(format!(":write {}", file.display())).unwrap();
     session.expect("wrote").unwrap();
     session.expect("ray> ").unwrap();
     // Everything is written now: the first Ctrl-D leaves.
@@ -270,7 +272,7 @@ fn watch_renders_at_every_save_until_ctrl_c() {
     std::fs::write(&file, scene).expect("written");
     session.send_line(":size 16 12").unwrap();
     session.expect("ray> ").unwrap();
-    session.send_line(&format!(":watch {}", file.display())).unwrap();
+    session.send_line(format!(":watch {}", file.display())).unwrap();
     session.expect("(1 object and 0 lights in the scene)").unwrap();
     session.expect("rendered 16×12").unwrap();
     std::fs::write(&file, format!("{scene}put sphere center 2, 0, 0 radius r kd 1 ks 0 phong 1 color 0, 0, 255 end\n"))

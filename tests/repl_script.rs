@@ -598,7 +598,9 @@ fn a_written_session_renders_byte_for_byte_what_save_gives() {
         // `time`, size, depth and samples set in the session.
         format!("{SCENE}:time 2.5\n{moving}\n:size 40 30\n:depth 2\n:samples 4\n"),
         // Inputs taken back, and a `:reset` taken back.
-        format!("{SCENE}put sphere center 3, 3, 0 radius 1 $T end\n:undo\n:reset\n:undo\nlight vector 1, 0, 0 intensity 0.3 end\n"),
+        format!(
+            "{SCENE}put sphere center 3, 3, 0 radius 1 $T end\n:undo\n:reset\n:undo\nlight vector 1, 0, 0 intensity 0.3 end\n"
+        ),
         // No camera and no ambient light: the defaults.
         "put sphere center 0, 0, 0 radius 1 $T end\n".to_string(),
         // A loaded file, typed items on it, then the file again.
@@ -606,7 +608,8 @@ fn a_written_session_renders_byte_for_byte_what_save_gives() {
     ];
     for session in sessions {
         let dir = tempfile::tempdir().expect("temporary directory");
-        let part = format!("# a part\n{SCENE}proc ball(x)\n  put sphere center x, 1, 0 radius 0.5 $T end\nend\nball(-2)\n");
+        let part =
+            format!("# a part\n{SCENE}proc ball(x)\n  put sphere center x, 1, 0 radius 0.5 $T end\nend\nball(-2)\n");
         std::fs::write(dir.path().join("part.ray"), part.replace("$T", TEX)).expect("the part is written");
         let (saved, written) = save_and_write(dir.path(), &session);
         assert!(saved == written, "the batch render differs from :save for:\n{session}");
@@ -617,15 +620,12 @@ fn a_written_session_renders_byte_for_byte_what_save_gives() {
 fn a_written_file_keeps_the_comments_and_says_how_to_render_it() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let file = dir.path().join("lesson.ray");
-    let script = format!(
-        "put sphere center 0, 0, 0 radius 1 $T end # the ball\n:time 4\n:write {}\n",
-        file.display()
-    );
+    let script = format!("put sphere center 0, 0, 0 radius 1 $T end # the ball\n:time 4\n:write {}\n", file.display());
     let run = run_with(&script, &small_size());
     assert_eq!(run.code, 0, "{}", run.err);
     assert!(run.out.contains(&format!("wrote {} (the default camera, the default ambient light", file.display())));
     let written = std::fs::read_to_string(&file).expect("written");
-    assert!(written.contains(&format!("--width 32 --height 24 --depth 5 --samples 1 --time 4`")), "{written}");
+    assert!(written.contains("--width 32 --height 24 --depth 5 --samples 1 --time 4`"), "{written}");
     assert!(written.contains("camera distance 10 angle 1 end # the session's default\nambient 0.2"), "{written}");
     assert!(written.contains(&format!("put sphere center 0, 0, 0 radius 1 {TEX} end # the ball\n")), "{written}");
 }
@@ -662,8 +662,11 @@ fn no_file_is_written_where_none_gives_the_scene() {
 fn reload_replaces_what_the_last_load_brought() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let file = dir.path().join("part.ray");
-    std::fs::write(&file, format!("{SCENE}proc ball(x) put sphere center x, 1, 0 radius 0.5 $T end end\n").replace("$T", TEX))
-        .expect("written");
+    std::fs::write(
+        &file,
+        format!("{SCENE}proc ball(x) put sphere center x, 1, 0 radius 0.5 $T end end\n").replace("$T", TEX),
+    )
+    .expect("written");
     let nothing = run(":reload\n");
     assert!(nothing.err.contains("nothing was loaded: `:load FILE` first"), "{}", nothing.err);
     let script = format!(":load {0}\nball(2)\n:reload\n:reload\n:undo\n:scene\n", file.display());
@@ -691,13 +694,18 @@ if r > 1 then object big = sphere center 0, 0, 0 radius r $T end end
 :list
 ";
     let run = run_keep_going(script);
-    let row = format!("# <stdin>:2\nproc row(n) # a row of balls\n  put sphere center n, 0, 0 radius r {TEX} end\nend\n");
+    let row =
+        format!("# <stdin>:2\nproc row(n) # a row of balls\n  put sphere center n, 0, 0 radius r {TEX} end\nend\n");
     assert!(run.out.contains(&row), "{}", run.out);
     assert!(run.out.contains("# <stdin>:1 (r = 2 now)\nlet r = 2\n"), "{}", run.out);
     assert!(run.out.contains("# <stdin>:5 (big: 1 primitive)\nif r > 1 then object big"), "{}", run.out);
     assert!(run.out.contains("# predefined (time = 0 now)"), "{}", run.out);
     assert!(run.err.contains("`rw` is not defined; did you mean `r`?"), "{}", run.err);
-    assert!(run.out.contains("<stdin>:1  let r = 2\n<stdin>:2  proc row(n) # a row of balls\n             put sphere"), "{}", run.out);
+    assert!(
+        run.out.contains("<stdin>:1  let r = 2\n<stdin>:2  proc row(n) # a row of balls\n             put sphere"),
+        "{}",
+        run.out
+    );
 }
 
 #[test]

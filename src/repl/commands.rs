@@ -18,11 +18,11 @@ use super::console::Console;
 use super::help;
 use super::inspect;
 pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
+use super::reload;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 use super::write_back;
-use super::reload;
 use crate::animation::{AnimationError, render_animation};
 
 /// A command: its name, its usage line and the function that runs it.

@@ -50,7 +50,8 @@ fn comments_above(text: &str, line_start: usize) -> usize {
 fn dedent(text: &str) -> String {
     let indent = |line: &str| line.len() - line.trim_start().len();
     let common = text.lines().filter(|line| !line.trim().is_empty()).map(indent).min().unwrap_or(0);
-    let lines: Vec<&str> = text.lines().map(|line| line.get(common.min(indent(line))..).unwrap_or(line).trim_end()).collect();
+    let lines: Vec<&str> =
+        text.lines().map(|line| line.get(common.min(indent(line))..).unwrap_or(line).trim_end()).collect();
     lines.join("\n")
 }
 

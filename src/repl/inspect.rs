@@ -58,7 +58,8 @@ fn latest_definitions<'s>(session: &'s Session, name: &str) -> (Option<&'s ProcD
         match item {
             Item::Proc(def) if &*def.name.name == name => procedure = Some(&**def),
             Item::Instr(top) => {
-                let bindings = same_level(std::iter::once(top)).filter(|instr| bound_name(instr).is_some_and(|n| &**n == name));
+                let bindings =
+                    same_level(std::iter::once(top)).filter(|instr| bound_name(instr).is_some_and(|n| &**n == name));
                 if let Some(instr) = bindings.last() {
                     binding = Some((instr, top));
                 }
@@ -115,9 +116,9 @@ pub(crate) fn list(session: &mut Session, arguments: &[String], console: &mut Co
 pub(crate) fn history(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     let shown = match arguments {
         [] => HISTORY_SHOWN,
-        [count] => count
-            .parse::<usize>()
-            .map_err(|_| CommandError::Usage(format!("`{count}` is not a number of lines")))?,
+        [count] => {
+            count.parse::<usize>().map_err(|_| CommandError::Usage(format!("`{count}` is not a number of lines")))?
+        }
         _ => return Err(CommandError::Usage("give at most one number".to_string())),
     };
     let mut history = FileHistory::new();

@@ -35,7 +35,12 @@ pub(crate) fn reload(session: &mut Session, arguments: &[String], console: &mut 
 /// again at every save, rendering with `render` each time, until Ctrl-C. A
 /// version that fails is reported and leaves the session, and the last
 /// picture, as they were.
-pub(crate) fn watch(session: &mut Session, arguments: &[String], console: &mut Console, render: Render) -> CommandResult {
+pub(crate) fn watch(
+    session: &mut Session,
+    arguments: &[String],
+    console: &mut Console,
+    render: Render,
+) -> CommandResult {
     let [file] = arguments else {
         return Err(CommandError::Usage("give the file to watch".to_string()));
     };

@@ -59,8 +59,9 @@ pub(crate) fn write(session: &mut Session, arguments: &[String], console: &mut C
 /// The note for leaving with `unwritten` typed inputs not written to a
 /// file, when `how` (Ctrl-D, `:quit`) asked to leave.
 pub(crate) fn unwritten_note(unwritten: usize, how: &str) -> String {
-    let inputs = if unwritten == 1 { "1 input is".to_string() } else { format!("{unwritten} inputs are") };
-    format!("{inputs} not written to a file: `:write FILE.ray` keeps them; {how} again leaves without them")
+    let (inputs, them) =
+        if unwritten == 1 { ("1 input is".to_string(), "it") } else { (format!("{unwritten} inputs are"), "them") };
+    format!("{inputs} not written to a file: `:write FILE.ray` keeps {them}; {how} again leaves without {them}")
 }
 
 /// A camera, ambient light or light, with whether `time` was rebound
@@ -125,7 +126,8 @@ impl<'s> Parts<'s> {
     /// light and the lights can read no variable but `time`, and that one
     /// only as the render sets it.
     fn check_headers(&self, sources: &SourceMap) -> Result<(), Inexact> {
-        let camera = self.camera.iter().map(|h| ("camera", h.span, h.time_bound_at, vec![&h.def.distance, &h.def.angle]));
+        let camera =
+            self.camera.iter().map(|h| ("camera", h.span, h.time_bound_at, vec![&h.def.distance, &h.def.angle]));
         let ambient = self.ambient.iter().map(|h| ("ambient light", h.span, h.time_bound_at, vec![&h.def.intensity]));
         let lights = self.lights.iter().map(|h| {
             let mut exprs: Vec<_> = h.def.rotation.parts.iter().collect();
