@@ -124,20 +124,17 @@ impl Session {
     /// file's new content, where it stood among the inputs, so the inputs
     /// typed after it run again on top of it; loads it if nothing came
     /// from `path` yet. On error the session is unchanged.
-    pub(crate) fn reload(&mut self, path: &Path, text: &str) -> Result<Accepted, Diagnostic> {
+    pub(crate) fn reload(&mut self, path: &Path, text: &str) -> Result<(), Diagnostic> {
         let Some(index) = self.history.iter().rposition(|input| input.loaded_from.as_deref() == Some(path)) else {
-            return self.load(path, text);
+            return self.load(path, text).map(drop);
         };
         let input = self.parse_file_input(path, text)?;
-        let program = Rc::clone(&input.program);
-        let counts_before = self.interpreter.scene().counts();
-        let procedures_before = self.interpreter.procedure_names();
         let previous = self.history.clone();
         let mut history = previous.clone();
         history[index] = Input { text: std::mem::take(&mut history[index].text), ..input };
         self.rebuild(history)?;
         self.undo_steps.push(UndoStep::Reload(previous, path.to_path_buf()));
-        Ok(Accepted { program, warnings: Vec::new(), procedures_before, counts_before })
+        Ok(())
     }
 
     /// The file that the last loaded input still in the session came from.
