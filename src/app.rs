@@ -1,12 +1,14 @@
 //! The application: dispatches what the command line asks for to a check, a
-//! render of a still image or an animation, or a session. Maps failures to
-//! exit codes.
+//! render of a still image or an animation, renders at every save of a file
+//! (`--watch`), or a session. Maps failures to exit codes.
 
 use std::cell::RefCell;
 use std::collections::HashSet;
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use image::RgbImage;
@@ -21,6 +23,7 @@ use crate::progress::Progress;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
 use crate::repl::{self, SessionOptions};
 use crate::scene::Scene;
+use crate::watch::FileWatcher;
 
 /// The exit code of a command line that asks for something impossible or
 /// meaningless (the same as clap's for its own usage errors).
@@ -87,19 +90,26 @@ impl From<String> for BatchError {
 fn exit_code(result: Result<(), BatchError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(BatchError::Scene(diagnostic, sources)) => {
-            emit(&mut anstream::stderr(), &diagnostic, &sources);
-            ExitCode::FAILURE
-        }
-        Err(BatchError::Other(message)) => {
-            eprintln!("{}", message.trim_end());
+        Err(error) => {
+            print_error(&error);
             ExitCode::FAILURE
         }
     }
 }
 
-/// Checks or renders one scene file.
+/// Prints a batch error on stderr.
+fn print_error(error: &BatchError) {
+    match error {
+        BatchError::Scene(diagnostic, sources) => emit(&mut anstream::stderr(), diagnostic, sources),
+        BatchError::Other(message) => eprintln!("{}", message.trim_end()),
+    }
+}
+
+/// Checks or renders one scene file, or follows it with `--watch`.
 fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
+    if cli.watch {
+        return watch(cli, path);
+    }
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
     let parsed = ParsedScene::parse(sources, id, cli)?;
@@ -224,6 +234,25 @@ fn render_options(cli: &Cli) -> RenderOptions {
 /// Renders one image at `--time`.
 fn still(cli: &Cli, parsed: &ParsedScene, output: &Path) -> Result<(), BatchError> {
     let start = Instant::now();
+    let image = render_still(cli, parsed)?;
+    let name = if output == Path::new("-") {
+        let mut stdout = std::io::stdout().lock();
+        output::write_ppm(&mut stdout, &image)
+            .and_then(|()| stdout.flush())
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
+        "standard output".to_string()
+    } else {
+        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
+        output.display().to_string()
+    };
+    report_done(cli, &format!("wrote {name}"), &image_size(cli), start);
+    Ok(())
+}
+
+/// Evaluates the scene at `--time` and renders it, with the progress bar
+/// and `--stats`.
+fn render_still(cli: &Cli, parsed: &ParsedScene) -> Result<RgbImage, BatchError> {
+    let start = Instant::now();
     let scene = parsed.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
     let prepared = SceneGeometry::new(&scene);
@@ -236,27 +265,82 @@ fn still(cli: &Cli, parsed: &ParsedScene, output: &Path) -> Result<(), BatchErro
         eprintln!("evaluate {:.3} s, build {:.3} s", evaluated.as_secs_f64(), built.as_secs_f64());
         print_stats(&stats, 1);
     }
-    let name = if output == Path::new("-") {
-        let mut stdout = std::io::stdout().lock();
-        output::write_ppm(&mut stdout, &image)
-            .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
-        "standard output".to_string()
-    } else {
-        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
-        output.display().to_string()
+    Ok(image)
+}
+
+/// Renders the scene file at `path` again each time it is saved, until
+/// Ctrl-C ends the process: shows each picture in the terminal and writes
+/// it to `-o` if given. A version that fails is reported, and the last
+/// good picture stays.
+fn watch(cli: &Cli, path: &Path) -> Result<(), BatchError> {
+    let output = match cli.output {
+        Some(_) => Some(output_path(cli, path)?),
+        None => None,
     };
-    report_written(cli, &name, &format!("{}x{}", cli.width, cli.height), start);
+    let preview = repl::Preview::new(cli.no_preview);
+    let watcher = FileWatcher::new(path).map_err(|e| format!("rayrepl: {e}"))?;
+    eprintln!("watching {}: every save renders it again; Ctrl-C stops", path.display());
+    // A batch process ends at Ctrl-C: nothing raises this flag.
+    let never = AtomicBool::new(false);
+    // The text of the version last rendered or reported.
+    let mut shown: Option<Arc<str>> = None;
+    loop {
+        let mut sources = SourceMap::new();
+        match load(&mut sources, path) {
+            Err(message) if shown.is_none() => return Err(message.into()),
+            Err(message) => eprintln!("{message}"),
+            Ok(id) if shown.as_ref() == Some(&sources.get(id).text) => {}
+            Ok(id) => {
+                shown = Some(Arc::clone(&sources.get(id).text));
+                if let Err(error) = render_version(cli, sources, id, output.as_deref(), preview) {
+                    print_error(&error);
+                    eprintln!("note: the last good picture stays: fix {} and save it again", path.display());
+                }
+            }
+        }
+        watcher.wait(&never).map_err(|e| format!("rayrepl: {e}"))?;
+    }
+}
+
+/// Renders one version of a watched file, shows it with `preview` and
+/// writes it to `output`.
+fn render_version(
+    cli: &Cli,
+    sources: SourceMap,
+    id: SourceId,
+    output: Option<&Path>,
+    preview: Option<repl::Preview>,
+) -> Result<(), BatchError> {
+    let start = Instant::now();
+    let name = sources.get(id).name.clone();
+    let parsed = ParsedScene::parse(sources, id, cli)?;
+    let image = render_still(cli, &parsed)?;
+    if let Some(preview) = preview {
+        preview.show(&image).map_err(|e| format!("rayrepl: cannot show the picture here: {e}"))?;
+    }
+    let done = match output {
+        Some(output) => {
+            output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
+            format!("wrote {}", output.display())
+        }
+        None => format!("rendered {name}"),
+    };
+    report_done(cli, &done, &image_size(cli), start);
     Ok(())
 }
 
-/// Says on stderr, unless `--quiet`, what was written to `name`: `what`
-/// ("800x600"), the reflections, the samples and the time since `start`.
-fn report_written(cli: &Cli, name: &str, what: &str, start: Instant) {
+/// "800x600": the size of the images asked for.
+fn image_size(cli: &Cli) -> String {
+    format!("{}x{}", cli.width, cli.height)
+}
+
+/// Says on stderr, unless `--quiet`, what was `done` ("wrote out.png"):
+/// `what` ("800x600"), the reflections, the samples and the time since `start`.
+fn report_done(cli: &Cli, done: &str, what: &str, start: Instant) {
     if cli.quiet {
         return;
     }
-    let mut line = format!("wrote {name}: {what}, {}", counted(cli.depth as usize, "reflection", "reflections"));
+    let mut line = format!("{done}: {what}, {}", counted(cli.depth as usize, "reflection", "reflections"));
     let samples = render_options(cli).samples;
     if samples > 1 {
         let adaptive = if cli.adaptive { " (adaptive)" } else { "" };
@@ -315,8 +399,8 @@ fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result
         print_stats(&total, frames.clone().count());
     }
     let written = frames_out.finish().map_err(|e| format!("rayrepl: {e}"))?;
-    let what = format!("{} of {}x{}", counted(frames.count(), "frame", "frames"), cli.width, cli.height);
-    report_written(cli, &output::describe_files(&written), &what, start);
+    let what = format!("{} of {}", counted(frames.count(), "frame", "frames"), image_size(cli));
+    report_done(cli, &format!("wrote {}", output::describe_files(&written)), &what, start);
     Ok(())
 }
 

@@ -94,7 +94,12 @@ pub struct Cli {
     #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_primitives, value_name = "N")]
     pub max_primitives: usize,
 
-    /// Interactive session: no pictures in the terminal.
+    /// Render again each time the scene file is saved, until Ctrl-C: shown in the terminal, and written to -o FILE
+    /// if given. A version with an error is reported and the last good picture stays.
+    #[arg(long, conflicts_with_all = ["anim", "frames"])]
+    pub watch: bool,
+
+    /// Interactive session (or --watch): no pictures in the terminal.
     #[arg(long)]
     pub no_preview: bool,
 
@@ -104,8 +109,9 @@ pub struct Cli {
 }
 
 /// The flags that only matter when an image is rendered, which `--check` does not do.
-const RENDER_ONLY: [&str; 12] = [
+const RENDER_ONLY: [&str; 13] = [
     "output",
+    "watch",
     "quiet",
     "width",
     "height",
@@ -149,6 +155,7 @@ impl Cli {
             (self.stats, "--stats", ""),
             (self.reference, "--reference", ""),
             (self.quiet, "--quiet", ""),
+            (self.watch, "--watch", "; there, `:watch FILE` follows a file"),
         ];
         if self.starts_session() {
             let (_, flag, instead) = session_flags.into_iter().find(|(given, _, _)| *given)?;
@@ -165,8 +172,16 @@ impl Cli {
         if self.time.is_some() && self.anim.is_some() {
             return Some("--time sets the time of one image; frame k of an animation has time = k".into());
         }
-        if self.no_preview {
-            return Some("--no-preview is for the interactive session (`rayrepl` or `rayrepl -i scene.ray`)".into());
+        if self.watch && self.scene.as_deref() == Some(std::path::Path::new("-")) {
+            return Some("--watch follows a file as it is saved: give its name, not `-`".into());
+        }
+        if self.watch && self.output.as_deref() == Some(std::path::Path::new("-")) {
+            return Some("--watch writes an image at every save: give -o a file name, not `-`".into());
+        }
+        if self.no_preview && !self.watch {
+            return Some(
+                "--no-preview is for the interactive session (`rayrepl` or `rayrepl -i scene.ray`) and --watch".into(),
+            );
         }
         if self.keep_going {
             return Some("--keep-going is for a script on standard input (`rayrepl --keep-going < script`)".into());
@@ -201,6 +216,7 @@ Examples:
   rayrepl scenarios/solar.ray --anim 100 --frames 1..50 -o out.png
                                                        frames 1-50 as out0001.png...
   rayrepl --check scenarios/menger.ray                 parse and evaluate only
+  rayrepl scene.ray --watch -o scene.png               render again at every save
   rayrepl                                              the interactive session
   cat script.ray | rayrepl                             run a script
 

@@ -15,3 +15,4 @@ pub mod render;
 pub mod repl;
 pub mod scene;
 mod settings;
+mod watch;

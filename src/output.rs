@@ -50,8 +50,8 @@ pub enum Content {
 }
 
 /// Checks, before any work, that `path` can receive `content`: a file name
-/// (not a folder) in an existing folder, with an extension naming a format
-/// that suits the content. Returns that format.
+/// (not a folder) in an existing folder where files can be made, with an
+/// extension naming a format that suits the content. Returns that format.
 pub(crate) fn check_output(path: &Path, content: Content) -> Result<ImageFormat, OutputError> {
     let names_folder = path.as_os_str().to_string_lossy().ends_with(std::path::is_separator);
     if names_folder || path.is_dir() {
@@ -60,11 +60,14 @@ pub(crate) fn check_output(path: &Path, content: Content) -> Result<ImageFormat,
     if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty() && !f.is_dir()) {
         return Err(OutputError::NoFolder { path: path.to_owned(), folder: folder.to_owned() });
     }
-    match (ImageFormat::from_path(path), content) {
+    let format = match (ImageFormat::from_path(path), content) {
         (Some(ImageFormat::Gif), Content::Still) => Err(OutputError::GifIsForAnimations { path: path.to_owned() }),
         (Some(format), _) => Ok(format),
         (None, _) => Err(OutputError::UnknownFormat { path: path.to_owned(), content }),
-    }
+    }?;
+    // The write goes through a temporary file in the folder: make one now.
+    temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
+    Ok(format)
 }
 
 /// Whether `a` and `b` name the same existing file (through `./`, `..` or
@@ -178,6 +181,15 @@ pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
         _ => write_png(&mut writer, image).map_err(|e| encode_error(path, e))?,
     }
     writer.flush().map_err(|e| io_error(path, e))?;
+    drop(writer);
+    pending.commit()
+}
+
+/// Writes `text` to `path` atomically, as images are written (a scene file
+/// written back by the session).
+pub(crate) fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
+    let (pending, mut writer) = PendingFile::create(path)?;
+    writer.write_all(text.as_bytes()).and_then(|()| writer.flush()).map_err(|e| io_error(path, e))?;
     drop(writer);
     pending.commit()
 }
@@ -428,12 +440,8 @@ struct PendingFile {
 impl PendingFile {
     /// A temporary file for `path`, and a writer into it.
     fn create(path: &Path) -> Result<(PendingFile, BufWriter<File>), OutputError> {
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
         let mut unfinished = unfinished();
-        let temp = temp_file_in(dir).map_err(|e| io_error(path, e))?;
+        let temp = temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
         unfinished.push(temp.path().to_owned());
         let writer = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
         let pending = PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp) };
@@ -460,6 +468,14 @@ impl Drop for PendingFile {
         let mut unfinished = unfinished();
         drop(self.temp.take());
         unfinished.retain(|p| *p != self.temp_path);
+    }
+}
+
+/// The folder a file at `path` goes into.
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
     }
 }
 

@@ -580,3 +580,90 @@ fn a_piped_script_that_writes_nothing_says_how_to_get_a_picture() {
         .stdout(contains("saved small.png"))
         .stderr(contains(":save out.png").not());
 }
+
+/// The lines a running `rayrepl` writes on stderr, as they come.
+struct StderrLines {
+    lines: std::sync::mpsc::Receiver<String>,
+    /// Everything read so far, for failure messages.
+    seen: String,
+}
+
+impl StderrLines {
+    fn of(child: &mut std::process::Child) -> StderrLines {
+        use std::io::BufRead;
+        let stderr = child.stderr.take().expect("stderr is piped");
+        let (sender, lines) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            for line in std::io::BufReader::new(stderr).lines().map_while(Result::ok) {
+                if sender.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        StderrLines { lines, seen: String::new() }
+    }
+
+    /// Waits for a line containing `text` (a generous minute at most).
+    fn wait_for(&mut self, text: &str) {
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+        loop {
+            let left = deadline.saturating_duration_since(std::time::Instant::now());
+            match self.lines.recv_timeout(left) {
+                Ok(line) => {
+                    self.seen.push_str(&line);
+                    self.seen.push('\n');
+                    if line.contains(text) {
+                        return;
+                    }
+                }
+                Err(_) => panic!("no line with `{text}` on stderr; it said:\n{}", self.seen),
+            }
+        }
+    }
+}
+
+#[test]
+fn watch_renders_again_at_every_save_and_keeps_the_last_good_picture() {
+    let (dir, path) = scene(SPHERE);
+    let out = dir.path().join("out.png");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .arg(&path)
+        .args(["--watch", "--width", "16", "--height", "12", "-o"])
+        .arg(&out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let mut stderr = StderrLines::of(&mut child);
+    stderr.wait_for("watching");
+    stderr.wait_for("wrote");
+    let first = std::fs::read(&out).expect("the first picture");
+    // A save in place.
+    std::fs::write(&path, SPHERE.replace("255, 0, 0", "0, 255, 0")).expect("saved");
+    stderr.wait_for("wrote");
+    let green = std::fs::read(&out).expect("the second picture");
+    assert_ne!(first, green);
+    // A broken save: the error, and the picture stays.
+    std::fs::write(&path, SPHERE.replace("radius 2", "radius two")).expect("saved");
+    stderr.wait_for("--> ");
+    stderr.wait_for("the last good picture stays");
+    assert_eq!(std::fs::read(&out).expect("the picture"), green);
+    // A save by rename, as many editors do.
+    let temp = dir.path().join(".scene.ray.swp");
+    std::fs::write(&temp, SPHERE.replace("255, 0, 0", "0, 0, 255")).expect("written");
+    std::fs::rename(&temp, &path).expect("renamed over the scene");
+    stderr.wait_for("wrote");
+    let blue = std::fs::read(&out).expect("the third picture");
+    assert!(blue != green && blue != first);
+    child.kill().expect("the watch ends");
+    let _ = child.wait();
+}
+
+#[test]
+fn watch_needs_a_scene_file() {
+    let (_dir, path) = scene(SPHERE);
+    rayrepl().args(["--watch"]).assert().code(2).stderr(contains("--watch does nothing in a session"));
+    rayrepl().args(["--watch", "-"]).assert().code(2).stderr(contains("give its name, not `-`"));
+    rayrepl().arg(&path).args(["--watch", "--anim", "3"]).assert().code(2);
+    rayrepl().arg(&path).args(["--watch", "-o", "-"]).assert().code(2).stderr(contains("give -o a file name"));
+    rayrepl().arg("missing.ray").arg("--watch").assert().code(1).stderr(contains("cannot read `missing.ray`"));
+}

@@ -7,7 +7,7 @@ use std::process::Command;
 use std::time::Duration;
 
 use expectrl::process::unix::WaitStatus;
-use expectrl::{ControlCode, Eof, Expect, Session};
+use expectrl::{Any, ControlCode, Eof, Expect, Session};
 use rayrepl::lang::Limits;
 use rayrepl::repl::{SessionOptions, run_typed};
 
@@ -33,13 +33,21 @@ fn fresh(color: bool) -> (expectrl::session::OsSession, tempfile::TempDir) {
     (session, data_home)
 }
 
-/// At the next prompt, Ctrl-D, then the exit status. (Keys typed before the
-/// editor reads the terminal again would reach the terminal in its normal
-/// mode, where Ctrl-D means something else.)
+/// At the next prompt, Ctrl-D, then the exit status. A session holding
+/// typed inputs says first that they are not written to a file, and the
+/// second Ctrl-D leaves. (Keys typed before the editor reads the terminal
+/// again would reach the terminal in its normal mode, where Ctrl-D means
+/// something else.)
 fn leave(mut session: expectrl::session::OsSession) -> i32 {
+    const NOTE: &str = "not written to a file";
     session.expect("ray> ").expect("a prompt");
     session.send(ControlCode::EndOfTransmission).expect("Ctrl-D is sent");
-    session.expect(Eof).expect("the session ends");
+    let found = session.expect(Any::boxed(vec![Box::new(Eof), Box::new(NOTE)])).expect("the session ends or warns");
+    if found.get(0) == Some(NOTE.as_bytes()) {
+        session.expect("ray> ").expect("a prompt");
+        session.send(ControlCode::EndOfTransmission).expect("Ctrl-D is sent");
+        session.expect(Eof).expect("the session ends");
+    }
     match session.get_process().wait().expect("the exit status") {
         WaitStatus::Exited(_, code) => code,
         other => panic!("the session did not exit normally: {other:?}"),
@@ -172,6 +180,10 @@ fn history_is_kept_between_sessions() {
     session.send("\x1b[A").unwrap();
     session.send_line("").unwrap();
     session.expect("kept = 42").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":history 1").unwrap();
+    session.expect("(1 line before these: `:history 2` shows them all)").unwrap();
+    session.expect("   2  :history 1").unwrap();
     assert_eq!(leave(session), 0);
 }
 
@@ -288,4 +300,48 @@ fn ctrl_c_stops_a_runaway_evaluation_and_keeps_the_session() {
     session.send_line(":env").unwrap();
     session.expect("numbers:    keep = 7").unwrap();
     assert_eq!(leave(session), 0);
+fn leaving_with_inputs_not_written_says_how_to_keep_them() {
+    let (mut session, home) = plain();
+    session.send_line("let a = 1").unwrap();
+    session.expect("a = 1").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":quit").unwrap();
+    session
+        .expect("1 input is not written to a file: `:write FILE.ray` keeps it; :quit again leaves without it")
+        .unwrap();
+    session.expect("ray> ").unwrap();
+    let file = home.path().join("kept.ray");
+    session.send_line(format!(":write {}", file.display())).unwrap();
+    session.expect("wrote").unwrap();
+    session.expect("ray> ").unwrap();
+    // Everything is written now: the first Ctrl-D leaves.
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
+    assert!(std::fs::read_to_string(&file).expect("written").contains("let a = 1"));
+}
+
+#[test]
+fn watch_renders_at_every_save_until_ctrl_c() {
+    let (mut session, home) = plain();
+    let file = home.path().join("watched.ray");
+    let scene = "let r = 1\nput sphere center 0, 0, 0 radius r kd 1 ks 0 phong 1 color 255, 0, 0 end\n";
+    std::fs::write(&file, scene).expect("written");
+    session.send_line(":size 16 12").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(format!(":watch {}", file.display())).unwrap();
+    session.expect("(1 object and 0 lights in the scene)").unwrap();
+    session.expect("rendered 16×12").unwrap();
+    std::fs::write(&file, format!("{scene}put sphere center 2, 0, 0 radius r kd 1 ks 0 phong 1 color 0, 0, 255 end\n"))
+        .expect("saved");
+    session.expect("(2 objects and 0 lights in the scene)").unwrap();
+    session.expect("rendered 16×12").unwrap();
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("stopped watching").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":scene").unwrap();
+    session.expect("objects:  2 ").unwrap();
+    // A loaded file is no typed input: nothing to write before leaving.
+    session.expect("ray> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
 }

@@ -563,6 +563,167 @@ fn anim_reports_the_frame_that_fails() {
     assert!(!gif.exists());
 }
 
+// ------------------------------------------------------------ writing the session back
+
+/// Runs `script` in `dir` (`$D` stands for it) with `:save saved.png` and
+/// `:write scene.ray` at its end, then the command the written file's
+/// header gives; returns the saved and the batch-rendered images' bytes.
+fn save_and_write(dir: &Path, script: &str) -> (Vec<u8>, Vec<u8>) {
+    let script = script.replace("$D", &dir.display().to_string());
+    let ends = format!(":save {0}/saved.png\n:write {0}/scene.ray\n", dir.display());
+    let run = run_with(&format!("{script}{ends}"), &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    let written = std::fs::read_to_string(dir.join("scene.ray")).expect("the file is written");
+    let command = written.lines().nth(1).and_then(|line| line.split('`').nth(1)).expect("a command in the header");
+    let args: Vec<&str> = command.split_whitespace().collect();
+    assert_eq!(args[0], "rayrepl", "{command}");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl")).args(&args[1..]).status();
+    assert!(status.expect("the binary runs").success(), "{command} failed on:\n{written}");
+    let bytes = |name: &str| std::fs::read(dir.join(name)).expect("an image");
+    (bytes("saved.png"), bytes("scene.png"))
+}
+
+#[test]
+fn a_written_session_renders_byte_for_byte_what_save_gives() {
+    let moving = "put sphere center time - 2, 0, 0 radius 1 kd 0.8 ks 0.2 phong 10 color 0, 90, 255 end";
+    let sessions = [
+        // Items in any order, the camera and the ambient light given twice.
+        format!("put sphere center 1, 0, 0 radius 1 $T end\ncamera distance 8 angle 1 end\n{SCENE}ambient 0.4\n"),
+        // A procedure redefined before it is used, and a global it reads.
+        format!(
+            "{SCENE}proc row(n) put sphere center n, 1, 0 radius 0.3 $T end end\n\
+             proc row(n)\n  if n > 0 then\n    put box center n, 1, 0 length 0.5, 0.5, 0.5 $T end # a box\n\
+                 row(n - 1)\n  end\nend\nlet n = 3\nrow(n)\n"
+        ),
+        // `time`, size, depth and samples set in the session.
+        format!("{SCENE}:time 2.5\n{moving}\n:size 40 30\n:depth 2\n:samples 4\n"),
+        // Inputs taken back, and a `:reset` taken back.
+        format!(
+            "{SCENE}put sphere center 3, 3, 0 radius 1 $T end\n:undo\n:reset\n:undo\nlight vector 1, 0, 0 intensity 0.3 end\n"
+        ),
+        // No camera and no ambient light: the defaults.
+        "put sphere center 0, 0, 0 radius 1 $T end\n".to_string(),
+        // A loaded file, typed items on it, then the file again.
+        ":load $D/part.ray\nball(2)\n:load $D/part.ray\nlet time = 3\nball(time)\n".to_string(),
+    ];
+    for session in sessions {
+        let dir = tempfile::tempdir().expect("temporary directory");
+        let part =
+            format!("# a part\n{SCENE}proc ball(x)\n  put sphere center x, 1, 0 radius 0.5 $T end\nend\nball(-2)\n");
+        std::fs::write(dir.path().join("part.ray"), part.replace("$T", TEX)).expect("the part is written");
+        let (saved, written) = save_and_write(dir.path(), &session);
+        assert!(saved == written, "the batch render differs from :save for:\n{session}");
+    }
+}
+
+#[test]
+fn a_written_file_keeps_the_comments_and_says_how_to_render_it() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("lesson.ray");
+    let script = format!("put sphere center 0, 0, 0 radius 1 $T end # the ball\n:time 4\n:write {}\n", file.display());
+    let run = run_with(&script, &small_size());
+    assert_eq!(run.code, 0, "{}", run.err);
+    assert!(run.out.contains(&format!("wrote {} (the default camera, the default ambient light", file.display())));
+    let written = std::fs::read_to_string(&file).expect("written");
+    assert!(written.contains("--width 32 --height 24 --depth 5 --samples 1 --time 4`"), "{written}");
+    assert!(written.contains("camera distance 10 angle 1 end # the session's default\nambient 0.2"), "{written}");
+    assert!(written.contains(&format!("put sphere center 0, 0, 0 radius 1 {TEX} end # the ball\n")), "{written}");
+}
+
+#[test]
+fn no_file_is_written_where_none_gives_the_scene() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("x.ray");
+    let cases = [
+        (
+            "proc p() put sphere center 0, 0, 0 radius 1 $T end end\np()\nproc p() end\n",
+            "<stdin>:2 ran `p` as <stdin>:1 defined it, and <stdin>:3 redefined it afterwards",
+        ),
+        (
+            "proc p() put sphere center 0, 0, 0 radius 1 $T end end\nproc q() p() end\nq()\nproc p() end\n",
+            "<stdin>:3 ran `p` as <stdin>:1 defined it",
+        ),
+        ("let d = 8\ncamera distance d angle 1 end\n", "the camera at <stdin>:2 reads `d`"),
+        ("let time = 2\nlight vector time, 0, 0 intensity 1 end\n", "reads `time`, as <stdin>:1 set it"),
+    ];
+    for (script, message) in cases {
+        let run = run(&format!("{script}:write {}\n", file.display()));
+        assert_eq!(run.code, 1, "{script}");
+        assert!(run.err.contains(message), "{script}: {}", run.err);
+        assert!(!file.exists());
+    }
+    let empty = run(&format!(":write {}\n", file.display()));
+    assert!(empty.err.contains("the session is empty"), "{}", empty.err);
+    let image = run("let a = 1\n:write x.png\n");
+    assert!(image.err.contains("`x.png` is not a scene file: end its name in .ray"), "{}", image.err);
+}
+
+#[test]
+fn reload_replaces_what_the_last_load_brought() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("part.ray");
+    std::fs::write(
+        &file,
+        format!("{SCENE}proc ball(x) put sphere center x, 1, 0 radius 0.5 $T end end\n").replace("$T", TEX),
+    )
+    .expect("written");
+    let nothing = run(":reload\n");
+    assert!(nothing.err.contains("nothing was loaded: `:load FILE` first"), "{}", nothing.err);
+    let script = format!(":load {0}\nball(2)\n:reload\n:reload\n:undo\n:scene\n", file.display());
+    let run = run(&script);
+    assert_eq!(run.code, 0, "{}", run.err);
+    let reloaded = format!("reloaded {} (3 objects and 1 light in the scene, as many as before)", file.display());
+    assert_eq!(run.out.matches(&reloaded).count(), 2, "{}", run.out);
+    assert!(run.out.contains(&format!("took back the :reload of {}", file.display())), "{}", run.out);
+    assert!(run.out.contains("objects:  3 (2 spheres, 1 plane, 0 boxes)"), "{}", run.out);
+}
+
+#[test]
+fn show_prints_a_definition_as_written_and_list_the_inputs() {
+    let script = "\
+let r = 2
+proc row(n) # a row of balls
+  put sphere center n, 0, 0 radius r $T end
+end
+if r > 1 then object big = sphere center 0, 0, 0 radius r $T end end
+:show row
+:show r
+:show big
+:show time
+:show rw
+:list
+";
+    let run = run_keep_going(script);
+    let row =
+        format!("# <stdin>:2\nproc row(n) # a row of balls\n  put sphere center n, 0, 0 radius r {TEX} end\nend\n");
+    assert!(run.out.contains(&row), "{}", run.out);
+    assert!(run.out.contains("# <stdin>:1 (r = 2 now)\nlet r = 2\n"), "{}", run.out);
+    assert!(run.out.contains("# <stdin>:5 (big: 1 primitive)\nif r > 1 then object big"), "{}", run.out);
+    assert!(run.out.contains("# predefined (time = 0 now)"), "{}", run.out);
+    assert!(run.err.contains("`rw` is not defined; did you mean `r`?"), "{}", run.err);
+    assert!(
+        run.out.contains("<stdin>:1  let r = 2\n<stdin>:2  proc row(n) # a row of balls\n             put sphere"),
+        "{}",
+        run.out
+    );
+}
+
+#[test]
+fn save_checks_its_file_before_rendering_and_says_an_error_once() {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let run = run_with(&format!("{SCENE}:save /proc/rayrepl.png\n"), &small_size());
+    assert_eq!(run.code, 1);
+    assert_eq!(run.err, "error: cannot write `/proc/rayrepl.png`: no such file or folder\n");
+}
+
+#[test]
+fn watch_needs_the_interactive_session() {
+    let run = run(":watch scene.ray\n");
+    assert!(run.err.contains("here, run `rayrepl FILE.ray --watch`"), "{}", run.err);
+}
+
 // ------------------------------------------------------------ the binary
 
 /// Scripts piped into the `rayrepl` binary.

@@ -8,6 +8,7 @@ pub mod lexer;
 pub mod parser;
 pub mod source;
 pub mod suggest;
+pub mod walk;
 
 pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};

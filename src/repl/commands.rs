@@ -17,35 +17,14 @@ use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH
 use super::console::Console;
 use super::help;
 use super::preview::{Preview, PreviewSize};
+use super::inspect;
+pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
+use super::reload;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
+use super::write_back;
 use crate::animation::{AnimationError, render_animation};
-
-/// What the session does after a command.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Flow {
-    /// Read the next input.
-    Continue,
-    /// Leave.
-    Quit,
-}
-
-/// Why a command did not do what was asked.
-#[derive(Debug)]
-pub(crate) enum CommandError {
-    /// The arguments were wrong; the command's usage follows the message.
-    Usage(String),
-    /// It could not be done, for the reason given.
-    Failed(String),
-    /// Program text failed (`:load`, `:time` re-evaluation); already located.
-    Program(Box<Diagnostic>),
-    /// Ctrl-C stopped it; the session is as it was.
-    Cancelled(String),
-}
-
-/// The result of a command.
-pub(crate) type CommandResult = Result<Flow, CommandError>;
 
 /// A command: its name, its usage line and the function that runs it.
 pub(crate) struct CommandSpec {
@@ -69,8 +48,14 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":preview", usage: ":preview [fit|small|off]", run: preview },
     CommandSpec { name: ":limits", usage: ":limits [calls N] [primitives N]", run: limits },
     CommandSpec { name: ":load", usage: ":load FILE", run: load },
+    CommandSpec { name: ":reload", usage: ":reload", run: reload::reload },
+    CommandSpec { name: ":watch", usage: ":watch FILE", run: watch },
+    CommandSpec { name: ":write", usage: ":write FILE.ray", run: write_back::write },
     CommandSpec { name: ":env", usage: ":env", run: env },
     CommandSpec { name: ":scene", usage: ":scene", run: scene },
+    CommandSpec { name: ":show", usage: ":show NAME", run: inspect::show },
+    CommandSpec { name: ":list", usage: ":list", run: inspect::list },
+    CommandSpec { name: ":history", usage: ":history [LINES]", run: inspect::history },
     CommandSpec { name: ":undo", usage: ":undo", run: undo },
     CommandSpec { name: ":reset", usage: ":reset", run: reset },
     CommandSpec { name: ":quit", usage: ":quit", run: quit },
@@ -97,7 +82,7 @@ pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) 
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
-            report_error(error, session, console);
+            error.report(session, console);
             Err(())
         }
     }
@@ -125,14 +110,6 @@ fn unknown_command(name: &str) -> CommandError {
     }
     message.push_str("\n`:help` lists the commands");
     CommandError::Failed(message)
-}
-
-fn report_error(error: CommandError, session: &Session, console: &mut Console) {
-    match error {
-        CommandError::Usage(message) | CommandError::Failed(message) => console.error(message),
-        CommandError::Program(diagnostic) => console.diagnostic(&diagnostic, session.sources()),
-        CommandError::Cancelled(message) => console.say(message),
-    }
 }
 
 /// Splits a command line into words. Double quotes keep spaces in a word,
@@ -190,7 +167,7 @@ fn usage(error: SettingError) -> CommandError {
 
 /// Checks that `path` can receive `content` before any work is done.
 fn check_output(path: &Path, content: Content) -> Result<(), CommandError> {
-    output::check_output(path, content).map(drop).map_err(|e| CommandError::Usage(e.to_string()))
+    output::check_output(path, content).map(drop).map_err(|e| CommandError::Failed(e.to_string()))
 }
 
 // ---------------------------------------------------------------- commands
@@ -408,14 +385,13 @@ fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 /// Runs the file at `path` into the session, reporting any failure on the
 /// console; `Err(())` if it failed (the session is then unchanged).
 pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
-    load_file(session, path, console).map(|_| ()).map_err(|error| report_error(error, session, console))
+    load_file(session, path, console).map(|_| ()).map_err(|error| error.report(session, console))
 }
 
 /// Runs the file at `path` into the session, as one input.
 fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))?;
-    let accepted = session.load(&path.display().to_string(), &text).map_err(|d| CommandError::Program(Box::new(d)))?;
+    let text = reload::read(path)?;
+    let accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
         console.diagnostic(warning, session.sources());
     }
@@ -424,6 +400,11 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
         console.say(line);
     }
     Ok(Flow::Continue)
+}
+
+/// `:watch FILE`, rendering each version as `:render` does.
+fn watch(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    reload::watch(session, arguments, console, render)
 }
 
 fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
@@ -509,6 +490,7 @@ fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         Undone::Nothing => console.say("nothing to undo"),
         Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
         Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
+        Undone::Reload(path) => console.say(format!("took back the :reload of {}", path.display())),
     }
     console.say(format!("{} in the scene", counted(report::objects(&session.counts()), "object")));
     Ok(Flow::Continue)

@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 
 use crate::lang::ast::{InstrKind, Item, Obj, ObjKind, Program};
+use crate::lang::walk::{bound_name, same_level};
 
 /// What each global object was defined as, when that is certain.
 #[derive(Debug, Clone, Default)]
@@ -24,7 +25,11 @@ impl ObjectDescriptions {
                     let what = self.describe(obj);
                     self.by_name.insert(name.name.to_string(), what);
                 }
-                InstrKind::If(..) => self.forget_names_bound_in(&instr.kind),
+                InstrKind::If(..) => {
+                    for name in same_level(std::iter::once(instr)).filter_map(bound_name) {
+                        self.by_name.remove(&**name);
+                    }
+                }
                 InstrKind::Let(name, _) => {
                     self.by_name.remove(&*name.name);
                 }
@@ -57,23 +62,6 @@ impl ObjectDescriptions {
             };
             description.push_str(word);
             obj = inner;
-        }
-    }
-
-    /// Forgets every name `kind` binds, in nested `if`s too (from a list on
-    /// the heap, so any depth of them is fine).
-    fn forget_names_bound_in(&mut self, kind: &InstrKind) {
-        let mut pending = vec![kind];
-        while let Some(kind) = pending.pop() {
-            match kind {
-                InstrKind::Object(name, _) | InstrKind::Let(name, _) => {
-                    self.by_name.remove(&*name.name);
-                }
-                InstrKind::If(_, then, otherwise) => {
-                    pending.extend(then.iter().chain(otherwise.iter().flatten()).map(|instr| &instr.kind));
-                }
-                InstrKind::Call(..) | InstrKind::Put(_) => {}
-            }
         }
     }
 }

@@ -24,7 +24,7 @@ use super::syntax::{TokenKind, is_word_char, tokens};
 use crate::lang::lexer::keyword_names;
 
 /// Commands whose arguments are file names.
-const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim"];
+const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim", ":watch", ":write"];
 
 /// Keywords that are functions: they complete up to their parenthesis.
 const FUNCTIONS: &[&str] = &["sin", "cos", "sqrt"];
@@ -232,7 +232,8 @@ mod tests {
     #[test]
     fn commands_complete_after_a_colon() {
         let helper = RayHelper::new(false);
-        assert_eq!(complete(&helper, ":re"), (0, vec![":render".to_string(), ":reset".to_string()]));
+        let expected = [":render", ":reload", ":reset"].map(String::from).to_vec();
+        assert_eq!(complete(&helper, ":re"), (0, expected));
         assert_eq!(complete(&helper, ":help sph"), (6, vec!["sphere".to_string()]));
     }
 

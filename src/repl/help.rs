@@ -42,13 +42,10 @@ const GROUPS: &[(&str, &[&str])] = &[
     ("Moving shapes", &["translate", "rotate", "scale", "group", "by", "rotation"]),
     ("Building the scene", &["put", "object", "let", "proc", "if", "conditions", "end"]),
     ("Numbers", &["numbers", "time", "functions", "pi", "comments"]),
-    (
-        "Commands",
-        &[
-            ":help", ":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":preview", ":limits",
-            ":load", ":env", ":scene", ":undo", ":reset", ":quit",
-        ],
-    ),
+    ("Pictures", &[":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":preview"]),
+    ("Files", &[":load", ":reload", ":watch", ":write"]),
+    ("Looking inside", &[":env", ":scene", ":show", ":list", ":history"]),
+    ("The session", &[":help", ":undo", ":reset", ":limits", ":quit"]),
 ];
 
 /// Every help page.
@@ -491,9 +488,91 @@ Example:
         text: "\
 :load FILE
   Runs every item of the file as if you had typed them, in any order. If the
-  file has an error nothing of it is kept. `:undo` takes the whole file back.
+  file has an error nothing of it is kept. `:undo` takes the whole file back;
+  `:reload` runs it again after you change it.
 Example:
   :load examples/balls.ray",
+    },
+    Topic {
+        name: ":reload",
+        aliases: &["reload"],
+        summary: "run the file of the last :load again, as it is now",
+        text: "\
+:reload
+  After you change the file you loaded last, runs its new version in place
+  of the old one: what you typed after the :load stays and runs again on
+  top of it, and nothing is counted twice. If the new version has an
+  error, nothing changes. `:undo` takes a reload back.
+Example:
+  :load scenarios/hello.ray
+  :reload",
+    },
+    Topic {
+        name: ":watch",
+        aliases: &["watch"],
+        summary: "render a file again every time it is saved",
+        text: "\
+:watch FILE
+  Loads FILE (in place of what it brought before, as :reload does) and
+  renders it; then, every time an editor saves it, loads it again and
+  renders the new picture, until Ctrl-C. A version with an error shows the
+  error and leaves the last good picture. From the command line:
+  `rayrepl FILE.ray --watch -o FILE.png`.
+Example:
+  :watch scenarios/hello.ray",
+    },
+    Topic {
+        name: ":write",
+        aliases: &["write"],
+        summary: "write what the session holds as a .ray file",
+        text: "\
+:write FILE.ray
+  Writes everything the session holds as a scene file, in the order a file
+  needs: the last camera and ambient light, the lights, the last version of
+  each procedure, then the instructions in the order they ran, each as you
+  wrote it. `rayrepl FILE.ray` then renders the picture `:save` gives; the
+  file's first lines say with which --width, --height, --depth, --samples
+  and --time. When no file can give the same scene (a procedure redefined
+  after it was used), it says why and writes nothing.
+Example:
+  :write my_scene.ray",
+    },
+    Topic {
+        name: ":show",
+        aliases: &["show"],
+        summary: "print how a procedure, object or number was defined",
+        text: "\
+:show NAME
+  Prints the last definition of NAME as it was written, with the comments
+  around it, after a line saying where it came from: `<input 3>:1` is the
+  third input, `scene.ray:12` line 12 of a loaded file.
+Example:
+  proc ring(n) put sphere center n, 0, 0 radius 0.3 kd 1 ks 0 phong 1 color 255, 120, 0 end end
+  :show ring",
+    },
+    Topic {
+        name: ":list",
+        aliases: &["list"],
+        summary: "list the inputs the session holds, in order",
+        text: "\
+:list
+  Lists every input the session holds, in the order they run, each after
+  the name messages give it (`<input 3>:1`); a loaded file shows as its
+  `:load`. Inputs that failed or were taken back are not there.
+Example:
+  :list",
+    },
+    Topic {
+        name: ":history",
+        aliases: &["history"],
+        summary: "list the lines you typed (this session and earlier ones)",
+        text: "\
+:history [N]
+  Lists the last N lines typed in the editor (20 unless given), commands
+  and mistakes included, from earlier sessions too. The up arrow brings
+  them back.
+Example:
+  :history 50",
     },
     Topic {
         name: ":env",
@@ -546,7 +625,9 @@ Example:
         summary: "leave (Ctrl-D does too)",
         text: "\
 :quit
-  Leaves the session. Ctrl-D on an empty line does the same.
+  Leaves the session. Ctrl-D on an empty line does the same. If you typed
+  inputs that no :write has written, it says so first: :quit (or Ctrl-D)
+  again leaves without them.
 Example:
   :quit",
     },

@@ -22,6 +22,7 @@ use super::preview::Preview;
 use super::report::counted;
 use super::session::Session;
 use super::syntax::continuation_prompt;
+use super::write_back;
 use super::{SessionOptions, handle_input, new_session};
 
 /// The prompt for a new input, after its number.
@@ -191,7 +192,8 @@ impl<L: Lines> Repl<L> {
                         let armed = console.cancel.map(|switch| switch.arm());
                         let flow = commands::execute(&mut self.session, &line, console);
                         drop(armed);
-                        if flow == Ok(Flow::Quit) && leave(&pending, &mut quit_warned, ":quit", console) {
+                        let unwritten = self.session.unwritten();
+                        if flow == Ok(Flow::Quit) && leave(&pending, unwritten, &mut quit_warned, ":quit", console) {
                             return Ok(());
                         }
                         continue;
@@ -228,7 +230,7 @@ impl<L: Lines> Repl<L> {
                     quit_warned = false;
                 }
                 Err(ReadlineError::Eof) => {
-                    if leave(&pending, &mut quit_warned, "Ctrl-D", console) {
+                    if leave(&pending, self.session.unwritten(), &mut quit_warned, "Ctrl-D", console) {
                         return Ok(());
                     }
                 }
@@ -256,13 +258,18 @@ impl<L: Lines> Repl<L> {
 }
 
 /// Whether the session may end now that `how` (Ctrl-D, `:quit`) asks it
-/// to: not at once when an entry is half typed, which would be lost; the
-/// same request right after the warning ends it.
-fn leave(pending: &str, warned: &mut bool, how: &str, console: &mut Console) -> bool {
-    if pending.trim().is_empty() || *warned {
+/// to: not at once when an entry is half typed, or `unwritten` inputs were
+/// not written to a file, which would be lost; the same request right
+/// after the warning ends it.
+fn leave(pending: &str, unwritten: usize, warned: &mut bool, how: &str, console: &mut Console) -> bool {
+    if *warned || (pending.trim().is_empty() && unwritten == 0) {
         return true;
     }
     *warned = true;
+    if pending.trim().is_empty() {
+        console.note(write_back::unwritten_note(unwritten, how));
+        return false;
+    }
     let first = pending.lines().find(|line| !line.trim().is_empty()).unwrap_or_default().trim();
     console.note(format!(
         "the entry you are typing is not finished (`{first}`, {}): {how} again leaves without it, \
@@ -287,7 +294,7 @@ fn new_editor(color: bool) -> rustyline::Result<Editor<RayHelper, FileHistory>> 
 
 /// `rayrepl/history` in the user's data directory, created if missing;
 /// `None` if there is no such directory or it cannot be created.
-fn history_path() -> Option<PathBuf> {
+pub(super) fn history_path() -> Option<PathBuf> {
     let directory = dirs::data_dir()?.join("rayrepl");
     std::fs::create_dir_all(&directory).ok()?;
     Some(directory.join("history"))

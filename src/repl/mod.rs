@@ -19,14 +19,19 @@ mod commands;
 mod console;
 mod describe;
 mod editor;
+mod excerpt;
 mod help;
+mod inspect;
 mod interactive;
+mod outcome;
 mod preview;
+mod reload;
 mod rendering;
 mod report;
 mod script;
 mod session;
 mod syntax;
+mod write_back;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -35,6 +40,7 @@ use std::process::ExitCode;
 use crate::lang::Limits;
 
 pub use interactive::{ReplError, run_interactive, run_typed};
+pub(crate) use preview::Preview;
 pub use rendering::RenderSettings;
 pub use script::run_script;
 pub use session::Session;

@@ -2,6 +2,7 @@
 //! and scene accumulate across inputs, the source texts, and the history of
 //! accepted inputs that `:undo` and `:time` replay.
 
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 
@@ -13,13 +14,16 @@ use crate::scene::{Counts, Scene};
 use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
 
-/// One accepted input, kept so the session can be rebuilt without it.
+/// One accepted input, kept so the session can be rebuilt without it, and
+/// written back, listed or shown.
 #[derive(Debug, Clone)]
-struct Input {
+pub(crate) struct Input {
     /// The text as typed (`:load FILE` for a file), for `:undo`'s message.
-    text: String,
+    pub text: String,
+    /// The file it was read from, for an input of `:load`, `:reload` or `:watch`.
+    pub loaded_from: Option<PathBuf>,
     /// The parsed items.
-    program: Rc<Program>,
+    pub program: Rc<Program>,
 }
 
 /// What `:undo` takes back.
@@ -29,6 +33,8 @@ enum UndoStep {
     Input,
     /// A `:reset`, with the history it cleared.
     Reset(Vec<Input>),
+    /// A `:reload` of the file, with the history before it.
+    Reload(Vec<Input>, PathBuf),
 }
 
 /// What an accepted input did, for the confirmation printed after it.
@@ -53,6 +59,8 @@ pub(crate) enum Undone {
     Input(String),
     /// A `:reset` was taken back: this many inputs are back.
     Reset(usize),
+    /// The `:reload` of this file was taken back.
+    Reload(PathBuf),
 }
 
 /// Names defined by the session, for completion.
@@ -75,6 +83,8 @@ pub struct Session {
     sources: SourceMap,
     history: Vec<Input>,
     undo_steps: Vec<UndoStep>,
+    /// The programs of the inputs the last `:write` wrote.
+    written: Vec<Rc<Program>>,
     descriptions: ObjectDescriptions,
     settings: RenderSettings,
     limits: Limits,
@@ -94,6 +104,7 @@ impl Session {
             sources: SourceMap::new(),
             history: Vec::new(),
             undo_steps: Vec::new(),
+            written: Vec::new(),
             descriptions: ObjectDescriptions::default(),
             settings,
             limits,
@@ -124,18 +135,49 @@ impl Session {
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
         let program = parse_items_with_line_offset(source, text, line_offset)?;
-        self.run(text.to_string(), program)
+        self.run(Input { text: text.to_string(), loaded_from: None, program: Rc::new(program) })
     }
 
-    /// Runs the text of a file, all of it as one input (its items in any order).
-    pub(crate) fn load(&mut self, name: &str, text: &str) -> Result<Accepted, Diagnostic> {
-        let source = self.sources.add(name, text, 0);
+    /// Runs the text of the file at `path`, all of it as one input (its
+    /// items in any order).
+    pub(crate) fn load(&mut self, path: &Path, text: &str) -> Result<Accepted, Diagnostic> {
+        let input = self.parse_file_input(path, text)?;
+        self.run(input)
+    }
+
+    /// Replaces what the last `:load` of `path` brought by `text`, the
+    /// file's new content, where it stood among the inputs, so the inputs
+    /// typed after it run again on top of it; loads it if nothing came
+    /// from `path` yet. On error the session is unchanged.
+    pub(crate) fn reload(&mut self, path: &Path, text: &str) -> Result<(), Diagnostic> {
+        let Some(index) = self.history.iter().rposition(|input| input.loaded_from.as_deref() == Some(path)) else {
+            return self.load(path, text).map(drop);
+        };
+        let input = self.parse_file_input(path, text)?;
+        let previous = self.history.clone();
+        let mut history = previous.clone();
+        history[index] = Input { text: std::mem::take(&mut history[index].text), ..input };
+        self.rebuild(history)?;
+        self.undo_steps.push(UndoStep::Reload(previous, path.to_path_buf()));
+        Ok(())
+    }
+
+    /// The file that the last loaded input still in the session came from.
+    pub(crate) fn last_loaded(&self) -> Option<&Path> {
+        self.history.iter().rev().find_map(|input| input.loaded_from.as_deref())
+    }
+
+    /// The input holding the text of the file at `path`, parsed.
+    fn parse_file_input(&mut self, path: &Path, text: &str) -> Result<Input, Diagnostic> {
+        let name = path.display().to_string();
+        let source = self.sources.add(name.as_str(), text, 0);
         let program = parse_items(source, text)?;
-        self.run(format!(":load {name}"), program)
+        let text = format!(":load {name}");
+        Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Rc::new(program) })
     }
 
-    /// Runs an already parsed input and records it in the history.
-    fn run(&mut self, text: String, program: Program) -> Result<Accepted, Diagnostic> {
+    /// Runs a parsed input and records it in the history.
+    fn run(&mut self, input: Input) -> Result<Accepted, Diagnostic> {
         if self.interpreter_time != self.settings.time {
             self.rebuild(self.history.clone())?;
         }
@@ -143,7 +185,7 @@ impl Session {
         let scene = self.interpreter.scene();
         let mark = (scene.primitives.len(), scene.timed_primitives.len());
         let procedures_before = self.interpreter.procedure_names();
-        if let Err(error) = self.interpreter.run(&program) {
+        if let Err(error) = self.interpreter.run(&input.program) {
             self.interpreter.take_warnings();
             return Err(error);
         }
@@ -155,10 +197,10 @@ impl Session {
             boxes: counts_before.boxes + added.boxes,
             lights: added.lights,
         };
-        self.descriptions.record(&program);
-        let program = Rc::new(program);
+        self.descriptions.record(&input.program);
+        let program = Rc::clone(&input.program);
         if !program.items.is_empty() {
-            self.history.push(Input { text, program: Rc::clone(&program) });
+            self.history.push(input);
             self.undo_steps.push(UndoStep::Input);
         }
         Ok(Accepted { program, warnings, procedures_before, counts_before })
@@ -167,6 +209,23 @@ impl Session {
     /// How many primitives of each kind, and lights, the scene holds.
     pub(crate) fn counts(&self) -> Counts {
         self.counts
+    }
+
+    /// The accepted inputs, in the order they ran.
+    pub(crate) fn inputs(&self) -> &[Input] {
+        &self.history
+    }
+
+    /// Records that the inputs the session holds now were written to a file.
+    pub(crate) fn mark_written(&mut self) {
+        self.written = self.history.iter().map(|input| Rc::clone(&input.program)).collect();
+    }
+
+    /// How many typed inputs (not loaded from a file) the last `:write`
+    /// did not write: what leaving now would lose.
+    pub(crate) fn unwritten(&self) -> usize {
+        let written = |input: &Input| self.written.iter().any(|program| Rc::ptr_eq(program, &input.program));
+        self.history.iter().filter(|input| input.loaded_from.is_none() && !written(input)).count()
     }
 
     /// The limits on calls and primitives.
@@ -196,6 +255,10 @@ impl Session {
             UndoStep::Reset(cleared) => {
                 history = cleared.clone();
                 Undone::Reset(history.len())
+            }
+            UndoStep::Reload(previous, path) => {
+                history = previous.clone();
+                Undone::Reload(path.clone())
             }
         };
         if let Err(error) = self.rebuild(history) {
@@ -372,5 +435,44 @@ impl Session {
                 .map(|(name, params)| (name.to_string(), params.iter().map(|p| p.to_string()).collect()))
                 .collect(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BALL: &str = "put sphere center x, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end";
+
+    #[test]
+    fn a_reload_replaces_the_file_where_it_stood_and_keeps_typed_inputs() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        let path = Path::new("part.ray");
+        session.load(path, &format!("proc ball(x) {BALL} end ball(0)")).expect("loads");
+        session.submit("<input 2>", "ball(3)", 0).expect("runs");
+        assert_eq!(session.scene().counts().spheres, 2);
+        // Each ball is now two: the typed call runs again on the new version.
+        let two = format!("proc ball(x) {BALL} {BALL} end ball(0)");
+        session.reload(path, &two).expect("reloads");
+        assert_eq!((session.scene().counts().spheres, session.inputs().len()), (4, 2));
+        // A version that fails changes nothing.
+        assert!(session.reload(path, "ball(").is_err());
+        assert_eq!(session.scene().counts().spheres, 4);
+        assert_eq!(session.undo().ok(), Some(Undone::Reload(path.to_path_buf())));
+        assert_eq!(session.scene().counts().spheres, 2);
+        assert_eq!(session.last_loaded(), Some(path));
+    }
+
+    #[test]
+    fn typed_inputs_are_unwritten_until_written() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        session.load(Path::new("part.ray"), "let a = 1").expect("loads");
+        assert_eq!(session.unwritten(), 0);
+        session.submit("<input 2>", "let b = 2", 0).expect("runs");
+        session.submit("<input 3>", "let c = 3", 0).expect("runs");
+        assert_eq!(session.unwritten(), 2);
+        session.mark_written();
+        session.undo().expect("undoes");
+        assert_eq!(session.unwritten(), 0);
     }
 }

@@ -1,0 +1,121 @@
+//! `:reload` and `:watch FILE`: the session follows a file as it changes.
+//! What a file brought is replaced where it stood among the inputs, so the
+//! inputs typed after it run again on the new version, nothing is doubled,
+//! and `:undo` takes a reload back.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
+
+use crate::output;
+use crate::watch::{FileWatcher, Waited};
+
+use super::console::Console;
+use super::outcome::{CommandError, CommandResult, Flow};
+use super::report::{self, counted};
+use super::session::Session;
+
+/// A command that renders the session, as `:render` does.
+pub(crate) type Render = fn(&mut Session, &[String], &mut Console) -> CommandResult;
+
+/// `:reload`: the file of the last `:load`, as it is now.
+pub(crate) fn reload(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    if !arguments.is_empty() {
+        return Err(CommandError::Usage("`:reload` reads the file of the last `:load` again".to_string()));
+    }
+    let Some(path) = session.last_loaded().map(Path::to_path_buf) else {
+        return Err(CommandError::Failed(
+            "nothing was loaded: `:load FILE` first, then `:reload` after changing the file".to_string(),
+        ));
+    };
+    let text = read(&path)?;
+    reload_text(session, &path, &text, console)
+}
+
+/// `:watch FILE`: loads the file (in place of what it brought before), then
+/// again at every save, rendering with `render` each time, until Ctrl-C. A
+/// version that fails is reported and leaves the session, and the last
+/// picture, as they were.
+pub(crate) fn watch(
+    session: &mut Session,
+    arguments: &[String],
+    console: &mut Console,
+    render: Render,
+) -> CommandResult {
+    let [file] = arguments else {
+        return Err(CommandError::Usage("give the file to watch".to_string()));
+    };
+    let Some(switch) = console.cancel else {
+        return Err(CommandError::Failed(
+            "only the interactive session can stop a watch (with Ctrl-C): here, run `rayrepl FILE.ray --watch`"
+                .to_string(),
+        ));
+    };
+    let path = PathBuf::from(file);
+    let mut text = read(&path)?;
+    let watcher = FileWatcher::new(&path).map_err(|error| CommandError::Failed(error.to_string()))?;
+    console.say(format!("watching {}: every save loads it again and renders it; Ctrl-C stops", path.display()));
+    let mut last_text = None;
+    let result = loop {
+        // Armed while waiting and evaluating: Ctrl-C then ends the watch
+        // rather than the session. The render arms the switch itself.
+        let armed = switch.arm();
+        if last_text.is_some() {
+            match watcher.wait(armed.flag()) {
+                Ok(Waited::Saved) => {}
+                Ok(Waited::Cancelled) => break Ok(Flow::Continue),
+                Err(error) => break Err(CommandError::Failed(error.to_string())),
+            }
+            text = match read(&path) {
+                Ok(new) if Some(&new) == last_text.as_ref() => continue,
+                Ok(new) => new,
+                Err(error) => {
+                    error.report(session, console);
+                    continue;
+                }
+            };
+        }
+        let loaded = reload_text(session, &path, &text, console);
+        last_text = Some(std::mem::take(&mut text));
+        let interrupted = armed.flag().load(Ordering::SeqCst);
+        drop(armed);
+        if interrupted {
+            break Ok(Flow::Continue);
+        }
+        match loaded.map(|_| render(session, &[], console)) {
+            Ok(Ok(_)) => {}
+            Ok(Err(error @ CommandError::Cancelled(_))) => break Err(error),
+            Ok(Err(error)) => error.report(session, console),
+            Err(error) => {
+                error.report(session, console);
+                console.note("the last good version stays: fix the file and save it again");
+            }
+        }
+    };
+    console.say(format!("stopped watching {}", path.display()));
+    result
+}
+
+/// Runs `text`, the content of the file at `path`, in place of what the
+/// file brought before (as a new input if it brought nothing), and says
+/// what the scene holds now.
+fn reload_text(session: &mut Session, path: &Path, text: &str, console: &mut Console) -> CommandResult {
+    let verb = if session.inputs().iter().any(|input| input.loaded_from.as_deref() == Some(path)) {
+        "reloaded"
+    } else {
+        "loaded"
+    };
+    let before = session.scene().counts();
+    session.reload(path, text).map_err(|diagnostic| CommandError::Program(Box::new(diagnostic)))?;
+    let after = session.scene().counts();
+    let objects = counted(report::objects(&after), "object");
+    let lights = counted(after.lights, "light");
+    let change = if after == before { ", as many as before" } else { "" };
+    console.say(format!("{verb} {} ({objects} and {lights} in the scene{change})", path.display()));
+    Ok(Flow::Continue)
+}
+
+/// The text of the file at `path`.
+pub(crate) fn read(path: &Path) -> Result<String, CommandError> {
+    std::fs::read_to_string(path)
+        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))
+}

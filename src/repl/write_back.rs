@@ -1,0 +1,316 @@
+//! `:write FILE.ray`: the session written back as a scene file.
+//!
+//! The session takes items in any order, replaces the camera, redefines
+//! procedures and loads files; a file gives its parts in a fixed order
+//! (SPEC 2). The file holds the last camera and ambient light, every light
+//! in order, the last definition of each procedure and every instruction in
+//! order, each as its author wrote it, so that `rayrepl FILE.ray` renders
+//! the picture `:save` renders. Where no file can give the session's scene
+//! (an instruction ran a procedure redefined after it, a light reads a
+//! variable), it says why and writes nothing.
+
+use std::collections::{HashMap, HashSet};
+use std::fmt;
+use std::path::Path;
+use std::rc::Rc;
+
+use crate::lang::ast::{AmbientDef, CameraDef, Instr, Item, LightDef, ProcDef};
+use crate::lang::eval::{DEFAULT_AMBIENT, DEFAULT_CAMERA};
+use crate::lang::walk::{bound_name, called_name, same_level, variables};
+use crate::lang::{Interpreter, Limits, SourceMap, Span, parse_file};
+use crate::output;
+use crate::render::Screen;
+use crate::settings::RenderSettings;
+
+use super::console::Console;
+use super::excerpt::{item_text, location, raw};
+use super::outcome::{CommandError, CommandResult, Flow};
+use super::report::counted;
+use super::session::{Input, Session};
+
+/// `:write FILE.ray`.
+pub(crate) fn write(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let [file] = arguments else {
+        return Err(CommandError::Usage("give the name of the .ray file to write".to_string()));
+    };
+    let path = Path::new(file);
+    if path.extension().is_none_or(|extension| extension != "ray") {
+        return Err(CommandError::Usage(format!("`{file}` is not a scene file: end its name in .ray")));
+    }
+    if session.inputs().is_empty() {
+        return Err(CommandError::Failed("the session is empty: there is nothing to write yet".to_string()));
+    }
+    let parts = Parts::of(session.inputs());
+    parts.check(session.sources()).map_err(|inexact| CommandError::Failed(inexact.to_string()))?;
+    let command = batch_command(path, session.settings(), session.limits());
+    let text = parts.file_text(session, &command);
+    if !gives_the_scene(&text, session) {
+        let bug = "the file would not give the session's scene (a bug of rayrepl: please report it)";
+        return Err(CommandError::Failed(format!("{bug}; nothing was written")));
+    }
+    output::write_text(path, &text).map_err(|error| CommandError::Failed(error.to_string()))?;
+    let summary = parts.summary();
+    session.mark_written();
+    console.say(format!("wrote {} ({summary})", path.display()));
+    console.say(format!("`{command}` renders the picture `:save` renders"));
+    Ok(Flow::Continue)
+}
+
+/// The note for leaving with `unwritten` typed inputs not written to a
+/// file, when `how` (Ctrl-D, `:quit`) asked to leave.
+pub(crate) fn unwritten_note(unwritten: usize, how: &str) -> String {
+    let (inputs, them) =
+        if unwritten == 1 { ("1 input is".to_string(), "it") } else { (format!("{unwritten} inputs are"), "them") };
+    format!("{inputs} not written to a file: `:write FILE.ray` keeps {them}; {how} again leaves without {them}")
+}
+
+/// A camera, ambient light or light, with whether `time` was rebound
+/// (`let time = ...`) before it, and where.
+struct Header<'s, T> {
+    def: &'s T,
+    span: Span,
+    time_bound_at: Option<Span>,
+}
+
+/// The session's items sorted into the parts of a file, in its order.
+struct Parts<'s> {
+    camera: Option<Header<'s, CameraDef>>,
+    ambient: Option<Header<'s, AmbientDef>>,
+    lights: Vec<Header<'s, LightDef>>,
+    /// The last definition of each procedure, in the order they were first defined.
+    procs: Vec<&'s Rc<ProcDef>>,
+    /// Every item in the order it ran, to follow calls through redefinitions.
+    items: Vec<&'s Item>,
+}
+
+impl<'s> Parts<'s> {
+    fn of(inputs: &'s [Input]) -> Parts<'s> {
+        let mut parts = Parts { camera: None, ambient: None, lights: Vec::new(), procs: Vec::new(), items: Vec::new() };
+        let mut time_bound_at = None;
+        for item in inputs.iter().flat_map(|input| &input.program.items) {
+            let span = item.span();
+            match item {
+                Item::Camera(def) => parts.camera = Some(Header { def, span, time_bound_at }),
+                Item::Ambient(def) => parts.ambient = Some(Header { def, span, time_bound_at }),
+                Item::Light(def) => parts.lights.push(Header { def, span, time_bound_at }),
+                Item::Proc(def) => match parts.procs.iter_mut().find(|known| known.name.name == def.name.name) {
+                    Some(known) => *known = def,
+                    None => parts.procs.push(def),
+                },
+                Item::Instr(instr) => {
+                    let binds_time = same_level(std::iter::once(instr)).filter_map(bound_name).any(|n| &**n == "time");
+                    if binds_time {
+                        time_bound_at = Some(instr.span);
+                    }
+                }
+            }
+            parts.items.push(item);
+        }
+        parts
+    }
+
+    fn instrs(&self) -> impl Iterator<Item = &'s Instr> + '_ {
+        self.items.iter().filter_map(|item| match item {
+            Item::Instr(instr) => Some(instr),
+            _ => None,
+        })
+    }
+
+    /// Whether the file gives the session's scene, or why not.
+    fn check(&self, sources: &SourceMap) -> Result<(), Inexact> {
+        self.check_headers(sources)?;
+        self.check_procedures(sources)
+    }
+
+    /// At the top of a file, before any `let`, the camera, the ambient
+    /// light and the lights can read no variable but `time`, and that one
+    /// only as the render sets it.
+    fn check_headers(&self, sources: &SourceMap) -> Result<(), Inexact> {
+        let camera =
+            self.camera.iter().map(|h| ("camera", h.span, h.time_bound_at, vec![&h.def.distance, &h.def.angle]));
+        let ambient = self.ambient.iter().map(|h| ("ambient light", h.span, h.time_bound_at, vec![&h.def.intensity]));
+        let lights = self.lights.iter().map(|h| {
+            let mut exprs: Vec<_> = h.def.rotation.parts.iter().collect();
+            exprs.push(&h.def.intensity);
+            ("light", h.span, h.time_bound_at, exprs)
+        });
+        for (what, span, time_bound_at, exprs) in camera.chain(ambient).chain(lights) {
+            for name in variables(exprs.into_iter()) {
+                let rebound = time_bound_at.filter(|_| &**name == "time").map(|at| location(sources, at));
+                if &**name != "time" || rebound.is_some() {
+                    let at = location(sources, span);
+                    return Err(Inexact::HeaderReads { what, at, name: name.to_string(), rebound });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A file has one definition of each procedure, the last: every
+    /// instruction must have run (directly or through other procedures)
+    /// only procedures defined then as they are at the end. A call that
+    /// found no procedure did not run, as the input was accepted.
+    fn check_procedures(&self, sources: &SourceMap) -> Result<(), Inexact> {
+        let last: HashMap<&str, &ProcDef> = self.procs.iter().map(|def| (&*def.name.name, &***def)).collect();
+        let same = |a: &ProcDef, b: &ProcDef| std::ptr::eq(a, b) || raw(sources, a.span) == raw(sources, b.span);
+        let mut current: HashMap<&str, &ProcDef> = HashMap::new();
+        // The procedures whose definition now is not the last one.
+        let mut stale: HashSet<&str> = HashSet::new();
+        for item in &self.items {
+            match item {
+                Item::Proc(def) => {
+                    let name = &*def.name.name;
+                    current.insert(name, def);
+                    if same(def, last[name]) {
+                        stale.remove(name);
+                    } else {
+                        stale.insert(name);
+                    }
+                }
+                Item::Instr(instr) if !stale.is_empty() => {
+                    let mut visited = HashSet::new();
+                    let mut pending: Vec<&Instr> = vec![instr];
+                    while let Some(next) = pending.pop() {
+                        for name in same_level(std::iter::once(next)).filter_map(called_name) {
+                            let Some(&def) = current.get(&**name).filter(|_| visited.insert(&**name)) else {
+                                continue;
+                            };
+                            if stale.contains(&**name) {
+                                return Err(Inexact::Redefined {
+                                    run_at: location(sources, instr.span),
+                                    name: name.to_string(),
+                                    old_at: location(sources, def.span),
+                                    new_at: location(sources, last[&**name].span),
+                                });
+                            }
+                            pending.extend(&def.body);
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// The text of the file: a header saying how to render it, then the
+    /// parts in a file's order.
+    fn file_text(&self, session: &Session, command: &str) -> String {
+        let sources = session.sources();
+        let mut text = format!(
+            "# Written by rayrepl's `:write` from a session of {}.\n\
+             # `{command}`\n\
+             # renders the picture that `:save` gives in the session.\n\n",
+            counted(session.inputs().len(), "input")
+        );
+        let camera = match &self.camera {
+            Some(camera) => item_text(sources, camera.span),
+            None => format!(
+                "camera distance {} angle {} end # the session's default",
+                DEFAULT_CAMERA.distance, DEFAULT_CAMERA.angle
+            ),
+        };
+        let ambient = match &self.ambient {
+            Some(ambient) => item_text(sources, ambient.span),
+            None => format!("ambient {DEFAULT_AMBIENT} # the session's default"),
+        };
+        let lights: Vec<String> = self.lights.iter().map(|light| item_text(sources, light.span)).collect();
+        let procs: Vec<String> = self.procs.iter().map(|def| item_text(sources, def.span)).collect();
+        let instrs: Vec<String> = self.instrs().map(|instr| item_text(sources, instr.span)).collect();
+        let sections = [vec![camera, ambient], lights, procs, instrs];
+        let sections: Vec<String> =
+            sections.iter().filter(|section| !section.is_empty()).map(|section| section.join("\n")).collect();
+        text.push_str(&sections.join("\n\n"));
+        text.push('\n');
+        text
+    }
+
+    /// What the file holds, in words.
+    fn summary(&self) -> String {
+        let camera = if self.camera.is_some() { "the camera" } else { "the default camera" };
+        let ambient = if self.ambient.is_some() { "the ambient light" } else { "the default ambient light" };
+        let procs = counted(self.procs.len(), "procedure");
+        let instrs = counted(self.instrs().count(), "instruction");
+        format!("{camera}, {ambient}, {}, {procs}, {instrs}", counted(self.lights.len(), "light"))
+    }
+}
+
+/// Why no file gives the session's scene.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Inexact {
+    /// A camera, ambient light or light reads a variable, which at the top
+    /// of a file has no value, or (`time` after `let time`) another one.
+    HeaderReads {
+        what: &'static str,
+        at: String,
+        name: String,
+        /// Where `time` was rebound, when that is the variable.
+        rebound: Option<String>,
+    },
+    /// An instruction ran a procedure that was redefined after it.
+    Redefined { run_at: String, name: String, old_at: String, new_at: String },
+}
+
+impl fmt::Display for Inexact {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Inexact::HeaderReads { what, at, name, rebound } => {
+                write!(f, "cannot write a file that gives this scene: the {what} at {at} reads `{name}`")?;
+                match rebound {
+                    Some(let_at) => write!(f, ", as {let_at} set it; at the top of a file `time` is the render's")?,
+                    None => write!(f, ", which has no value at the top of a file, where the {what} must stand")?,
+                }
+                write!(f, "\ngive the {what} again with numbers in place of `{name}`, then `:write` again")
+            }
+            Inexact::Redefined { run_at, name, old_at, new_at } => write!(
+                f,
+                "cannot write a file that gives this scene: {run_at} ran `{name}` as {old_at} defined it, \
+                 and {new_at} redefined it afterwards; a file has one definition of each procedure\n\
+                 run what used the old `{name}` again after the new one (or `:undo` back to before it), \
+                 then `:write` again"
+            ),
+        }
+    }
+}
+
+/// The command line that renders the file at `path` as `:save` renders the
+/// session: its size, depth, samples, time and limits.
+fn batch_command(path: &Path, settings: &RenderSettings, limits: Limits) -> String {
+    let image = path.with_extension("png");
+    let mut command = format!(
+        "rayrepl {} -o {} --width {} --height {} --depth {} --samples {}",
+        path.display(),
+        image.display(),
+        settings.width,
+        settings.height,
+        settings.depth,
+        settings.samples
+    );
+    if settings.adaptive {
+        command.push_str(" --adaptive");
+    }
+    if settings.screen == Screen::Bottom {
+        command.push_str(" --screen bottom");
+    }
+    if settings.time != 0.0 {
+        // Rust prints the shortest decimal that reads back as the same number.
+        command.push_str(&format!(" --time {}", settings.time));
+    }
+    if limits.max_call_depth != Limits::DEFAULT.max_call_depth {
+        command.push_str(&format!(" --max-calls {}", limits.max_call_depth));
+    }
+    if limits.max_primitives != Limits::DEFAULT.max_primitives {
+        command.push_str(&format!(" --max-primitives {}", limits.max_primitives));
+    }
+    command
+}
+
+/// Whether `text`, read as a file and evaluated as a batch render would,
+/// gives the session's scene: the last guard against writing a wrong file.
+fn gives_the_scene(text: &str, session: &Session) -> bool {
+    let mut sources = SourceMap::new();
+    let id = sources.add("<written>", text, 0);
+    let Ok(program) = parse_file(id, text) else { return false };
+    let mut interpreter = Interpreter::new(session.settings().time, session.limits());
+    interpreter.run(&program).is_ok() && interpreter.scene() == session.scene()
+}
