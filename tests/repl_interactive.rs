@@ -300,8 +300,11 @@ fn ctrl_c_stops_a_runaway_evaluation_and_keeps_the_session() {
     session.send_line(":env").unwrap();
     session.expect("numbers:    keep = 7").unwrap();
     assert_eq!(leave(session), 0);
+}
+
+#[test]
 fn leaving_with_inputs_not_written_says_how_to_keep_them() {
-    let (mut session, home) = plain();
+    let (mut session, home) = fresh(false);
     session.send_line("let a = 1").unwrap();
     session.expect("a = 1").unwrap();
     session.expect("ray> ").unwrap();
@@ -322,7 +325,7 @@ fn leaving_with_inputs_not_written_says_how_to_keep_them() {
 
 #[test]
 fn watch_renders_at_every_save_until_ctrl_c() {
-    let (mut session, home) = plain();
+    let (mut session, home) = fresh(false);
     let file = home.path().join("watched.ray");
     let scene = "let r = 1\nput sphere center 0, 0, 0 radius r kd 1 ks 0 phong 1 color 255, 0, 0 end\n";
     std::fs::write(&file, scene).expect("written");

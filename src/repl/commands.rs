@@ -16,9 +16,9 @@ use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH
 
 use super::console::Console;
 use super::help;
-use super::preview::{Preview, PreviewSize};
 use super::inspect;
 pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
+use super::preview::{Preview, PreviewSize};
 use super::reload;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};

@@ -22,8 +22,10 @@ pub(crate) struct Console<'a> {
     pub preview: Option<Preview>,
     /// Progress bars on standard error for long renders.
     pub progress: bool,
-    /// Ctrl-C cancels renders through this switch, when installed.
+    /// Ctrl-C stops what an entry does through this switch, when installed.
     pub cancel: Option<&'static CancelSwitch>,
+    /// A person at a terminal types the entries (not a script).
+    pub interactive: bool,
 }
 
 impl<'a> Console<'a> {
@@ -39,6 +41,7 @@ impl<'a> Console<'a> {
             preview: None,
             progress: false,
             cancel: None,
+            interactive: false,
         }
     }
 

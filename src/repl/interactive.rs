@@ -72,6 +72,7 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     console.preview = Preview::new(options.no_preview);
     console.progress = std::io::stderr().is_terminal();
     console.cancel = CancelSwitch::install();
+    console.interactive = true;
     console.say(format!(
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")

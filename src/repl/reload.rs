@@ -44,7 +44,7 @@ pub(crate) fn watch(
     let [file] = arguments else {
         return Err(CommandError::Usage("give the file to watch".to_string()));
     };
-    let Some(switch) = console.cancel else {
+    let Some(switch) = console.cancel.filter(|_| console.interactive) else {
         return Err(CommandError::Failed(
             "only the interactive session can stop a watch (with Ctrl-C): here, run `rayrepl FILE.ray --watch`"
                 .to_string(),
