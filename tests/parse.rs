@@ -52,6 +52,9 @@ fn instr(i: &Instr) -> String {
             format!("(call {}{})", name.name, args.iter().map(|a| format!(" {}", expr(a))).collect::<String>())
         }
         InstrKind::Put(o) => format!("(put {})", obj(o)),
+        InstrKind::Print(values) => {
+            format!("(print{})", values.iter().map(|v| format!(" {}", expr(v))).collect::<String>())
+        }
         InstrKind::If(c, then, otherwise) => match otherwise {
             Some(otherwise) => format!("(if {} (then{}) (else{}))", cond(c), block(then), block(otherwise)),
             None => format!("(if {} (then{}))", cond(c), block(then)),

@@ -28,7 +28,7 @@ impl ObjectDescriptions {
                 InstrKind::Let(name, _) => {
                     self.by_name.remove(&*name.name);
                 }
-                InstrKind::Call(..) | InstrKind::Put(_) => {}
+                InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::Print(_) => {}
             }
         }
     }
@@ -72,7 +72,7 @@ impl ObjectDescriptions {
                 InstrKind::If(_, then, otherwise) => {
                     pending.extend(then.iter().chain(otherwise.iter().flatten()).map(|instr| &instr.kind));
                 }
-                InstrKind::Call(..) | InstrKind::Put(_) => {}
+                InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::Print(_) => {}
             }
         }
     }
