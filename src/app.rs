@@ -64,6 +64,7 @@ fn session_options(cli: &Cli) -> SessionOptions {
         initial_file: cli.scene.clone(),
         settings: cli.settings(),
         limits: limits(cli),
+        allowed: cli.allowed(),
     }
 }
 

@@ -19,6 +19,7 @@ use super::help;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
+use super::{show_printed, show_scene_warnings};
 use crate::animation::{AnimationError, render_animation};
 
 /// What the session does after a command.
@@ -91,6 +92,7 @@ pub(crate) fn writes_files(line: &str) -> bool {
 pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) -> Result<Flow, ()> {
     let result =
         split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(session, &words, console));
+    show_printed(session, console);
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
@@ -221,6 +223,7 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
         }
     };
     explain_defaults(session, console);
+    show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     match console.preview {
         Some(preview) => {
@@ -246,6 +249,7 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let path = PathBuf::from(file);
     check_output(&path, Content::Still)?;
     explain_defaults(session, console);
+    show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     output::write_image(&path, &image).map_err(|e| CommandError::Failed(e.to_string()))?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
@@ -261,6 +265,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     check_output(&path, Content::Animation)?;
     explain_defaults(session, console);
     let size = Size { width: session.settings().width, height: session.settings().height };
+    show_scene_warnings(session, console, size, true);
     let started = Instant::now();
     let mut sink = FrameSink::new(&path, frames as usize);
     let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
@@ -351,7 +356,9 @@ fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 /// Runs the file at `path` into the session, reporting any failure on the
 /// console; `Err(())` if it failed (the session is then unchanged).
 pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
-    load_file(session, path, console).map(|_| ()).map_err(|error| report_error(error, session, console))
+    let loaded = load_file(session, path, console);
+    show_printed(session, console);
+    loaded.map(|_| ()).map_err(|error| report_error(error, session, console))
 }
 
 /// Runs the file at `path` into the session, as one input.

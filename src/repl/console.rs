@@ -49,6 +49,12 @@ impl<'a> Console<'a> {
         let _ = self.err.flush();
     }
 
+    /// Writes a line the program printed (`print`), with the diagnostics.
+    pub(crate) fn printed(&mut self, line: impl Display) {
+        let _ = writeln!(self.err, "{line}");
+        let _ = self.err.flush();
+    }
+
     /// Writes a diagnostic about program text.
     pub(crate) fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
         let text = diagnostic.render(sources, self.color);

@@ -32,6 +32,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use crate::lang::Limits;
+use crate::lint::{Allowed, Picture};
 
 pub use interactive::{ReplError, run_interactive};
 pub use rendering::RenderSettings;
@@ -39,6 +40,7 @@ pub use script::run_script;
 pub use session::Session;
 
 use console::Console;
+use rendering::Size;
 
 /// How a session starts: what the command line asked for.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -54,6 +56,8 @@ pub struct SessionOptions {
     pub settings: RenderSettings,
     /// Limits on procedure calls and primitives (`--max-calls`, `--max-primitives`).
     pub limits: Limits,
+    /// The warnings about the scene turned off (`--allow`).
+    pub allowed: Allowed,
 }
 
 /// Runs a session the way `rayrepl` without a scene to render does:
@@ -86,7 +90,9 @@ pub(crate) fn handle_input(
     text: &str,
     line_offset: usize,
 ) -> Result<(), ()> {
-    match session.submit(name, text, line_offset) {
+    let result = session.submit(name, text, line_offset);
+    show_printed(session, console);
+    match result {
         Ok(accepted) => {
             for warning in &accepted.warnings {
                 console.diagnostic(warning, session.sources());
@@ -106,6 +112,29 @@ pub(crate) fn handle_input(
     }
 }
 
+/// Shows what `print` wrote since the last time, and how many lines were
+/// left out past the limit.
+pub(crate) fn show_printed(session: &Session, console: &mut Console) {
+    let mut printed = session.take_printed();
+    for line in printed.take_lines() {
+        console.printed(line.render(session.sources()));
+    }
+    if let Some(note) = printed.hidden_note() {
+        let label = console.paint("note:", "36");
+        console.printed(format!("{label} {note}"));
+    }
+}
+
+/// Shows the warnings about the scene that a render of `size` (an
+/// animation's frames, if `animation`) should heed, each cause once.
+pub(crate) fn show_scene_warnings(session: &mut Session, console: &mut Console, size: Size, animation: bool) {
+    let screen = session.settings().screen;
+    let picture = Picture { width: size.width, height: size.height, screen, animation };
+    for warning in session.scene_warnings(&picture) {
+        console.diagnostic(&warning, session.sources());
+    }
+}
+
 /// The command a learner probably meant by typing its name without the
 /// colon (`help`, `quit`), if the input is just that.
 fn bare_command(text: &str) -> Option<String> {
@@ -118,5 +147,5 @@ fn bare_command(text: &str) -> Option<String> {
 
 /// A session set up with `options`' settings and limits.
 fn new_session(options: &SessionOptions) -> Session {
-    Session::new(options.settings, options.limits)
+    Session::new(options.settings, options.limits).allowing(options.allowed)
 }
