@@ -485,3 +485,56 @@ impl Frustum {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn allowed_checks_are_named_one_by_one_or_all() {
+        let degrees = Allowed::named("degrees").expect("a check");
+        assert!(degrees.contains(Check::Degrees) && !degrees.contains(Check::Colours));
+        let both = degrees.and(Allowed::named("colours").expect("a check"));
+        assert!(both.contains(Check::Colours));
+        assert!(Check::ALL.iter().all(|check| Allowed::named("all").expect("all").contains(*check)));
+        assert_eq!(Allowed::named("degree"), None);
+        assert!(Check::ALL.iter().all(|check| Allowed::named(check.name()).is_some()));
+    }
+
+    fn view() -> Frustum {
+        let rays = PrimaryRays::new(&crate::scene::Camera { distance: 10.0, angle: 1.0 }, 40, 30, Screen::Centered);
+        Frustum::new(DVec3::new(0.0, 0.0, 10.0), rays.corner_directions(30)).expect("a proper pyramid")
+    }
+
+    #[test]
+    fn the_view_sees_what_is_in_front_and_not_what_is_behind_or_aside() {
+        let view = view();
+        let sphere = |x: f64, z: f64, radius: f64| Shape::Sphere { center: DVec3::new(x, 0.0, z), radius };
+        assert!(view.may_see(&sphere(0.0, 0.0, 1.0)));
+        assert!(!view.may_see(&sphere(0.0, 20.0, 1.0)), "behind the eye");
+        // At 10 units in front, the half width seen is 10 tan(0.5) = 5.46.
+        assert!(view.may_see(&sphere(6.0, 0.0, 1.0)), "straddles the edge");
+        assert!(!view.may_see(&sphere(7.0, 0.0, 1.0)), "just outside");
+        let floor = |shift: f64| Shape::Plane { normal: DVec3::Y, shift };
+        assert!(view.may_see(&floor(-1.0)), "a floor below the eye");
+        assert!(!view.may_see(&floor(1.0)), "seen from below, its back");
+        let wall = Shape::Plane { normal: DVec3::Z, shift: 20.0 };
+        assert!(!view.may_see(&wall), "behind the eye, facing it");
+    }
+
+    #[test]
+    fn a_room_or_a_sky_around_the_eye_may_show_what_is_inside_it() {
+        let sky = Shape::Sphere { center: DVec3::ZERO, radius: 100.0 };
+        let inside = Shape::Sphere { center: DVec3::ZERO, radius: 1.0 };
+        let far = Shape::Sphere { center: DVec3::new(300.0, 0.0, 0.0), radius: 1.0 };
+        let around = Shape::Sphere { center: DVec3::ZERO, radius: 500.0 };
+        assert!(may_show_inside(&sky, &inside));
+        assert!(!may_show_inside(&sky, &far));
+        assert!(!may_show_inside(&sky, &around), "a larger sphere around it stays outside");
+        let floor = Shape::Plane { normal: DVec3::Y, shift: -1.0 };
+        assert!(may_show_inside(&sky, &floor));
+        assert!(may_show_inside(&inside, &floor), "touching counts");
+        let lower = Shape::Plane { normal: DVec3::Y, shift: -2.0 };
+        assert!(!may_show_inside(&inside, &lower));
+    }
+}
