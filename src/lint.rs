@@ -197,13 +197,19 @@ impl Subject<'_> {
         camera.angle >= PI || camera.distance <= 0.0
     }
 
-    /// Each primitive with the `put` that made it: the static ones, then
-    /// (unless the picture is an animation) those that depend on `time`.
-    fn primitives(&self) -> impl Iterator<Item = (&Primitive, Option<Span>)> {
-        let (scene, origins) = (self.scene, self.origins);
-        let timed: &[Primitive] = if self.picture.animation { &[] } else { &scene.timed_primitives };
-        let fixed = scene.primitives.iter().enumerate().map(|(i, p)| (p, origins.primitives.span_of(i)));
-        fixed.chain(timed.iter().enumerate().map(|(i, p)| (p, origins.timed_primitives.span_of(i))))
+    /// Each primitive, numbered: the static ones, then (unless the picture
+    /// is an animation) those that depend on `time`.
+    fn primitives(&self) -> impl Iterator<Item = (usize, &Primitive)> {
+        let timed: &[Primitive] = if self.picture.animation { &[] } else { &self.scene.timed_primitives };
+        self.scene.primitives.iter().chain(timed).enumerate()
+    }
+
+    /// The `put` that made primitive `index` of [`Subject::primitives`].
+    fn put_of(&self, index: usize) -> Option<Span> {
+        match index.checked_sub(self.scene.primitives.len()) {
+            None => self.origins.primitives.span_of(index),
+            Some(timed) => self.origins.timed_primitives.span_of(timed),
+        }
     }
 
     /// The eye (SPEC 5).
@@ -267,15 +273,13 @@ impl Subject<'_> {
         }
         let eye = self.eye();
         let holds_nothing_else = |index: usize, container: &Shape| {
-            let mut others = self.primitives().enumerate().filter(|(other, _)| *other != index);
-            others.all(|(_, (primitive, _))| !may_show_inside(container, &primitive.shape))
+            let mut others = self.primitives().filter(|(other, _)| *other != index);
+            others.all(|(_, primitive)| !may_show_inside(container, &primitive.shape))
         };
-        let (primitive, span) = self
+        let (index, primitive) = self
             .primitives()
-            .enumerate()
-            .filter(|(_, (p, _))| p.shape.strictly_contains(eye))
-            .find(|(index, (p, _))| holds_nothing_else(*index, &p.shape))
-            .map(|(_, found)| found)?;
+            .filter(|(_, p)| p.shape.strictly_contains(eye))
+            .find(|(index, p)| holds_nothing_else(*index, &p.shape))?;
         let kind = match primitive.shape {
             Shape::Sphere { .. } => "sphere",
             Shape::Box { .. } => "box",
@@ -283,11 +287,14 @@ impl Subject<'_> {
         };
         let eye = format!("(0, 0, {})", format_number(eye.z));
         Some(
-            Diagnostic::warning(span?, format!("the camera is inside a {kind}: the picture shows only its inside"))
-                .with_label(format!("the eye, at {eye}, is inside the {kind} this puts, and nothing else is"))
-                .with_help(format!(
-                    "move the eye out of the {kind}, with a larger `camera distance`, or make the {kind} smaller or move it"
-                )),
+            Diagnostic::warning(
+                self.put_of(index)?,
+                format!("the camera is inside a {kind}: the picture shows only its inside"),
+            )
+            .with_label(format!("the eye, at {eye}, is inside the {kind} this puts, and nothing else is"))
+            .with_help(format!(
+                "move the eye out of the {kind}, with a larger `camera distance`, or make the {kind} smaller or move it"
+            )),
         )
     }
 
@@ -298,15 +305,11 @@ impl Subject<'_> {
         let picture = self.picture;
         let rays = PrimaryRays::new(&self.scene.camera, picture.width, picture.height, picture.screen);
         let frustum = Frustum::new(self.eye(), rays.corner_directions(picture.height))?;
-        let mut first = None;
-        for (primitive, span) in self.primitives() {
-            if frustum.may_see(&primitive.shape) {
-                return None;
-            }
-            first = first.or(span);
+        if self.primitives().any(|(_, primitive)| frustum.may_see(&primitive.shape)) {
+            return None;
         }
-        let first = first?;
-        let counts = Counts::of(self.primitives().map(|(p, _)| p)).primitives_in_words();
+        let first = self.put_of(0)?;
+        let counts = Counts::of(self.primitives().map(|(_, p)| p)).primitives_in_words();
         let message = format!("the camera sees none of the scene's {counts}: the picture is black");
         let help = "the eye is at (0, 0, distance) and looks towards -z, `angle` radians wide: \
                     put the objects in front of it (around the origin, for a positive distance), or move them into view";
@@ -328,20 +331,23 @@ impl Subject<'_> {
         }
         // A colour written c is stored as c / 255: c <= 1 exactly when c / 255 <= 1 / 255.
         let darkest = 1.0 / 255.0;
-        if self.primitives().any(|(p, _)| p.material.color.max_element() > darkest) {
+        if self.primitives().any(|(_, p)| p.material.color.max_element() > darkest) {
             return None;
         }
-        let (primitive, span) = self.primitives().find(|(p, _)| p.material.color.max_element() > 0.0)?;
+        let (index, primitive) = self.primitives().find(|(_, p)| p.material.color.max_element() > 0.0)?;
         let written = primitive.material.color * 255.0;
         let as_written = |c: DVec3| format!("{}, {}, {}", format_number(c.x), format_number(c.y), format_number(c.z));
         let scaled = (written * 255.0).round();
         Some(
-            Diagnostic::warning(span?, "every colour in the scene is at most 1: the picture is nearly black")
-                .with_label(format!("this object's colour is {}", as_written(written)))
-                .with_help(format!(
-                    "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
-                    as_written(scaled)
-                )),
+            Diagnostic::warning(
+                self.put_of(index)?,
+                "every colour in the scene is at most 1: the picture is nearly black",
+            )
+            .with_label(format!("this object's colour is {}", as_written(written)))
+            .with_help(format!(
+                "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
+                as_written(scaled)
+            )),
         )
     }
 

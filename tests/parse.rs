@@ -626,10 +626,7 @@ fn hints_for_common_mistakes() {
 fn print_is_an_instruction_wherever_one_may_be() {
     assert_eq!(
         session("print a, b + 1 proc p(x) print x if x < 1 then print 1 else print 2 end end"),
-        [
-            "(print a (+ b 1))",
-            "(proc p (x) (print x) (if (< x 1) (then (print 1)) (else (print 2))))"
-        ]
+        ["(print a (+ b 1))", "(proc p (x) (print x) (if (< x 1) (then (print 1)) (else (print 2))))"]
     );
     // One instruction ends where the next begins, as after `ambient`.
     assert_eq!(session("print a p(1)"), ["(print a)", "(call p 1)"]);

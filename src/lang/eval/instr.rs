@@ -97,6 +97,7 @@ impl Interpreter {
     /// Marks as used the objects that the instructions of a branch not taken
     /// name in a `put` or an `object`: the program means to put them in some
     /// case, so they are not "defined but never put" (calls are not followed).
+    #[inline(never)]
     fn mark_objects_named_in(&mut self, block: &[Instr]) {
         let mut blocks = vec![block];
         let mut objects: Vec<&Obj> = Vec::new();

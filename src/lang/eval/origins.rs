@@ -74,18 +74,27 @@ pub struct PutSpans {
 
 impl PutSpans {
     /// Records that the primitives `range` (appended last) come from the `put` at `span`.
+    #[inline]
     pub(crate) fn record(&mut self, range: Range<usize>, span: Span) {
-        if range.is_empty() {
+        let last = self.runs.last().map(|&(_, put)| put);
+        if range.is_empty() || last.is_some_and(|put| self.puts[put as usize] == span) {
+            // Nothing new, or more of the last run (no hashing: the usual case).
             return;
         }
-        let next = self.puts.len() as u32;
-        let put = *self.index.entry(span).or_insert(next);
-        if put == next {
-            self.puts.push(span);
-        }
-        if self.runs.last().is_some_and(|&(_, last)| last == put) {
-            return;
-        }
+        // Two `put`s taking turns (a procedure that puts a branch, then a
+        // leaf) need no hashing either.
+        let before_last = self.runs.len().checked_sub(2).map(|i| self.runs[i].1);
+        let put = match before_last.filter(|&put| self.puts[put as usize] == span) {
+            Some(put) => put,
+            None => {
+                let next = self.puts.len() as u32;
+                let put = *self.index.entry(span).or_insert(next);
+                if put == next {
+                    self.puts.push(span);
+                }
+                put
+            }
+        };
         self.runs.push((saturating_u32(range.start), put));
     }
 

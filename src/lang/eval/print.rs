@@ -98,7 +98,9 @@ impl PrintLog {
 impl Interpreter {
     /// `print e, ...` at `span`: evaluates every expression (an error in one
     /// is an error, shown or not) and records the line. A name holding an
-    /// object is described instead of being an error.
+    /// object is described instead of being an error. Out of line: it stays
+    /// off the path of the other instructions.
+    #[inline(never)]
     pub(crate) fn exec_print(&mut self, values: &[Expr], span: Span) -> EvalResult<()> {
         let shown = !self.printed.is_full();
         let mut line = PrintLine { span, values: Vec::new() };
