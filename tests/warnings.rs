@@ -7,10 +7,12 @@
 
 use std::path::{Path, PathBuf};
 
+mod common;
+
 use assert_cmd::Command;
+use common::programs::evaluated;
 use glam::DVec3;
 use rayrepl::lang::eval::Origins;
-use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
 use rayrepl::lint::{Allowed, Check, Picture, check_scene};
 use rayrepl::render::{self, RenderControl, RenderOptions, SceneGeometry, Screen};
 use rayrepl::repl::{SessionOptions, run_script};
@@ -172,12 +174,8 @@ fn an_object_put_only_at_some_times_or_in_a_branch_not_taken_is_not_warned() {
 
 /// The scene of the file at `path`, at `time`, with its origins.
 fn evaluate(path: &Path, time: f64) -> (Scene, Origins) {
-    let mut sources = SourceMap::new();
     let text = std::fs::read_to_string(path).expect("readable scene");
-    let id = sources.add(path.display().to_string(), text, 0);
-    let program = parse_file(id, &sources.get(id).text).expect("the scene parses");
-    let mut interpreter = Interpreter::new(time, Limits::default());
-    interpreter.run(&program).expect("the scene evaluates");
+    let interpreter = evaluated(&path.display().to_string(), &text, time);
     let origins = interpreter.origins().clone();
     (interpreter.into_scene(), origins)
 }
@@ -186,7 +184,6 @@ fn evaluate(path: &Path, time: f64) -> (Scene, Origins) {
 fn the_bundled_scenes_get_no_warning() {
     let mut files = ray_files("scenarios");
     files.extend(ray_files("tests/cases/valid"));
-    files.extend(ray_files("benches/scenes"));
     let pictures = [
         Picture { width: 800, height: 600, screen: Screen::Centered, animation: false },
         Picture { width: 96, height: 72, screen: Screen::Centered, animation: false },
@@ -260,11 +257,7 @@ fn out_of_view_is_said_only_of_scenes_that_render_black() {
             ),
         };
         let text = format!("camera distance {distance:?} angle {angle:?} end\nambient 1\n{put}\n");
-        let mut sources = SourceMap::new();
-        let id = sources.add("case.ray", text, 0);
-        let program = parse_file(id, &sources.get(id).text).expect("the case parses");
-        let mut interpreter = Interpreter::new(0.0, Limits::default());
-        interpreter.run(&program).expect("the case evaluates");
+        let interpreter = evaluated("case.ray", &text, 0.0);
         let (width, height) = (40, 30);
         let picture = Picture { width, height, screen: Screen::Centered, animation: false };
         let warnings = check_scene(interpreter.scene(), interpreter.origins(), &picture, Allowed::default());
@@ -274,11 +267,7 @@ fn out_of_view_is_said_only_of_scenes_that_render_black() {
         let control = RenderControl { progress: None, cancel: None };
         let image = render::render(&scene, &SceneGeometry::new(&scene), &options, &control).expect("not cancelled").0;
         let black = image.pixels().all(|p| p.0 == [0, 0, 0]);
-        assert!(
-            !out_of_view || black,
-            "case {case}: warned out of view, but the picture shows it:\n{}",
-            sources.get(id).text
-        );
+        assert!(!out_of_view || black, "case {case}: warned out of view, but the picture shows it:\n{text}");
         warned += usize::from(out_of_view);
         seen += usize::from(!black);
     }

@@ -4,5 +4,6 @@
 #![allow(dead_code)]
 
 pub mod limited;
+pub mod programs;
 pub mod scenes;
 pub mod sexpr;
