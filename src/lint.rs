@@ -217,6 +217,8 @@ impl Subject<'_> {
         DVec3::new(0.0, 0.0, self.scene.camera.distance)
     }
 
+    /// A camera angle of pi or more: no picture can be right, and a round
+    /// number under 180 was most likely meant in degrees.
     fn degrees(&self) -> Option<Diagnostic> {
         let origin = self.origins.camera?;
         let angle = self.scene.camera.angle;
@@ -244,6 +246,7 @@ impl Subject<'_> {
         Some(diagnostic)
     }
 
+    /// A camera distance of 0 or less: the eye looks away from the origin.
     fn camera_distance(&self) -> Option<Diagnostic> {
         let origin = self.origins.camera?;
         let distance = self.scene.camera.distance;
@@ -298,6 +301,8 @@ impl Subject<'_> {
         )
     }
 
+    /// No primitive in the view pyramid: every pixel is black. Left to the
+    /// camera's own warnings when its angle or distance is wrong.
     fn out_of_view(&self) -> Option<Diagnostic> {
         if self.scene_moves() || self.camera_is_wrong() {
             return None;
@@ -325,6 +330,8 @@ impl Subject<'_> {
         Some(diagnostic.with_help(help))
     }
 
+    /// Every colour component at most 1 (of 255), and not all black: colours
+    /// written from 0 to 1, as other tools take them.
     fn colours(&self) -> Option<Diagnostic> {
         if self.scene_moves() {
             return None;
@@ -351,6 +358,7 @@ impl Subject<'_> {
         )
     }
 
+    /// No light that shines and an ambient light of 0: every pixel is black.
     fn no_light(&self) -> Option<Diagnostic> {
         let time_use = self.scene.time_use;
         if self.picture.animation && (time_use.ambient || time_use.lights) {
@@ -368,6 +376,7 @@ impl Subject<'_> {
         )
     }
 
+    /// Each light of intensity 0 or less.
     fn zero_lights(&self) -> Vec<Diagnostic> {
         if self.picture.animation && self.scene.time_use.lights {
             return Vec::new();
@@ -387,9 +396,10 @@ impl Subject<'_> {
             .collect()
     }
 
+    /// Each `object` definition never used, unless an `if` on `time` may
+    /// use it at another time.
     fn unused_objects(&self) -> Vec<Diagnostic> {
         if self.origins.branched_on_time {
-            // An `if` on `time` may put them at another time.
             return Vec::new();
         }
         let unused = self.origins.objects.iter().filter(|definition| !definition.used);
