@@ -17,7 +17,9 @@ use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
+use crate::lang::eval::PrintLog;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
+use crate::lint::{Allowed, Picture, check_scene};
 use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::progress::Progress;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
@@ -63,6 +65,7 @@ fn session_options(cli: &Cli) -> SessionOptions {
         initial_file: cli.scene.clone(),
         settings: cli.settings(),
         limits: limits(cli),
+        allowed: cli.allowed(),
     }
 }
 
@@ -113,16 +116,20 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
     let parsed = ParsedScene::parse(sources, id, cli)?;
-    if cli.check {
-        let scene = parsed.evaluate(cli.settings().time, false)?;
-        println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
-        return Ok(());
+    let result = if cli.check {
+        parsed.evaluate(cli.settings().time, false).map(|scene| {
+            println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
+        })
+    } else {
+        output_path(cli, path).map_err(BatchError::from).and_then(|output| match cli.anim {
+            Some(count) => animate(cli, &parsed, count, &output),
+            None => still(cli, &parsed, &output),
+        })
+    };
+    if let Some(note) = parsed.printed.borrow().hidden_note() {
+        eprintln!("note: {note}");
     }
-    let output = output_path(cli, path)?;
-    match cli.anim {
-        Some(count) => animate(cli, &parsed, count, &output),
-        None => still(cli, &parsed, &output),
-    }
+    result
 }
 
 /// A parsed scene file, ready to be evaluated at any `time`.
@@ -132,25 +139,58 @@ struct ParsedScene {
     limits: Limits,
     /// The warnings already printed.
     warned: RefCell<HashSet<(Span, String)>>,
+    /// How the scene is rendered, for the checks of the scene.
+    picture: Picture,
+    /// The checks turned off.
+    allowed: Allowed,
+    /// What `print` wrote, over every evaluation (the limit is for the whole run).
+    printed: RefCell<PrintLog>,
 }
 
 impl ParsedScene {
     /// Parses the file `id` of `sources`.
     fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<ParsedScene, BatchError> {
-        match parse_file(id, &sources.get(id).text) {
-            Ok(program) => Ok(ParsedScene { sources, program, limits: limits(cli), warned: RefCell::default() }),
-            Err(diagnostic) => Err(BatchError::Scene(Box::new(diagnostic), sources)),
-        }
+        let program = match parse_file(id, &sources.get(id).text) {
+            Ok(program) => program,
+            Err(diagnostic) => return Err(BatchError::Scene(Box::new(diagnostic), sources)),
+        };
+        let picture = Picture {
+            width: cli.width,
+            height: cli.height,
+            screen: cli.screen.screen(),
+            animation: cli.anim.is_some(),
+        };
+        Ok(ParsedScene {
+            sources,
+            program,
+            limits: limits(cli),
+            warned: RefCell::default(),
+            picture,
+            allowed: cli.allowed(),
+            printed: RefCell::default(),
+        })
     }
 
     /// Evaluates the program at `time`, printing warnings on stderr. With
     /// `skip_static`, primitives that do not depend on `time` are not kept
     /// (an animation's later frames reuse the first frame's).
     /// A warning is printed once per run, however many frames raise it.
+    /// What `print` writes comes first; the whole scene (not `skip_static`)
+    /// is also checked for the mistakes that spoil a picture.
     fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, BatchError> {
         let mut interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
         let result = interpreter.run(&self.program);
-        for warning in interpreter.take_warnings() {
+        let mut printed = self.printed.borrow_mut();
+        printed.absorb(interpreter.take_printed());
+        for line in printed.take_lines() {
+            eprintln!("{}", line.render(&self.sources));
+        }
+        let mut warnings = interpreter.take_warnings();
+        if result.is_ok() && !skip_static {
+            let checked = check_scene(interpreter.scene(), interpreter.origins(), &self.picture, self.allowed);
+            warnings.extend(checked.into_iter().map(|warning| warning.diagnostic));
+        }
+        for warning in warnings {
             if self.warned.borrow_mut().insert((warning.span, warning.message.clone())) {
                 emit(&mut anstream::stderr(), &warning, &self.sources);
             }

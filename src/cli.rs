@@ -4,8 +4,10 @@ use std::ffi::OsString;
 use std::ops::RangeInclusive;
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Parser, ValueEnum};
 
+use crate::lint::{Allowed, Check};
 use crate::render::Screen;
 use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, RenderSettings, SAMPLES, THREADS, WIDTH};
 
@@ -106,6 +108,10 @@ pub struct Cli {
     /// Script on stdin: go on after an error (exit status 1 at the end).
     #[arg(long)]
     pub keep_going: bool,
+
+    /// Turn off warnings about the scene, by name, comma separated (`all`: every one).
+    #[arg(long, value_name = "CHECKS", value_delimiter = ',', value_parser = allow_parser())]
+    pub allow: Vec<Allowed>,
 }
 
 /// The flags that only matter when an image is rendered, which `--check` does not do.
@@ -137,6 +143,11 @@ impl Cli {
             time: self.time.unwrap_or(DEFAULTS.time),
             screen: self.screen.screen(),
         }
+    }
+
+    /// The checks of the scene turned off (`--allow`).
+    pub(crate) fn allowed(&self) -> Allowed {
+        self.allow.iter().fold(Allowed::default(), |all, allowed| all.and(*allowed))
     }
 
     /// Whether the command line starts a session rather than a check or a render.
@@ -222,6 +233,15 @@ Examples:
 
 The original course's spellings -hsize, -vsize, -depth and -anim are accepted.";
 
+/// The names `--allow` takes, with what each turns off (clap lists them in
+/// `--help` and in the error for an unknown name).
+fn allow_parser() -> impl TypedValueParser<Value = Allowed> {
+    let checks = Check::ALL.map(|check| PossibleValue::new(check.name()).help(check.summary()));
+    let every = PossibleValue::new(Allowed::EVERY_NAME).help("every warning about the scene");
+    PossibleValuesParser::new(checks.into_iter().chain([every]))
+        .map(|name| Allowed::named(&name).expect("clap accepts only the names listed"))
+}
+
 /// Parses `A..B` (or `A-B`, or a single `A`) into a frame range.
 fn parse_frames(text: &str) -> Result<RangeInclusive<u32>, String> {
     let (first, last) = match text.split_once("..").or_else(|| text.split_once('-')) {
@@ -269,6 +289,19 @@ mod tests {
         let args = ["rayrepl", "-hsize", "320", "-vsize", "200", "-depth", "2", "-anim", "3"];
         let cli = Cli::parse_from(translate_legacy_args(args.map(OsString::from)));
         assert_eq!((cli.width, cli.height, cli.depth, cli.anim), (320, 200, 2, Some(3)));
+    }
+
+    #[test]
+    fn allow_takes_check_names_and_all() {
+        let cli = Cli::parse_from(["rayrepl", "--allow", "degrees,colours", "--allow", "no-light", "a.ray"]);
+        let allowed = cli.allowed();
+        for check in Check::ALL {
+            let expected = matches!(check, Check::Degrees | Check::Colours | Check::NoLight);
+            assert_eq!(allowed.contains(check), expected, "{check:?}");
+        }
+        let every = Cli::parse_from(["rayrepl", "--allow", "all", "a.ray"]).allowed();
+        assert!(Check::ALL.iter().all(|check| every.contains(*check)));
+        assert!(Cli::try_parse_from(["rayrepl", "--allow", "degree", "a.ray"]).is_err());
     }
 
     #[test]

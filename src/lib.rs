@@ -2,13 +2,15 @@
 //!
 //! The pipeline, one module per arrow: text → tokens → AST with spans
 //! ([`lang::parser`]) → evaluation ([`lang::eval`]) → a scene of flat
-//! primitives ([`scene`]) → BVH ([`render::bvh`]) → rays and shading
-//! ([`render`]) → image file ([`output`]) or terminal preview ([`repl`]).
+//! primitives ([`scene`]), checked for the mistakes that spoil a picture
+//! ([`lint`]) → BVH ([`render::bvh`]) → rays and shading ([`render`]) →
+//! image file ([`output`]) or terminal preview ([`repl`]).
 
 pub mod animation;
 pub mod app;
 pub mod cli;
 pub mod lang;
+pub mod lint;
 pub mod output;
 mod progress;
 pub mod render;

@@ -10,8 +10,10 @@
 
 use std::path::{Path, PathBuf};
 
+mod common;
+
+use common::programs::evaluated;
 use image::RgbImage;
-use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
 use rayrepl::render::{self, RenderControl, RenderOptions, SceneGeometry};
 
 const WIDTH: u32 = 96;
@@ -27,13 +29,8 @@ fn root() -> PathBuf {
 
 /// Renders the scene file at `path` at time `time`, small.
 fn render_scene(path: &Path, time: f64) -> RgbImage {
-    let mut sources = SourceMap::new();
     let text = std::fs::read_to_string(path).expect("scene is readable");
-    let id = sources.add(path.display().to_string(), text, 0);
-    let program = parse_file(id, &sources.get(id).text).expect("scenario parses");
-    let mut interpreter = Interpreter::new(time, Limits::default());
-    interpreter.run(&program).expect("scenario evaluates");
-    let scene = interpreter.into_scene();
+    let scene = evaluated(&path.display().to_string(), &text, time).into_scene();
     let options = RenderOptions { width: WIDTH, height: HEIGHT, ..RenderOptions::default() };
     let control = RenderControl { progress: None, cancel: None };
     render::render(&scene, &SceneGeometry::new(&scene), &options, &control).expect("not cancelled").0

@@ -52,6 +52,9 @@ fn instr(i: &Instr) -> String {
             format!("(call {}{})", name.name, args.iter().map(|a| format!(" {}", expr(a))).collect::<String>())
         }
         InstrKind::Put(o) => format!("(put {})", obj(o)),
+        InstrKind::Print(values) => {
+            format!("(print{})", values.iter().map(|v| format!(" {}", expr(v))).collect::<String>())
+        }
         InstrKind::If(c, then, otherwise) => match otherwise {
             Some(otherwise) => format!("(if {} (then{}) (else{}))", cond(c), block(then), block(otherwise)),
             None => format!("(if {} (then{}))", cond(c), block(then)),
@@ -618,4 +621,14 @@ fn hints_for_common_mistakes() {
     assert_eq!(help("end"), "", "no hint where none applies");
     assert!(help("let x = 1;").contains("`;`"));
     assert!(help("let café = 1").contains("without accents"));
+}
+
+#[test]
+fn print_is_an_instruction_wherever_one_may_be() {
+    assert_eq!(
+        session("print a, b + 1 proc p(x) print x if x < 1 then print 1 else print 2 end end"),
+        ["(print a (+ b 1))", "(proc p (x) (print x) (if (< x 1) (then (print 1)) (else (print 2))))"]
+    );
+    // One instruction ends where the next begins, as after `ambient`.
+    assert_eq!(session("print a p(1)"), ["(print a)", "(call p 1)"]);
 }

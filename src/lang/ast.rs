@@ -244,6 +244,9 @@ pub enum InstrKind {
     Put(Box<Obj>),
     /// `if c then ... [else ...] end`
     If(Cond, Vec<Instr>, Option<Vec<Instr>>),
+    /// `print e, ...`: an extension of this project, writes the values on
+    /// standard error (see `docs/language.md`, section 12).
+    Print(Vec<Expr>),
 }
 
 /// `camera distance d angle a end`

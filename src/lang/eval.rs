@@ -22,6 +22,8 @@ mod errors;
 mod expr;
 mod instr;
 mod object;
+mod origins;
+mod print;
 mod value;
 
 use std::collections::HashSet;
@@ -33,6 +35,9 @@ use glam::{DMat3, DVec3};
 use env::{Env, NameMap};
 use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
+
+pub use origins::{CameraOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutSpans};
+pub use print::{PRINT_LIMIT, PrintLine, PrintLog, format_number};
 
 use super::ast::{Item, ProcDef, Program};
 use super::diagnostic::{Diagnostic, Note};
@@ -125,6 +130,10 @@ pub struct Interpreter {
     procs_undo: Vec<(Rc<str>, Option<Rc<ProcDef>>)>,
     has_camera: bool,
     has_ambient: bool,
+    /// Where the scene's parts come from.
+    origins: Origins,
+    /// What `print` wrote and was not yet taken.
+    printed: PrintLog,
     /// Warnings not yet taken.
     warnings: Vec<Diagnostic>,
     /// Spans already warned about: a spot warns once, however often it runs.
@@ -160,6 +169,10 @@ struct Snapshot {
     primitives: usize,
     timed_primitives: usize,
     warnings: usize,
+    camera_origin: Option<CameraOrigin>,
+    ambient_origin: Option<Span>,
+    objects: ObjectDefinitions,
+    branched_on_time: bool,
 }
 
 impl Interpreter {
@@ -186,6 +199,8 @@ impl Interpreter {
             procs_undo: Vec::new(),
             has_camera: false,
             has_ambient: false,
+            origins: Origins::default(),
+            printed: PrintLog::default(),
             warnings: Vec::new(),
             warned: HashSet::new(),
             skip_static: false,
@@ -243,9 +258,21 @@ impl Interpreter {
         std::mem::take(&mut self.warnings)
     }
 
+    /// What `print` wrote since the last call (at most [`PRINT_LIMIT`]
+    /// lines, the others counted). A failed run keeps what it printed: it
+    /// may tell why it failed.
+    pub fn take_printed(&mut self) -> PrintLog {
+        std::mem::take(&mut self.printed)
+    }
+
     /// The scene built so far.
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+
+    /// Where the parts of the scene built so far come from.
+    pub fn origins(&self) -> &Origins {
+        &self.origins
     }
 
     /// The scene built so far, by value.
@@ -313,12 +340,15 @@ impl Interpreter {
                 let angle = self.eval_expr(&def.angle)?;
                 self.scene.camera = Camera { distance: distance.value, angle: angle.value };
                 self.scene.time_use.camera = distance.tainted | angle.tainted;
+                self.origins.camera =
+                    Some(CameraOrigin { item: def.span, distance: def.distance.span, angle: def.angle.span });
                 self.has_camera = true;
             }
             Item::Ambient(def) => {
                 let ambient = self.eval_expr(&def.intensity)?;
                 self.scene.ambient = ambient.value;
                 self.scene.time_use.ambient = ambient.tainted;
+                self.origins.ambient = Some(def.intensity.span);
                 self.has_ambient = true;
             }
             Item::Light(def) => {
@@ -326,6 +356,7 @@ impl Interpreter {
                 let intensity = self.eval_expr(&def.intensity)?;
                 let direction = rotated_up(&self.rotation(angles));
                 self.scene.lights.push(Light { direction, intensity: intensity.value });
+                self.origins.lights.push(LightOrigin { item: def.span, intensity: def.intensity.span });
                 self.scene.time_use.lights |= rotation_tainted | intensity.tainted | self.context_tainted;
             }
             Item::Proc(def) => {
@@ -364,6 +395,10 @@ impl Interpreter {
             primitives: self.scene.primitives.len(),
             timed_primitives: self.scene.timed_primitives.len(),
             warnings: self.warnings.len(),
+            camera_origin: self.origins.camera,
+            ambient_origin: self.origins.ambient,
+            objects: self.origins.objects.clone(),
+            branched_on_time: self.origins.branched_on_time,
         }
     }
 
@@ -385,6 +420,13 @@ impl Interpreter {
         self.scene.lights.truncate(snapshot.lights);
         self.scene.primitives.truncate(snapshot.primitives);
         self.scene.timed_primitives.truncate(snapshot.timed_primitives);
+        self.origins.camera = snapshot.camera_origin;
+        self.origins.ambient = snapshot.ambient_origin;
+        self.origins.lights.truncate(snapshot.lights);
+        self.origins.primitives.truncate(snapshot.primitives);
+        self.origins.timed_primitives.truncate(snapshot.timed_primitives);
+        self.origins.objects = snapshot.objects;
+        self.origins.branched_on_time = snapshot.branched_on_time;
         for warning in self.warnings.drain(snapshot.warnings..) {
             self.warned.remove(&warning.span);
         }

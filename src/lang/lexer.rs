@@ -67,6 +67,8 @@ pub enum Token {
     Pi,
     /// `plane`
     Plane,
+    /// `print` (an extension of this project: not in SPEC 1)
+    Print,
     /// `proc`
     Proc,
     /// `put`
@@ -127,8 +129,8 @@ pub enum Token {
     Bang,
 }
 
-/// Every keyword of SPEC 1, in alphabetical order, with its token.
-pub const KEYWORDS: [(&str, Token); 36] = [
+/// Every keyword of SPEC 1, and `print`, in alphabetical order, with its token.
+pub const KEYWORDS: [(&str, Token); 37] = [
     ("ambient", Token::Ambient),
     ("angle", Token::Angle),
     ("box", Token::Box),
@@ -152,6 +154,7 @@ pub const KEYWORDS: [(&str, Token); 36] = [
     ("phong", Token::Phong),
     ("pi", Token::Pi),
     ("plane", Token::Plane),
+    ("print", Token::Print),
     ("proc", Token::Proc),
     ("put", Token::Put),
     ("radius", Token::Radius),
@@ -199,6 +202,7 @@ pub fn keyword(word: &str) -> Option<Token> {
         "phong" => Token::Phong,
         "pi" => Token::Pi,
         "plane" => Token::Plane,
+        "print" => Token::Print,
         "proc" => Token::Proc,
         "put" => Token::Put,
         "radius" => Token::Radius,

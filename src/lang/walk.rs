@@ -26,7 +26,7 @@ pub fn same_level<'a>(instrs: impl DoubleEndedIterator<Item = &'a Instr>) -> imp
 pub fn bound_name(instr: &Instr) -> Option<&Rc<str>> {
     match &instr.kind {
         InstrKind::Let(name, _) | InstrKind::Object(name, _) => Some(&name.name),
-        InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) => None,
+        InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) | InstrKind::Print(_) => None,
     }
 }
 

@@ -44,6 +44,16 @@ impl PrimaryRays {
         }
     }
 
+    /// The directions (not normalised) from the eye through the four corners
+    /// of an image `height` pixels high made by these rays, in order around
+    /// it: every primary ray, whatever its samples, points between them (the
+    /// formula of [`PrimaryRays::ray`] at the outer edges of the corner pixels).
+    pub fn corner_directions(&self, height: u32) -> [DVec3; 4] {
+        let (left, right) = (-self.half_width, self.half_width);
+        let (top, bottom) = (self.top, self.top - f64::from(height));
+        [(left, top), (right, top), (right, bottom), (left, bottom)].map(|(x, y)| DVec3::new(x, y, -self.focal))
+    }
+
     /// The angle (radians) one pixel spans at the centre of the image.
     pub fn pixel_angle(&self) -> f64 {
         1.0 / self.focal
@@ -122,6 +132,18 @@ mod tests {
         let f = 4.0 / (2.0 * 0.5f64.tan());
         let expected = DVec3::new(0.5 - 2.0 + 1.0, 0.5, -f).normalize();
         assert_eq!(rays.ray(1, 3, DVec2::splat(0.5)).dir, expected);
+    }
+
+    #[test]
+    fn the_corner_directions_are_the_rays_through_the_outer_corners() {
+        for screen in [Screen::Centered, Screen::Bottom] {
+            let rays = PrimaryRays::new(&Camera { distance: 5.0, angle: 1.0 }, 4, 3, screen);
+            let corners = rays.corner_directions(3);
+            assert_eq!(rays.ray(0, 0, DVec2::ZERO).dir, corners[0].normalize());
+            assert_eq!(rays.ray(3, 0, DVec2::new(1.0, 0.0)).dir, corners[1].normalize());
+            assert_eq!(rays.ray(3, 2, DVec2::ONE).dir, corners[2].normalize());
+            assert_eq!(rays.ray(0, 2, DVec2::new(0.0, 1.0)).dir, corners[3].normalize());
+        }
     }
 
     #[test]

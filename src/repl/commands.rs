@@ -24,6 +24,7 @@ use super::rendering::{RenderError, RenderSettings, Size, render_image, render_o
 use super::report::{self, counted, number};
 use super::session::{Session, Undone};
 use super::write_back;
+use super::{show_printed, show_scene_warnings};
 use crate::animation::{AnimationError, render_animation};
 
 /// A command: its name, its usage line and the function that runs it.
@@ -79,6 +80,7 @@ pub(crate) fn writes_files(line: &str) -> bool {
 pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) -> Result<Flow, ()> {
     let result =
         split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(session, &words, console));
+    show_printed(session, console);
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
@@ -201,6 +203,7 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
         }
     };
     explain_defaults(session, console);
+    show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     match shown(console) {
         Some(preview) => {
@@ -250,6 +253,7 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let path = PathBuf::from(file);
     check_output(&path, Content::Still)?;
     explain_defaults(session, console);
+    show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
     output::write_image(&path, &image).map_err(|e| CommandError::Failed(e.to_string()))?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
@@ -265,6 +269,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     check_output(&path, Content::Animation)?;
     explain_defaults(session, console);
     let size = Size { width: session.settings().width, height: session.settings().height };
+    show_scene_warnings(session, console, size, true);
     let started = Instant::now();
     let mut sink = FrameSink::new(&path, frames as usize);
     let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
@@ -385,7 +390,9 @@ fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 /// Runs the file at `path` into the session, reporting any failure on the
 /// console; `Err(())` if it failed (the session is then unchanged).
 pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
-    load_file(session, path, console).map(|_| ()).map_err(|error| error.report(session, console))
+    let loaded = load_file(session, path, console);
+    show_printed(session, console);
+    loaded.map(|_| ()).map_err(|error| error.report(session, console))
 }
 
 /// Runs the file at `path` into the session, as one input.

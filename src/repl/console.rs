@@ -66,6 +66,17 @@ impl<'a> Console<'a> {
         let _ = self.err.flush();
     }
 
+    /// Writes a note about what the program printed, with the diagnostics.
+    pub(crate) fn printed_note(&mut self, text: impl Display) {
+        self.printed(format_args!("{DEFAULT_NOTE_STYLE}note:{DEFAULT_NOTE_STYLE:#} {text}"));
+    }
+
+    /// Writes a line the program printed (`print`), with the diagnostics.
+    pub(crate) fn printed(&mut self, line: impl Display) {
+        let _ = writeln!(self.err, "{line}");
+        let _ = self.err.flush();
+    }
+
     /// Writes a diagnostic about program text.
     pub(crate) fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
         emit(&mut self.err, diagnostic, sources);

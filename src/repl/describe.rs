@@ -33,7 +33,7 @@ impl ObjectDescriptions {
                 InstrKind::Let(name, _) => {
                     self.by_name.remove(&*name.name);
                 }
-                InstrKind::Call(..) | InstrKind::Put(_) => {}
+                InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::Print(_) => {}
             }
         }
     }

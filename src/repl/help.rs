@@ -41,7 +41,7 @@ const GROUPS: &[(&str, &[&str])] = &[
     ("Shapes", &["sphere", "plane", "box", "texture"]),
     ("Moving shapes", &["translate", "rotate", "scale", "group", "by", "rotation"]),
     ("Building the scene", &["put", "object", "let", "proc", "if", "conditions", "end"]),
-    ("Numbers", &["numbers", "time", "functions", "pi", "comments"]),
+    ("Numbers", &["numbers", "time", "functions", "pi", "comments", "print"]),
     ("Pictures", &[":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":preview"]),
     ("Files", &[":load", ":reload", ":watch", ":write"]),
     ("Looking inside", &[":env", ":scene", ":show", ":list", ":history"]),
@@ -364,6 +364,20 @@ Example:
   Everything from # to the end of the line is ignored.
 Example:
   ambient 0.3   # a rather bright room",
+    },
+    Topic {
+        name: "print",
+        aliases: &[],
+        summary: "show values while the program runs",
+        text: "\
+print EXPRESSION, ...
+  Shows each expression as written and its value, with the line of the
+  `print`, each time it runs: `scene.ray:5: r = 2, r * 2 = 4`. A name that
+  holds an object shows what the object is. At most 1000 lines are shown at a
+  time. `print` is an extension of rayrepl, not of the original language.
+Example:
+  let r = 2
+  print r, r * 2",
     },
     Topic {
         name: ":help",

@@ -38,6 +38,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use crate::lang::Limits;
+use crate::lint::{Allowed, Picture};
 
 pub use interactive::{ReplError, run_interactive, run_typed};
 pub(crate) use preview::Preview;
@@ -46,6 +47,7 @@ pub use script::run_script;
 pub use session::Session;
 
 use console::Console;
+use rendering::Size;
 
 /// How a session starts: what the command line asked for.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -61,6 +63,8 @@ pub struct SessionOptions {
     pub settings: RenderSettings,
     /// Limits on procedure calls and primitives (`--max-calls`, `--max-primitives`).
     pub limits: Limits,
+    /// The warnings about the scene turned off (`--allow`).
+    pub allowed: Allowed,
 }
 
 /// Runs a session the way `rayrepl` without a scene to render does:
@@ -93,7 +97,9 @@ pub(crate) fn handle_input(
     text: &str,
     line_offset: usize,
 ) -> Result<(), ()> {
-    match session.submit(name, text, line_offset) {
+    let result = session.submit(name, text, line_offset);
+    show_printed(session, console);
+    match result {
         Ok(accepted) => {
             for warning in &accepted.warnings {
                 console.diagnostic(warning, session.sources());
@@ -113,6 +119,28 @@ pub(crate) fn handle_input(
     }
 }
 
+/// Shows what `print` wrote since the last time, and how many lines were
+/// left out past the limit.
+pub(crate) fn show_printed(session: &Session, console: &mut Console) {
+    let mut printed = session.take_printed();
+    for line in printed.take_lines() {
+        console.printed(line.render(session.sources()));
+    }
+    if let Some(note) = printed.hidden_note() {
+        console.printed_note(note);
+    }
+}
+
+/// Shows the warnings about the scene that a render of `size` (an
+/// animation's frames, if `animation`) should heed, each cause once.
+pub(crate) fn show_scene_warnings(session: &mut Session, console: &mut Console, size: Size, animation: bool) {
+    let screen = session.settings().screen;
+    let picture = Picture { width: size.width, height: size.height, screen, animation };
+    for warning in session.scene_warnings(&picture) {
+        console.diagnostic(&warning, session.sources());
+    }
+}
+
 /// The command a learner probably meant by typing its name without the
 /// colon (`help`, `quit`), if the input is just that.
 fn bare_command(text: &str) -> Option<String> {
@@ -126,7 +154,7 @@ fn bare_command(text: &str) -> Option<String> {
 /// A session set up with `options`' settings and limits, whose evaluations
 /// `cancel` (Ctrl-C) can stop.
 fn new_session(options: &SessionOptions, cancel: Option<&'static cancel::CancelSwitch>) -> Session {
-    let session = Session::new(options.settings, options.limits);
+    let session = Session::new(options.settings, options.limits).allowing(options.allowed);
     match cancel {
         Some(switch) => session.interruptible(switch.flag()),
         None => session,

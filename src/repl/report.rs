@@ -1,8 +1,8 @@
-//! The short confirmations printed after an accepted input, and number
-//! formatting for learners (`3`, not `3.0`).
+//! The short confirmations printed after an accepted input.
 
 use crate::lang::ast::{InstrKind, Item};
-
+/// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
+pub(crate) use crate::lang::eval::format_number as number;
 use crate::scene::Counts;
 
 use super::session::{Accepted, Session};
@@ -66,7 +66,7 @@ fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
                     let what = session.describe_object(&name.name).unwrap_or_else(|| "object".to_string());
                     lines.push(format!("object {} = {what}", name.name));
                 }
-                InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) => {}
+                InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) | InstrKind::Print(_) => {}
             },
             Item::Light(_) => {}
         }
@@ -101,20 +101,14 @@ fn has_call(accepted: &Accepted) -> bool {
 
 /// "1 sphere", "2 spheres and 1 box", "3 spheres, 1 plane and 2 boxes".
 fn added(before: &Counts, after: &Counts) -> String {
-    let parts: Vec<String> = [
-        (after.spheres - before.spheres.min(after.spheres), "sphere"),
-        (after.planes - before.planes.min(after.planes), "plane"),
-        (after.boxes - before.boxes.min(after.boxes), "box"),
-    ]
-    .into_iter()
-    .filter(|(count, _)| *count > 0)
-    .map(|(count, noun)| counted(count, noun))
-    .collect();
-    match parts.as_slice() {
-        [] => "nothing".to_string(),
-        [one] => one.clone(),
-        [init @ .., last] => format!("{} and {last}", init.join(", ")),
-    }
+    let more = |after: usize, before: usize| after - before.min(after);
+    let added = Counts {
+        spheres: more(after.spheres, before.spheres),
+        planes: more(after.planes, before.planes),
+        boxes: more(after.boxes, before.boxes),
+        lights: 0,
+    };
+    added.primitives_in_words()
 }
 
 /// `count` and `noun`, plural when it is not 1: "1 sphere", "2 boxes".
@@ -126,29 +120,9 @@ pub(crate) fn counted(count: usize, noun: &str) -> String {
     }
 }
 
-/// A number the way a learner writes it: `3`, `0.75`, `-1.570796`.
-pub(crate) fn number(value: f64) -> String {
-    if value == value.trunc() && value.abs() < 1e15 {
-        return format!("{value:.0}");
-    }
-    let text = format!("{value:.6}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "0" || text == "-0" { format!("{value:e}") } else { text.to_string() }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_read_like_the_language() {
-        assert_eq!(number(3.0), "3");
-        assert_eq!(number(-2.0), "-2");
-        assert_eq!(number(0.75), "0.75");
-        assert_eq!(number(std::f64::consts::PI), "3.141593");
-        assert_eq!(number(1e-9), "1e-9");
-        assert_eq!(number(0.0), "0");
-    }
 
     #[test]
     fn counts_are_plural_when_not_one() {

@@ -2,13 +2,17 @@
 //! and scene accumulate across inputs, the source texts, and the history of
 //! accepted inputs that `:undo` and `:time` replay.
 
+use std::cell::RefCell;
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::Program;
+use crate::lang::eval::PrintLog;
 use crate::lang::parser::parse_items_with_line_offset;
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, parse_items};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
+use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
@@ -93,6 +97,14 @@ pub struct Session {
     /// The scene's counts, kept up to date input by input (counting the
     /// whole scene each time would make a long script quadratic).
     counts: Counts,
+    /// The checks of the scene turned off.
+    allowed: Allowed,
+    /// The warnings about the scene already shown, by check and place: a
+    /// cause is warned about once, not at every render.
+    warned: HashSet<(Check, Span)>,
+    /// What `print` wrote and was not yet shown (also by the frames of an
+    /// animation, which only read the session).
+    printed: RefCell<PrintLog>,
 }
 
 impl Session {
@@ -108,6 +120,9 @@ impl Session {
             descriptions: ObjectDescriptions::default(),
             settings,
             limits,
+            allowed: Allowed::default(),
+            warned: HashSet::new(),
+            printed: RefCell::default(),
             counts: Counts::default(),
             interrupt: None,
         }
@@ -127,6 +142,11 @@ impl Session {
             Some(flag) => interpreter.interruptible(flag),
             None => interpreter,
         }
+    }
+
+    /// The same session with the checks `allowed` turned off.
+    pub fn allowing(self, allowed: Allowed) -> Session {
+        Session { allowed, ..self }
     }
 
     /// Parses and runs one input. `name` is shown in diagnostics and
@@ -179,13 +199,16 @@ impl Session {
     /// Runs a parsed input and records it in the history.
     fn run(&mut self, input: Input) -> Result<Accepted, Diagnostic> {
         if self.interpreter_time != self.settings.time {
+            // What the earlier inputs print was shown when they ran.
             self.rebuild(self.history.clone())?;
         }
         let counts_before = self.counts;
         let scene = self.interpreter.scene();
         let mark = (scene.primitives.len(), scene.timed_primitives.len());
         let procedures_before = self.interpreter.procedure_names();
-        if let Err(error) = self.interpreter.run(&input.program) {
+        let result = self.interpreter.run(&input.program);
+        self.printed.borrow_mut().absorb(self.interpreter.take_printed());
+        if let Err(error) = result {
             self.interpreter.take_warnings();
             return Err(error);
         }
@@ -261,6 +284,7 @@ impl Session {
                 Undone::Reload(path.clone())
             }
         };
+        // What the inputs kept print was shown when they ran.
         if let Err(error) = self.rebuild(history) {
             self.undo_steps.push(step);
             return Err(error);
@@ -287,9 +311,12 @@ impl Session {
         if !self.interpreter.has_time_reads() {
             return Ok(false);
         }
-        if let Err(error) = self.rebuild(self.history.clone()) {
-            self.settings.time = previous;
-            return Err(error);
+        match self.rebuild(self.history.clone()) {
+            Ok(printed) => self.printed.borrow_mut().absorb(printed),
+            Err(error) => {
+                self.settings.time = previous;
+                return Err(error);
+            }
         }
         Ok(true)
     }
@@ -302,13 +329,17 @@ impl Session {
     /// A fresh interpreter that ran the history at `time`; with
     /// `skip_static`, the scene holds only the primitives that depend on
     /// `time` (the other frames of an animation).
+    /// What it prints is kept for [`Session::take_printed`].
     pub(crate) fn replay_at(&self, time: f64, skip_static: bool) -> Result<Interpreter, Diagnostic> {
         let interpreter = self.new_interpreter(time).skip_static(skip_static);
-        self.replay(interpreter, &self.history)
+        let mut interpreter = self.replay(interpreter, &self.history)?;
+        self.printed.borrow_mut().absorb(interpreter.take_printed());
+        Ok(interpreter)
     }
 
-    /// Replaces the interpreter by one that ran `history` at the current time.
-    fn rebuild(&mut self, history: Vec<Input>) -> Result<(), Diagnostic> {
+    /// Replaces the interpreter by one that ran `history` at the current
+    /// time; returns what the replay printed.
+    fn rebuild(&mut self, history: Vec<Input>) -> Result<PrintLog, Diagnostic> {
         let time = self.settings.time;
         self.interpreter = self.replay(self.new_interpreter(time), &history)?;
         self.counts = self.interpreter.scene().counts();
@@ -319,7 +350,7 @@ impl Session {
         }
         self.descriptions = descriptions;
         self.history = history;
-        Ok(())
+        Ok(self.interpreter.take_printed())
     }
 
     fn replay(&self, mut interpreter: Interpreter, history: &[Input]) -> Result<Interpreter, Diagnostic> {
@@ -333,6 +364,23 @@ impl Session {
     /// The scene built so far.
     pub fn scene(&self) -> &Scene {
         self.interpreter.scene()
+    }
+
+    /// What `print` wrote since the last call, at most
+    /// [`crate::lang::eval::PRINT_LIMIT`] lines.
+    pub(crate) fn take_printed(&self) -> PrintLog {
+        self.printed.take()
+    }
+
+    /// The warnings about the scene, rendered as `picture`, that were not
+    /// shown before (for the checks not turned off).
+    pub(crate) fn scene_warnings(&mut self, picture: &Picture) -> Vec<Diagnostic> {
+        let warnings = check_scene(self.scene(), self.interpreter.origins(), picture, self.allowed);
+        warnings
+            .into_iter()
+            .filter(|warning| self.warned.insert((warning.check, warning.diagnostic.span)))
+            .map(|warning| warning.diagnostic)
+            .collect()
     }
 
     /// The source texts seen so far, to render diagnostics.

@@ -68,6 +68,20 @@ pub enum Shape {
     },
 }
 
+impl Shape {
+    /// Whether `point` is strictly inside the solid: inside a sphere or a box,
+    /// not on its surface. A plane's half-space counts as no solid here: an
+    /// eye below a floor sees nothing of it, but nothing wrong either.
+    pub fn strictly_contains(&self, point: DVec3) -> bool {
+        match *self {
+            Shape::Sphere { center, radius } => point.distance_squared(center) < radius * radius,
+            // In the box's own axes: |(p - c)·axis_k| < half_k for every k.
+            Shape::Box { center, half, axes } => (axes.transpose() * (point - center)).abs().cmplt(half).all(),
+            Shape::Plane { .. } => false,
+        }
+    }
+}
+
 /// One sphere, plane or box with its material.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Primitive {
@@ -124,6 +138,37 @@ pub struct Scene {
     pub time_use: TimeUse,
 }
 
+impl Counts {
+    /// How many primitives of each kind `primitives` holds (no lights).
+    pub fn of<'a>(primitives: impl IntoIterator<Item = &'a Primitive>) -> Counts {
+        let mut counts = Counts::default();
+        for primitive in primitives {
+            match primitive.shape {
+                Shape::Sphere { .. } => counts.spheres += 1,
+                Shape::Plane { .. } => counts.planes += 1,
+                Shape::Box { .. } => counts.boxes += 1,
+            }
+        }
+        counts
+    }
+
+    /// The primitives counted, in words: "nothing", "1 sphere", "2 spheres,
+    /// 1 plane and 3 boxes" (kinds with none are left out; lights too).
+    pub fn primitives_in_words(&self) -> String {
+        let parts: Vec<String> =
+            [(self.spheres, "sphere", "spheres"), (self.planes, "plane", "planes"), (self.boxes, "box", "boxes")]
+                .into_iter()
+                .filter(|(count, _, _)| *count > 0)
+                .map(|(count, one, many)| format!("{count} {}", if count == 1 { one } else { many }))
+                .collect();
+        match parts.as_slice() {
+            [] => "nothing".to_string(),
+            [one] => one.clone(),
+            [init @ .., last] => format!("{} and {last}", init.join(", ")),
+        }
+    }
+}
+
 impl Scene {
     /// All primitives, static ones first.
     pub fn all_primitives(&self) -> impl Iterator<Item = &Primitive> {
@@ -140,16 +185,9 @@ impl Scene {
     /// `primitives` static and `timed` timed ones (what one input added),
     /// with every light.
     pub fn counts_after(&self, primitives: usize, timed: usize) -> Counts {
-        let mut counts = Counts { lights: self.lights.len(), ..Counts::default() };
         let added = self.primitives.get(primitives..).unwrap_or_default();
-        for primitive in added.iter().chain(self.timed_primitives.get(timed..).unwrap_or_default()) {
-            match primitive.shape {
-                Shape::Sphere { .. } => counts.spheres += 1,
-                Shape::Plane { .. } => counts.planes += 1,
-                Shape::Box { .. } => counts.boxes += 1,
-            }
-        }
-        counts
+        let primitives = added.iter().chain(self.timed_primitives.get(timed..).unwrap_or_default());
+        Counts { lights: self.lights.len(), ..Counts::of(primitives) }
     }
 
     /// Whether the scene may be different at another `time`.

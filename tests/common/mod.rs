@@ -5,5 +5,6 @@
 
 pub mod cases;
 pub mod limited;
+pub mod programs;
 pub mod scenes;
 pub mod sexpr;

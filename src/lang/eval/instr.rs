@@ -6,9 +6,9 @@ use std::sync::atomic::Ordering;
 
 use super::env::same_name;
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
-use super::value::Value;
+use super::value::{Kind, Value};
 use super::{Interpreter, grow};
-use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ProcDef};
+use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ObjKind, ProcDef};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::source::Span;
 
@@ -36,16 +36,24 @@ impl Interpreter {
             }
             InstrKind::Object(name, obj) => self.exec_object(name, obj),
             InstrKind::Call(name, args) => self.exec_call(name, args, instr.span),
-            InstrKind::Put(obj) => self.exec_put(obj),
+            InstrKind::Put(obj) => self.exec_put(obj, instr.span),
+            InstrKind::Print(values) => self.exec_print(values, instr.span),
             InstrKind::If(cond, then, otherwise) => grow(|| {
                 let (holds, tainted) = self.eval_cond(cond)?;
+                self.origins.branched_on_time |= tainted;
                 // Under a tainted context every variable of this scope is
                 // already tainted (bound in that context, or tainted by the
                 // walk of the enclosing `if`), so the walk is needed once only.
                 if tainted && !self.context_tainted {
                     self.taint_bindings_in(then, otherwise.as_deref());
                 }
-                let branch = if holds { Some(then) } else { otherwise.as_ref() };
+                let (branch, skipped) =
+                    if holds { (Some(then), otherwise.as_deref()) } else { (otherwise.as_ref(), Some(&then[..])) };
+                if let Some(skipped) = skipped
+                    && self.origins.objects.has_unused()
+                {
+                    self.mark_objects_named_in(skipped);
+                }
                 match branch {
                     Some(body) => self.exec_in_context(tainted, body),
                     None => Ok(()),
@@ -81,8 +89,44 @@ impl Interpreter {
                         blocks.push(then);
                         blocks.extend(otherwise.as_deref());
                     }
-                    InstrKind::Call(..) | InstrKind::Put(_) => {}
+                    InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::Print(_) => {}
                 }
+            }
+        }
+    }
+
+    /// Marks as used the objects that the instructions of a branch not taken
+    /// name in a `put` or an `object`: the program means to put them in some
+    /// case, so they are not "defined but never put" (calls are not followed).
+    #[inline(never)]
+    fn mark_objects_named_in(&mut self, block: &[Instr]) {
+        let mut blocks = vec![block];
+        let mut objects: Vec<&Obj> = Vec::new();
+        while let Some(block) = blocks.pop() {
+            for instr in block {
+                match &instr.kind {
+                    InstrKind::Object(_, obj) | InstrKind::Put(obj) => objects.push(obj),
+                    InstrKind::If(_, then, otherwise) => {
+                        blocks.push(then);
+                        blocks.extend(otherwise.as_deref());
+                    }
+                    InstrKind::Let(..) | InstrKind::Call(..) | InstrKind::Print(_) => {}
+                }
+            }
+        }
+        while let Some(obj) = objects.pop() {
+            match &obj.kind {
+                ObjKind::Var(name) => {
+                    if let Some(Value { kind: Kind::Object(_), definition, .. }) = self.env.lookup(name) {
+                        let definition = *definition;
+                        self.origins.objects.mark_used(definition);
+                    }
+                }
+                ObjKind::Translate(inner, _) | ObjKind::Rotate(inner, _) | ObjKind::Scale(inner, _) => {
+                    objects.push(inner)
+                }
+                ObjKind::Group(members) => objects.extend(members),
+                ObjKind::Sphere { .. } | ObjKind::Plane { .. } | ObjKind::Box { .. } => {}
             }
         }
     }
@@ -98,27 +142,35 @@ impl Interpreter {
             self.scratch = buffer;
         }
         let tainted = result? | self.context_tainted;
-        self.env.bind(&name.name, Value::object(primitives, tainted));
+        let definition = self.origins.objects.define(&name.name, name.span);
+        self.env.bind(&name.name, Value::object(primitives, tainted, definition));
         Ok(())
     }
 
-    /// `put obj`: static primitives go to `scene.primitives` (or nowhere, when
-    /// static primitives are skipped), those that depend on `time` to
-    /// `scene.timed_primitives`.
-    fn exec_put(&mut self, obj: &Obj) -> EvalResult<()> {
+    /// `put obj` (the instruction at `span`): static primitives go to
+    /// `scene.primitives` (or nowhere, when static primitives are skipped),
+    /// those that depend on `time` to `scene.timed_primitives`; their origins
+    /// record `span`.
+    fn exec_put(&mut self, obj: &Obj, span: Span) -> EvalResult<()> {
+        let timed_start = self.scene.timed_primitives.len();
         if self.context_tainted {
             let mut timed = mem::take(&mut self.scene.timed_primitives);
             let result = self.emit_obj(obj, &mut timed);
             self.scene.timed_primitives = timed;
+            self.origins.timed_primitives.record(timed_start..self.scene.timed_primitives.len(), span);
             return result.map(|_| ());
         }
         let mut primitives = mem::take(&mut self.scene.primitives);
         let start = primitives.len();
         let result = self.emit_obj(obj, &mut primitives);
         match result {
-            Ok(true) => self.scene.timed_primitives.extend(primitives.drain(start..)),
+            Ok(true) => {
+                self.scene.timed_primitives.extend(primitives.drain(start..));
+                self.origins.timed_primitives.record(timed_start..self.scene.timed_primitives.len(), span);
+            }
             Ok(false) if self.skip_static => primitives.truncate(start),
-            Ok(false) | Err(_) => {}
+            Ok(false) => self.origins.primitives.record(start..primitives.len(), span),
+            Err(_) => {}
         }
         self.scene.primitives = primitives;
         result.map(|_| ())

@@ -100,14 +100,15 @@ impl Interpreter {
 
     /// Appends a copy of the primitives an `object` variable holds.
     fn emit_variable(&mut self, name: &str, span: Span, out: &mut Vec<Primitive>) -> EvalResult<bool> {
-        let (primitives, tainted) = match self.env.lookup(name) {
+        let (primitives, tainted, definition) = match self.env.lookup(name) {
             Some(value) => match &value.kind {
-                Kind::Object(primitives) => (primitives.clone(), value.tainted),
+                Kind::Object(primitives) => (primitives.clone(), value.tainted, value.definition),
                 Kind::Number(_) => return fail(wrong_kind(span, name, "a number", "an object")),
             },
             None => return fail(self.unknown_variable(name, span)),
         };
         self.scene.time_use.read |= tainted;
+        self.origins.objects.mark_used(definition);
         self.count_primitives(primitives.len(), span)?;
         out.extend_from_slice(&primitives);
         Ok(tainted)

@@ -24,17 +24,22 @@ pub(crate) struct Value {
     /// Whether it was computed from `time` (directly, or in a condition or
     /// procedure argument that depends on it).
     pub tainted: bool,
+    /// For an object, the `object` instruction that bound it (its number in
+    /// [`super::origins::ObjectDefinitions`]), to find the definitions never
+    /// used; 0 for a number. It takes what would be padding: a value stays
+    /// three words.
+    pub definition: u32,
 }
 
 impl Value {
     /// A number value.
     pub fn number(value: f64, tainted: bool) -> Value {
-        Value { kind: Kind::Number(value), tainted }
+        Value { kind: Kind::Number(value), tainted, definition: 0 }
     }
 
-    /// An object value.
-    pub fn object(primitives: Rc<[Primitive]>, tainted: bool) -> Value {
-        Value { kind: Kind::Object(primitives), tainted }
+    /// An object value bound by the `object` instruction numbered `definition`.
+    pub fn object(primitives: Rc<[Primitive]>, tainted: bool, definition: u32) -> Value {
+        Value { kind: Kind::Object(primitives), tainted, definition }
     }
 
     /// "a number" or "an object", for error messages.
@@ -59,5 +64,15 @@ impl Num {
     /// A value that does not depend on `time`.
     pub fn constant(value: f64) -> Num {
         Num { value, tainted: false }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_value_is_three_words() {
+        assert_eq!(size_of::<Value>(), 3 * size_of::<usize>());
     }
 }

@@ -24,7 +24,7 @@ const EXPRESSION_STARTS: [&str; 8] = ["NUMBER", "NAME", "(", "-", "pi", "sin", "
 /// The terminals that can start an object expression.
 const OBJECT_STARTS: [&str; 8] = ["sphere", "plane", "box", "translate", "rotate", "scale", "group", "NAME"];
 /// The terminals that can start an instruction.
-const INSTRUCTION_STARTS: [&str; 5] = ["let", "object", "put", "if", "NAME"];
+const INSTRUCTION_STARTS: [&str; 6] = ["let", "object", "put", "if", "print", "NAME"];
 /// The keywords that start the items other than instructions.
 const DEFINITION_STARTS: [&str; 4] = ["camera", "ambient", "light", "proc"];
 /// The comparison operators.

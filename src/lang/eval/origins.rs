@@ -1,0 +1,217 @@
+//! Where the parts of an evaluated scene come from in the program.
+//!
+//! The scene itself holds no source positions: the renderer reads it, and
+//! its data stay as small as they are. [`Origins`] sits beside it, built by
+//! the same evaluation, for the warnings about the scene (`crate::lint`):
+//! the camera, the ambient light and each light by their expressions, each
+//! primitive by the `put` that made it, each `object` definition by its name
+//! and whether it was ever used.
+
+use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
+use std::ops::Range;
+use std::rc::Rc;
+
+use super::env::NameHasher;
+use crate::lang::source::Span;
+
+/// Where the parts of a scene come from, indexed like the scene's parts.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Origins {
+    /// The `camera` item's expressions; `None` while the session's default
+    /// camera is used.
+    pub camera: Option<CameraOrigin>,
+    /// The `ambient` expression; `None` while the session's default is used.
+    pub ambient: Option<Span>,
+    /// Each light's origin, in the order of [`crate::scene::Scene::lights`].
+    pub lights: Vec<LightOrigin>,
+    /// The `put` of each of [`crate::scene::Scene::primitives`].
+    pub primitives: PutSpans,
+    /// The `put` of each of [`crate::scene::Scene::timed_primitives`].
+    pub timed_primitives: PutSpans,
+    /// Every `object` instruction that ran.
+    pub objects: ObjectDefinitions,
+    /// Whether an `if` chose its branch by `time` (directly or through a
+    /// procedure's argument): at another time other objects may be put.
+    pub branched_on_time: bool,
+}
+
+/// The expressions of a `camera` item.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CameraOrigin {
+    /// The whole item.
+    pub item: Span,
+    /// The `distance` expression.
+    pub distance: Span,
+    /// The `angle` expression.
+    pub angle: Span,
+}
+
+/// The expressions of a `light` item.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LightOrigin {
+    /// The whole item.
+    pub item: Span,
+    /// The `intensity` expression.
+    pub intensity: Span,
+}
+
+/// The `put` that made each primitive of a list, stored as runs: a `put` of
+/// a group, or the same `put` run again and again by a procedure, is one
+/// run of consecutive primitives. A run is two `u32`s (its first primitive
+/// and its `put` among the distinct ones), so even a scene where every
+/// primitive comes from another `put` than the one before costs 8 bytes a
+/// primitive, against about 180 for the primitive itself.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PutSpans {
+    /// (first primitive, index in `puts`), by first primitive.
+    runs: Vec<(u32, u32)>,
+    /// The distinct `put` instructions.
+    puts: Vec<Span>,
+    /// Index of each span in `puts`.
+    index: HashMap<Span, u32, BuildHasherDefault<NameHasher>>,
+}
+
+impl PutSpans {
+    /// Records that the primitives `range` (appended last) come from the `put` at `span`.
+    #[inline]
+    pub(crate) fn record(&mut self, range: Range<usize>, span: Span) {
+        let last = self.runs.last().map(|&(_, put)| put);
+        if range.is_empty() || last.is_some_and(|put| self.puts[put as usize] == span) {
+            // Nothing new, or more of the last run (no hashing: the usual case).
+            return;
+        }
+        // Two `put`s taking turns (a procedure that puts a branch, then a
+        // leaf) need no hashing either.
+        let before_last = self.runs.len().checked_sub(2).map(|i| self.runs[i].1);
+        let put = match before_last.filter(|&put| self.puts[put as usize] == span) {
+            Some(put) => put,
+            None => {
+                let next = self.puts.len() as u32;
+                let put = *self.index.entry(span).or_insert(next);
+                if put == next {
+                    self.puts.push(span);
+                }
+                put
+            }
+        };
+        self.runs.push((saturating_u32(range.start), put));
+    }
+
+    /// Forgets the primitives from index `len` on (a failed run took them back).
+    pub(crate) fn truncate(&mut self, len: usize) {
+        let kept = self.runs.partition_point(|&(start, _)| (start as usize) < len);
+        self.runs.truncate(kept);
+    }
+
+    /// The `put` that made primitive `index`, if it was recorded.
+    pub fn span_of(&self, index: usize) -> Option<Span> {
+        let run = self.runs.partition_point(|&(start, _)| start as usize <= index).checked_sub(1)?;
+        Some(self.puts[self.runs[run].1 as usize])
+    }
+}
+
+/// `n`, or `u32::MAX` past it: beyond 4 billion primitives (far more than
+/// memory holds) the last run simply covers the rest.
+fn saturating_u32(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
+/// One `object` instruction that ran.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectDefinition {
+    /// The name it binds, where it is written.
+    pub name: Rc<str>,
+    /// The name's span in the `object` instruction.
+    pub span: Span,
+    /// Whether an object it bound was ever named in a `put` or in another
+    /// object (a procedure that defines a local object on every call has
+    /// one definition, used if any call used it).
+    pub used: bool,
+}
+
+/// The `object` instructions that ran, each once however often it ran.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ObjectDefinitions {
+    list: Vec<ObjectDefinition>,
+    /// Index in `list` by the span of the name.
+    index: HashMap<Span, u32, BuildHasherDefault<NameHasher>>,
+    /// How many are not used (yet).
+    unused: usize,
+}
+
+impl ObjectDefinitions {
+    /// The number that stands for the definition of `name` at `span`, added
+    /// the first time it runs.
+    pub(crate) fn define(&mut self, name: &Rc<str>, span: Span) -> u32 {
+        let next = self.list.len() as u32;
+        let id = *self.index.entry(span).or_insert(next);
+        if id == next {
+            self.list.push(ObjectDefinition { name: Rc::clone(name), span, used: false });
+            self.unused += 1;
+        }
+        id
+    }
+
+    /// Marks definition `id` as used.
+    pub(crate) fn mark_used(&mut self, id: u32) {
+        if let Some(definition) = self.list.get_mut(id as usize)
+            && !definition.used
+        {
+            definition.used = true;
+            self.unused -= 1;
+        }
+    }
+
+    /// Whether some definition is not used (yet).
+    pub(crate) fn has_unused(&self) -> bool {
+        self.unused > 0
+    }
+
+    /// Every definition that ran, in the order they first ran.
+    pub fn iter(&self) -> impl Iterator<Item = &ObjectDefinition> {
+        self.list.iter()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::source::SourceId;
+
+    fn span(start: usize) -> Span {
+        Span::new(SourceId(0), start, start + 3)
+    }
+
+    #[test]
+    fn runs_merge_and_find_the_put_of_each_primitive() {
+        let mut puts = PutSpans::default();
+        puts.record(0..2, span(10));
+        puts.record(2..3, span(10));
+        puts.record(3..3, span(20));
+        puts.record(3..5, span(30));
+        puts.record(5..6, span(10));
+        assert_eq!(puts.runs.len(), 3, "the second put of span 10 continues the first run");
+        assert_eq!(puts.puts.len(), 2, "an empty put records nothing");
+        let found: Vec<_> = (0..7).map(|i| puts.span_of(i).map(|s| s.start)).collect();
+        assert_eq!(found, [10, 10, 10, 30, 30, 10, 10].map(Some));
+        puts.truncate(3);
+        assert_eq!(puts.span_of(4).map(|s| s.start), Some(10));
+        assert_eq!(PutSpans::default().span_of(0), None);
+    }
+
+    #[test]
+    fn a_definition_that_runs_again_is_the_same_one() {
+        let mut objects = ObjectDefinitions::default();
+        let name: Rc<str> = "ball".into();
+        let first = objects.define(&name, span(0));
+        assert_eq!(objects.define(&name, span(0)), first);
+        let second = objects.define(&name, span(40));
+        assert!(objects.has_unused());
+        objects.mark_used(second);
+        objects.mark_used(second);
+        assert!(objects.has_unused(), "the first is still unused");
+        let used: Vec<_> = objects.iter().map(|d| (d.span.start, d.used)).collect();
+        assert_eq!(used, [(0, false), (40, true)]);
+    }
+}
