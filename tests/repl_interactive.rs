@@ -98,7 +98,7 @@ fn an_error_leaves_the_session_running_and_unchanged() {
 
 #[test]
 fn a_render_warns_about_the_scene_once_and_print_shows_values() {
-    let (mut session, _home) = plain();
+    let (mut session, _home) = fresh(false);
     session.send_line("camera distance 10 angle 45 end").unwrap();
     session.expect("ray> ").unwrap();
     session.send_line("put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end").unwrap();
