@@ -62,7 +62,7 @@ fn instr(i: &Instr) -> String {
 fn item(item: &Item) -> String {
     match item {
         Item::Camera(c) => format!("(camera {} {})", expr(&c.distance), expr(&c.angle)),
-        Item::Ambient(e) => format!("(ambient {})", expr(e)),
+        Item::Ambient(a) => format!("(ambient {})", expr(&a.intensity)),
         Item::Light(l) => format!("(light {} {})", triple(&l.rotation), expr(&l.intensity)),
         Item::Proc(p) => {
             let params: Vec<&str> = p.params.iter().map(|p| &*p.name).collect();

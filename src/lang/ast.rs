@@ -257,6 +257,15 @@ pub struct CameraDef {
     pub span: Span,
 }
 
+/// `ambient i`
+#[derive(Debug, Clone, PartialEq)]
+pub struct AmbientDef {
+    /// Intensity of the light that reaches every surface, 0..1.
+    pub intensity: Expr,
+    /// Source range of the whole definition.
+    pub span: Span,
+}
+
 /// `light vector r intensity i end` (or `light rotation ...`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LightDef {
@@ -288,13 +297,26 @@ pub enum Item {
     /// A camera definition (replaces any earlier one).
     Camera(CameraDef),
     /// `ambient e` (replaces any earlier one).
-    Ambient(Expr),
+    Ambient(AmbientDef),
     /// A directional light (adds one).
     Light(LightDef),
     /// A procedure definition.
     Proc(Rc<ProcDef>),
     /// An instruction run at top level.
     Instr(Instr),
+}
+
+impl Item {
+    /// Where the whole item is.
+    pub fn span(&self) -> Span {
+        match self {
+            Item::Camera(def) => def.span,
+            Item::Ambient(def) => def.span,
+            Item::Light(def) => def.span,
+            Item::Proc(def) => def.span,
+            Item::Instr(instr) => instr.span,
+        }
+    }
 }
 
 /// A parsed program: a whole file or one input of the session.

@@ -287,8 +287,8 @@ impl Interpreter {
                 self.scene.time_use.camera = distance.tainted | angle.tainted;
                 self.has_camera = true;
             }
-            Item::Ambient(expr) => {
-                let ambient = self.eval_expr(expr)?;
+            Item::Ambient(def) => {
+                let ambient = self.eval_expr(&def.intensity)?;
                 self.scene.ambient = ambient.value;
                 self.scene.time_use.ambient = ambient.tainted;
                 self.has_ambient = true;

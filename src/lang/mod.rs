@@ -8,6 +8,7 @@ pub mod lexer;
 pub mod parser;
 pub mod source;
 pub mod suggest;
+pub mod words;
 
 pub use diagnostic::{Diagnostic, Severity};
 pub use eval::{Interpreter, Limits};
