@@ -285,19 +285,14 @@ fn token_error(place: Place<'_>, mode: Mode, context: &Context, expected: &Expec
 /// token and what comes before it.
 fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, found: &Found) -> Option<String> {
     let previous = context.previous.as_ref();
+    if let Some(help) = decimal_comma_help(place, context, found) {
+        return Some(help);
+    }
     match (&found.token, previous) {
-        (Token::Comma, Some((Token::Number(_), number))) if number.end == found.span.start => {
-            let fraction: String =
-                place.text[found.span.end as usize..].chars().take_while(char::is_ascii_digit).collect();
-            (!fraction.is_empty()).then(|| {
-                format!("decimal numbers are written with a point: `{}.{fraction}`", place.slice(*number))
-            })
-        }
         (Token::Eq, Some((Token::Eq, _))) => Some("a comparison is written with a single `=`".to_string()),
         (Token::LParen, Some((Token::Number(_) | Token::RParen, _))) if expected.has("*") => {
             Some("to multiply, write `*`, like `2 * (x + 1)`".to_string())
         }
-        (Token::LParen, Some((Token::Ident(name), _))) if expected.has("*") => Some(words::hint_for_function(name)),
         (Token::Eq, Some((keyword, _))) if keyword.is_keyword() && expected.has("NUMBER") => {
             Some(format!("write the value right after `{keyword}`, without `=`"))
         }
@@ -319,6 +314,18 @@ fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, foun
     }
 }
 
+/// "decimal numbers are written with a point", when `found` is a comma
+/// between digits, as in `0,5`.
+fn decimal_comma_help(place: Place<'_>, context: &Context, found: &Found) -> Option<String> {
+    let (Token::Number(_), number) = context.previous.as_ref()? else { return None };
+    if found.token != Token::Comma || number.end != found.span.start {
+        return None;
+    }
+    let fraction: String = place.text[found.span.end as usize..].chars().take_while(char::is_ascii_digit).collect();
+    (!fraction.is_empty())
+        .then(|| format!("decimal numbers are written with a point: `{}.{fraction}`", place.slice(*number)))
+}
+
 /// "colours are three numbers", when a `#ff0000` colour (read as a comment)
 /// follows `color` in the text before byte `until`.
 fn colour_help(place: Place<'_>, context: &Context, until: usize) -> Option<String> {
@@ -331,9 +338,7 @@ fn colour_help(place: Place<'_>, context: &Context, until: usize) -> Option<Stri
         _ => return None,
     };
     let [_, red, green, blue] = u32::from_str_radix(&six_digits, 16).ok()?.to_be_bytes();
-    Some(format!(
-        "`#` starts a comment; colours are three numbers from 0 to 255: `color {red}, {green}, {blue}`"
-    ))
+    Some(format!("`#` starts a comment; colours are three numbers from 0 to 255: `color {red}, {green}, {blue}`"))
 }
 
 /// The message (and label and related spans) for an unexpected token,
@@ -356,6 +361,13 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
     }
     if let Some(diagnostic) = texture_error(place, expected, found) {
         return diagnostic;
+    }
+    if let (Token::LParen, Some((Token::Ident(name), name_span))) = (&found.token, &context.previous)
+        && expected.has("*")
+    {
+        return Diagnostic::error(*name_span, format!("unknown function `{name}`"))
+            .with_label("not a function of the language")
+            .with_help(words::hint_for_function(name));
     }
     if expected.has("let") && found.token.is_keyword() && starts_object(found_text) {
         return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))

@@ -52,9 +52,11 @@ pub(super) fn check(source: SourceId, text: &str, program: &Program) -> Result<(
     let end = end_of_text(source, text);
     match phase {
         Phase::Start => Err(start_error(end).with_label("the file ends here").with_note(ORDER_NOTE)),
-        Phase::Camera => Err(Diagnostic::error(end, "unexpected end of file: `ambient` must come right after the camera")
-            .with_label("the file ends here")
-            .with_note(ORDER_NOTE)),
+        Phase::Camera => {
+            Err(Diagnostic::error(end, "unexpected end of file: `ambient` must come right after the camera")
+                .with_label("the file ends here")
+                .with_note(ORDER_NOTE))
+        }
         _ => Ok(()),
     }
 }
