@@ -202,6 +202,8 @@ pub struct Lexer<'a> {
     /// Every word read so far, and the keywords from the start: one lookup
     /// tells a keyword from a name and interns the name.
     words: HashMap<&'a str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>,
+    /// Where the line of the last token starts.
+    line_start: usize,
     failed: bool,
 }
 
@@ -233,7 +235,12 @@ impl<'a> Lexer<'a> {
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
         let pos = if text.starts_with(BYTE_ORDER_MARK) { BYTE_ORDER_MARK.len_utf8() } else { 0 };
         let words = words::keywords().map(|(word, token)| (word.text, (token.clone(), Some(word)))).collect();
-        Lexer { text, pos, source, words, failed: false }
+        Lexer { text, pos, source, words, line_start: 0, failed: false }
+    }
+
+    /// Where the line of the last token read starts, as a byte offset.
+    pub fn line_start(&self) -> usize {
+        self.line_start
     }
 
     /// The next token, with its row of the words table if it is a keyword.
@@ -255,10 +262,14 @@ impl<'a> Lexer<'a> {
         let bytes = self.text.as_bytes();
         while let Some(&byte) = bytes.get(self.pos) {
             match byte {
-                b' ' | b'\t' | b'\n' | b'\r' | b'\x0b' | b'\x0c' => self.pos += 1,
+                b' ' | b'\t' | b'\r' | b'\x0b' | b'\x0c' => self.pos += 1,
+                b'\n' => {
+                    self.pos += 1;
+                    self.line_start = self.pos;
+                }
                 b'#' => {
                     self.pos = match bytes[self.pos..].iter().position(|&b| b == b'\n') {
-                        Some(newline) => self.pos + newline + 1,
+                        Some(newline) => self.pos + newline,
                         None => bytes.len(),
                     };
                 }

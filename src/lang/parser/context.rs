@@ -62,84 +62,165 @@ pub(super) enum Blame<'c> {
     Misclosed(&'c Misclosed),
 }
 
+/// A token handed to the parser, as the bookkeeping needs it: plain data,
+/// cheap to keep for every token (the text at `span` tells the token).
+#[derive(Debug, Clone, Copy)]
+struct Handed {
+    span: Span,
+    class: Class,
+    /// Its row of the words table, for a keyword.
+    word: Option<&'static Word>,
+    /// Where its line starts.
+    line_start: usize,
+}
+
+/// What the bookkeeping does with a token, copied out of it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Class {
+    End,
+    Else,
+    If,
+    Proc,
+    By,
+    LParen,
+    RParen,
+    Ident,
+    /// A keyword followed by a triple, with the triple's name.
+    Triple(&'static str),
+    Other,
+}
+
+impl Class {
+    fn of(token: &Token) -> Class {
+        match token {
+            Token::End => Class::End,
+            Token::Else => Class::Else,
+            Token::If => Class::If,
+            Token::Proc => Class::Proc,
+            Token::By => Class::By,
+            Token::LParen => Class::LParen,
+            Token::RParen => Class::RParen,
+            Token::Ident(_) => Class::Ident,
+            Token::Center => Class::Triple("the centre"),
+            Token::Length => Class::Triple("the lengths"),
+            Token::Rotation | Token::Vector => Class::Triple("the rotation"),
+            Token::Color => Class::Triple("the colour"),
+            _ => Class::Other,
+        }
+    }
+}
+
+/// How many of the last tokens are kept: the one the parser stopped at, the
+/// two before it, and one more for a round number.
+const RECENT: usize = 4;
+
 /// What the tokens before the current one leave open.
 #[derive(Debug, Default)]
 pub(super) struct Context {
     /// Constructs opened and not yet closed, innermost last.
     pub open: Vec<Open>,
     /// Parentheses opened and not yet closed, innermost last, each with the
-    /// token before it (`sqrt` in `sqrt(`).
-    pub parens: Vec<(Span, Option<Token>)>,
-    /// The last token, and the one before it.
-    pub previous: Option<(Token, Span)>,
-    pub before_previous: Option<(Token, Span)>,
+    /// keyword before it (`sqrt` in `sqrt(`).
+    pub parens: Vec<(Span, Option<&'static Word>)>,
     /// The name of the triple being read, if any ("the centre").
     pub triple: Option<&'static str>,
     /// The first `end`s that lined up with an outer construct.
     pub misclosed: Vec<Misclosed>,
     /// Whether an `end` or a `)` closed nothing.
     pub stray_closer: bool,
-    /// Where the line of the last token starts, its indentation (the
-    /// column of its first token), and where the last token ends.
+    /// The last tokens handed to the parser: token number `n` in slot `n % RECENT`.
+    recent: [Option<Handed>; RECENT],
+    /// How many tokens were handed to the parser, and how many of them are
+    /// taken into account (all but the last, or all at the end of the text).
+    handed: usize,
+    counted: usize,
+    /// Where the line of the last token counted starts, and its indentation
+    /// (the column of its first token).
     line_start: usize,
     line_indent: usize,
-    last_end: usize,
 }
 
 impl Context {
-    /// Takes the token `token` at `span` of `text` into account; `word` is
-    /// its row of the words table if it is a keyword.
-    fn read(&mut self, token: Token, span: Span, word: Option<&'static Word>, text: &str) {
-        let start = span.start as usize;
-        let gap = text.get(self.last_end..start).unwrap_or("");
-        let first_on_line = match gap.rfind('\n') {
-            Some(newline) => {
-                self.line_start = self.last_end + newline + 1;
-                true
-            }
-            None => self.previous.is_none(),
-        };
-        self.last_end = span.end as usize;
-        let column = first_on_line.then(|| start.saturating_sub(self.line_start));
+    /// Where the last token taken into account is.
+    pub(super) fn previous(&self) -> Option<Span> {
+        self.counted_back(1).map(|handed| handed.span)
+    }
+
+    /// Where the token before [`Context::previous`] is.
+    pub(super) fn before_previous(&self) -> Option<Span> {
+        self.counted_back(2).map(|handed| handed.span)
+    }
+
+    /// The token `back` places before the next one to take into account.
+    fn counted_back(&self, back: usize) -> Option<Handed> {
+        let number = self.counted.checked_sub(back)?;
+        self.recent[number % RECENT]
+    }
+
+    /// Keeps the token just handed to the parser, to take into account when
+    /// the next one is.
+    fn hand(&mut self, handed: Handed) {
+        self.recent[self.handed % RECENT] = Some(handed);
+        self.handed += 1;
+    }
+
+    /// Takes the tokens handed to the parser into account.
+    fn count_handed(&mut self) {
+        while self.counted < self.handed {
+            self.count_next();
+        }
+    }
+
+    /// Takes the next token handed to the parser into account.
+    fn count_next(&mut self) {
+        let Some(Handed { span, class, word, line_start }) = self.recent[self.counted % RECENT] else { return };
+        let before = self.counted_back(1);
+        let word_before = before.and_then(|handed| handed.word);
+        let before = before.map(|handed| handed.class);
+        self.counted += 1;
+        let first_on_line = line_start != self.line_start || before.is_none();
+        self.line_start = line_start;
+        let column = first_on_line.then(|| (span.start as usize).saturating_sub(line_start));
         if let Some(column) = column {
             self.line_indent = column;
-            self.new_line(&token, span, column);
+            self.new_line(class, span, column);
         }
-        match &token {
-            Token::End => self.close(span, column),
-            Token::LParen => {
-                let before = self.previous.as_ref().map(|(token, _)| token.clone());
-                self.parens.push((span, before));
-            }
-            Token::RParen => self.stray_closer |= self.parens.pop().is_none(),
-            Token::Ident(_) if matches!(self.previous, Some((Token::Proc, _))) => {
+        match class {
+            Class::End => self.close(span, column),
+            Class::LParen => self.parens.push((span, word_before)),
+            Class::RParen => self.stray_closer |= self.parens.pop().is_none(),
+            Class::Ident if before == Some(Class::Proc) => {
                 if let Some(open) = self.open.last_mut() {
                     open.name = Some(span);
                 }
             }
             _ => {}
         }
-        if let Some(word) = word {
-            if word.opens() {
-                self.open(word, &token, span);
-            }
-            if !matches!(word.role(), Some(Role::Function | Role::Constant)) {
-                self.triple = self.triple_after(&token);
-            }
+        let Some(word) = word else { return };
+        if word.opens() {
+            self.open(word, class == Class::If && before == Some(Class::Else), span);
         }
-        self.before_previous = self.previous.take();
-        self.previous = Some((token, span));
+        self.triple = match class {
+            Class::Triple(name) => Some(name),
+            Class::By => match self.open.last().map(|open| open.word.text) {
+                Some("translate") => Some("the vector"),
+                Some("rotate") => Some("the rotation"),
+                _ => None,
+            },
+            _ if matches!(word.role(), Some(Role::Function | Role::Constant)) => self.triple,
+            _ => None,
+        };
     }
 
     /// Notes, for the open constructs, the first token of a new line at `column`.
-    fn new_line(&mut self, token: &Token, span: Span, column: usize) {
+    fn new_line(&mut self, class: Class, span: Span, column: usize) {
         for open in self.open.iter_mut().rev() {
             if open.body_indented.is_some() {
                 break;
             }
             open.body_indented = Some(column > open.indent);
         }
-        if matches!(token, Token::End | Token::Else) {
+        if matches!(class, Class::End | Class::Else) {
             return;
         }
         for open in self.open.iter_mut().rev() {
@@ -150,9 +231,9 @@ impl Context {
         }
     }
 
-    /// Opens the construct of `word` (the token `token`) at `span`.
-    fn open(&mut self, word: &'static Word, token: &Token, span: Span) {
-        let after_else = *token == Token::If && matches!(self.previous, Some((Token::Else, _)));
+    /// Opens the construct of `word` at `span`; `after_else` for an `if`
+    /// written right after `else`.
+    fn open(&mut self, word: &'static Word, after_else: bool, span: Span) {
         if after_else && let Some(parent) = self.open.last_mut() {
             parent.else_if = Some(span);
         }
@@ -183,22 +264,6 @@ impl Context {
         }
     }
 
-    /// The name of the triple that follows `keyword`, if one does.
-    fn triple_after(&self, keyword: &Token) -> Option<&'static str> {
-        match keyword {
-            Token::Center => Some("the centre"),
-            Token::Length => Some("the lengths"),
-            Token::Rotation | Token::Vector => Some("the rotation"),
-            Token::Color => Some("the colour"),
-            Token::By => match self.open.last().map(|open| open.word.text) {
-                Some("translate") => Some("the vector"),
-                Some("rotate") => Some("the rotation"),
-                _ => None,
-            },
-            _ => None,
-        }
-    }
-
     /// The construct that most plausibly lacks its `end`: one closed by an
     /// `end` lined up with an outer construct that is still open, otherwise
     /// the innermost open one.
@@ -214,17 +279,14 @@ impl Context {
 /// The lexer's tokens, as the parser reads them, recorded in a [`Context`].
 pub(super) struct Tracked<'t> {
     lexer: Lexer<'t>,
-    text: &'t str,
     source: SourceId,
-    /// The token handed out last, taken into the context when the next one is asked for.
-    pending: Option<(Token, Span, Option<&'static Word>)>,
     context: Context,
 }
 
 impl<'t> Tracked<'t> {
     /// The tokens of `text`, whose spans name `source`.
     pub(super) fn new(source: SourceId, text: &'t str) -> Tracked<'t> {
-        Tracked { lexer: Lexer::new(source, text), text, source, pending: None, context: Context::default() }
+        Tracked { lexer: Lexer::new(source, text), source, context: Context::default() }
     }
 
     /// What the tokens before the last one handed out leave open (all of
@@ -238,12 +300,12 @@ impl Iterator for Tracked<'_> {
     type Item = Result<Spanned, Box<Diagnostic>>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if let Some((token, span, word)) = self.pending.take() {
-            self.context.read(token, span, word, self.text);
-        }
+        self.context.count_handed();
         let result = match self.lexer.next_word()? {
             Ok(((start, token, end), word)) => {
-                self.pending = Some((token.clone(), Span::new(self.source, start, end), word));
+                let span = Span::new(self.source, start, end);
+                let line_start = self.lexer.line_start();
+                self.context.hand(Handed { span, class: Class::of(&token), word, line_start });
                 Ok((start, token, end))
             }
             Err(error) => Err(error),

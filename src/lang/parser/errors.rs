@@ -14,7 +14,7 @@ use lalrpop_util::ParseError;
 use super::context::{Blame, Context, Misclosed, Open};
 use super::order::start_error;
 use crate::lang::diagnostic::Diagnostic;
-use crate::lang::lexer::{self, Token};
+use crate::lang::lexer::{self, Lexer, Token};
 use crate::lang::source::{SourceId, Span};
 use crate::lang::suggest;
 use crate::lang::words::{self, Role};
@@ -81,6 +81,19 @@ impl Place<'_> {
     /// The source text of `span`.
     fn slice(&self, span: Span) -> &str {
         self.text.get(span.start as usize..span.end as usize).unwrap_or("")
+    }
+
+    /// The token at `span`, read again from the text: the context keeps
+    /// only where the last tokens are.
+    fn token(&self, span: Option<Span>) -> Option<(Token, Span)> {
+        let span = span?;
+        let (_, token, _) = Lexer::new(self.source, self.slice(span)).next()?.ok()?;
+        Some((token, span))
+    }
+
+    /// The token before the one the parser stopped at.
+    fn previous(&self, context: &Context) -> Option<(Token, Span)> {
+        self.token(context.previous())
     }
 
     /// How to name an open construct: "`proc ring`", "`sphere`".
@@ -169,9 +182,9 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
         return unclosed_error(place, blame, span, None);
     }
     let what = describe(place, context, &expected.essential());
-    let message = match &context.previous {
-        Some((_, previous)) => {
-            format!("unexpected end of file: expected {what} after `{}`", place.slice(*previous))
+    let message = match context.previous() {
+        Some(previous) => {
+            format!("unexpected end of file: expected {what} after `{}`", place.slice(previous))
         }
         None => format!("unexpected end of file: expected {what}"),
     };
@@ -284,7 +297,7 @@ fn token_error(place: Place<'_>, mode: Mode, context: &Context, expected: &Expec
 /// A hint for mistakes learners often make, recognised from the unexpected
 /// token and what comes before it.
 fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, found: &Found) -> Option<String> {
-    let previous = context.previous.as_ref();
+    let previous = place.previous(context);
     if let Some(help) = decimal_comma_help(place, context, found) {
         return Some(help);
     }
@@ -297,8 +310,8 @@ fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, foun
             Some(format!("write the value right after `{keyword}`, without `=`"))
         }
         (Token::Comma, _) => match context.parens.last() {
-            Some((_, Some(function @ (Token::Sin | Token::Cos | Token::Sqrt)))) => {
-                Some(format!("`{function}` takes a single number"))
+            Some((_, Some(function))) if function.role() == Some(Role::Function) => {
+                Some(format!("`{}` takes a single number", function.text))
             }
             Some(_) if context.triple.is_some() => {
                 Some("write the three parts without parentheses, like `0, 0, 1`".to_string())
@@ -317,19 +330,19 @@ fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, foun
 /// "decimal numbers are written with a point", when `found` is a comma
 /// between digits, as in `0,5`.
 fn decimal_comma_help(place: Place<'_>, context: &Context, found: &Found) -> Option<String> {
-    let (Token::Number(_), number) = context.previous.as_ref()? else { return None };
+    let (Token::Number(_), number) = place.previous(context)? else { return None };
     if found.token != Token::Comma || number.end != found.span.start {
         return None;
     }
     let fraction: String = place.text[found.span.end as usize..].chars().take_while(char::is_ascii_digit).collect();
     (!fraction.is_empty())
-        .then(|| format!("decimal numbers are written with a point: `{}.{fraction}`", place.slice(*number)))
+        .then(|| format!("decimal numbers are written with a point: `{}.{fraction}`", place.slice(number)))
 }
 
 /// "colours are three numbers", when a `#ff0000` colour (read as a comment)
 /// follows `color` in the text before byte `until`.
 fn colour_help(place: Place<'_>, context: &Context, until: usize) -> Option<String> {
-    let (Token::Color, color) = context.previous.as_ref()? else { return None };
+    let (Token::Color, color) = place.previous(context)? else { return None };
     let after = place.text.get(color.end as usize..until)?.trim_start();
     let digits: String = after.strip_prefix('#')?.chars().take_while(char::is_ascii_alphanumeric).collect();
     let six_digits: String = match digits.len() {
@@ -356,18 +369,18 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
         return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`")
             .with_label("this `else` has no `if`");
     }
-    if mode == Mode::File && context.previous.is_none() {
+    if mode == Mode::File && context.previous().is_none() {
         return start_error(span);
     }
     if let Some(diagnostic) = texture_error(place, expected, found) {
         return diagnostic;
     }
-    if let (Token::LParen, Some((Token::Ident(name), name_span))) = (&found.token, &context.previous)
+    if let (Token::LParen, Some((Token::Ident(name), name_span))) = (&found.token, place.previous(context))
         && expected.has("*")
     {
-        return Diagnostic::error(*name_span, format!("unknown function `{name}`"))
+        return Diagnostic::error(name_span, format!("unknown function `{name}`"))
             .with_label("not a function of the language")
-            .with_help(words::hint_for_function(name));
+            .with_help(words::hint_for_function(&name));
     }
     if expected.has("let") && found.token.is_keyword() && starts_object(found_text) {
         return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))
@@ -406,9 +419,9 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
     }
     let what = describe(place, context, &essential);
     let closes = essential.contains(&"end") && innermost.is_some();
-    let message = match &context.previous {
-        Some((_, previous)) if !closes => {
-            format!("expected {what} after `{}`", place.slice(*previous))
+    let message = match context.previous() {
+        Some(previous) if !closes => {
+            format!("expected {what} after `{}`", place.slice(previous))
         }
         _ => format!("expected {what}"),
     };
@@ -453,12 +466,11 @@ fn spelling_help(
     expected: &Expected,
     found: &Found,
 ) -> Option<(String, Option<(Span, String)>)> {
-    let earlier = [&context.before_previous, &context.previous];
+    let earlier = [place.token(context.before_previous()), place.previous(context)];
     let names: Vec<(&str, Span)> = earlier
         .into_iter()
         .flatten()
-        .map(|(token, span)| (token, *span))
-        .chain([(&found.token, found.span)])
+        .chain([(found.token.clone(), found.span)])
         .filter(|(token, _)| matches!(token, Token::Ident(_)))
         .map(|(_, span)| (place.slice(span), span))
         .collect();
