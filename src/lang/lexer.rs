@@ -588,6 +588,46 @@ mod tests {
     }
 
     #[test]
+    fn a_byte_order_mark_is_skipped_at_the_start_only() {
+        assert_eq!(tokens("\u{feff}let"), vec![Token::Let]);
+        assert_eq!(error("let \u{feff}").message, "invisible character U+FEFF");
+    }
+
+    #[test]
+    fn invisible_characters_are_named_by_their_code() {
+        let diagnostic = error("let\u{200b} x");
+        assert_eq!(diagnostic.message, "invisible character U+200B");
+        assert_eq!((diagnostic.span.start, diagnostic.span.end), (3, 6));
+        assert_eq!(error("a\u{1}").message, "invisible character U+0001");
+        assert!(error("a\u{a0}b").help.is_some_and(|help| help.contains("ordinary space")));
+    }
+
+    #[test]
+    fn comments_of_other_languages_are_errors_with_a_hint() {
+        for text in ["// note", "x /* note */"] {
+            let diagnostic = error(text);
+            assert!(diagnostic.message.ends_with("does not start a comment"), "{text}");
+            assert_eq!(diagnostic.help.as_deref(), Some("comments start with `#` and run to the end of the line"));
+        }
+        assert_eq!(tokens("a / b"), vec![Token::Ident("a".into()), Token::Slash, Token::Ident("b".into())]);
+    }
+
+    #[test]
+    fn typographic_dashes_get_a_hint() {
+        assert_eq!(error("\u{2212}1").help.as_deref(), Some("this is a Unicode minus sign; type `-`"));
+        assert_eq!(error("1 \u{2014} 2").help.as_deref(), Some("this is a Unicode dash; type `-`"));
+    }
+
+    #[test]
+    fn an_accented_letter_names_the_whole_word() {
+        assert_eq!(error("put sphère").help.as_deref(), Some("`sphère` is French: the keyword is `sphere`"));
+        assert_eq!(
+            error("let café = 1").help.as_deref(),
+            Some("names use only the letters a to z without accents, digits and `_`")
+        );
+    }
+
+    #[test]
     fn a_huge_number_is_an_error_not_infinity() {
         assert_eq!(error("1e999").message, "the number `1e999` is too large");
     }

@@ -264,15 +264,13 @@ impl Context {
         }
     }
 
-    /// The construct that most plausibly lacks its `end`: one closed by an
-    /// `end` lined up with an outer construct that is still open, otherwise
-    /// the innermost open one.
+    /// The construct that most plausibly lacks its `end`: the innermost open
+    /// one, unless an `end` lined up with it closed an inner construct
+    /// instead; then that inner one.
     pub(super) fn blame(&self) -> Option<Blame<'_>> {
-        let still_open = |misclosed: &&Misclosed| self.open.iter().any(|open| open.span == misclosed.meant_for.span);
-        match self.misclosed.iter().find(still_open) {
-            Some(misclosed) => Some(Blame::Misclosed(misclosed)),
-            None => self.open.last().map(Blame::Unclosed),
-        }
+        let innermost = self.open.last()?;
+        let misclosed = self.misclosed.iter().find(|misclosed| misclosed.meant_for.span == innermost.span);
+        Some(misclosed.map_or(Blame::Unclosed(innermost), Blame::Misclosed))
     }
 }
 
@@ -311,5 +309,78 @@ impl Iterator for Tracked<'_> {
             Err(error) => Err(error),
         };
         Some(result)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The context after reading all of `text`.
+    fn context_of(text: &str) -> Context {
+        let mut tokens = Tracked::new(SourceId(0), text);
+        while tokens.next().is_some() {}
+        tokens.context
+    }
+
+    fn at(text: &str, span: Span) -> &str {
+        &text[span.start as usize..span.end as usize]
+    }
+
+    #[test]
+    fn open_constructs_know_their_line_indentation_and_name() {
+        let text = "proc ring(n)\n  put group\n    sphere";
+        let context = context_of(text);
+        let open: Vec<(&str, usize)> = context.open.iter().map(|open| (open.word.text, open.indent)).collect();
+        assert_eq!(open, [("proc", 0), ("group", 2), ("sphere", 4)]);
+        assert_eq!(context.open[0].name.map(|name| at(text, name)), Some("ring"));
+        assert_eq!(context.open[0].body_indented, Some(true));
+    }
+
+    #[test]
+    fn an_end_lined_up_with_an_outer_construct_blames_the_inner_one() {
+        let text = "proc p()\n  if a < 1 then\n    put s\n  put t\nend\n";
+        let context = context_of(text);
+        let Some(Blame::Misclosed(misclosed)) = context.blame() else { panic!("{:?}", context.blame()) };
+        assert_eq!(misclosed.construct.word.text, "if");
+        assert_eq!(misclosed.meant_for.word.text, "proc");
+        assert_eq!(at(text, misclosed.end), "end");
+        assert_eq!(misclosed.construct.dedent.map(|span| at(text, span)), Some("put"));
+        assert_eq!(misclosed.construct.dedent.map(|span| span.start), Some(37));
+    }
+
+    #[test]
+    fn an_end_lined_up_with_its_own_construct_blames_the_innermost() {
+        let context = context_of("proc p()\n  if a < 1 then\n    put s\n  end\n");
+        assert!(matches!(context.blame(), Some(Blame::Unclosed(open)) if open.word.text == "proc"));
+        let context = context_of("put group sphere");
+        assert!(matches!(context.blame(), Some(Blame::Unclosed(open)) if open.word.text == "sphere"));
+    }
+
+    #[test]
+    fn else_if_is_recorded_on_both_ifs() {
+        let context = context_of("if a < 1 then\nelse if a < 2 then");
+        let [outer, inner] = &context.open[..] else { panic!("two ifs open") };
+        assert!(outer.else_if.is_some() && !outer.after_else);
+        assert!(inner.after_else);
+    }
+
+    #[test]
+    fn stray_closers_are_noticed() {
+        assert!(context_of("end").stray_closer);
+        assert!(context_of("let x = 1)").stray_closer);
+        assert!(!context_of("let x = (1)").stray_closer);
+    }
+
+    #[test]
+    fn the_last_token_waits_until_the_next_is_asked_for() {
+        let mut tokens = Tracked::new(SourceId(0), "let x");
+        tokens.next();
+        assert_eq!(tokens.context().previous(), None, "`let` is handed out, not yet counted");
+        tokens.next();
+        assert_eq!(tokens.context().previous().map(|span| span.start), Some(0));
+        assert!(tokens.next().is_none());
+        assert_eq!(tokens.context().previous().map(|span| span.start), Some(4));
+        assert_eq!(tokens.context().before_previous().map(|span| span.start), Some(0));
     }
 }

@@ -189,7 +189,7 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
         None => format!("unexpected end of file: expected {what}"),
     };
     let diagnostic = Diagnostic::error(span, message).with_label("the file ends here");
-    match colour_help(place, context, location.max(place.text.len())) {
+    match colour_help(place, context, place.text.len()) {
         Some(help) => diagnostic.with_help(help),
         None => diagnostic,
     }
