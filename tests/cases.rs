@@ -2,7 +2,10 @@
 //!
 //! Valid files start with `# expect: spheres=N planes=N boxes=N lights=N`;
 //! invalid ones with `# expect-error: line L`. An invalid file must exit with
-//! status 1 and a diagnostic that points at line L; no file may panic.
+//! status 1 and a diagnostic that points at line L; no file may panic. The
+//! comment lines at the top of an invalid file may add `# expect-help: H`
+//! (the diagnostic's `help:` line is H) and `# expect-text: T` (the
+//! diagnostic contains T, a label for example).
 
 use std::path::Path;
 use std::process::Command;
@@ -11,11 +14,24 @@ mod common;
 
 use common::cases::cases;
 
-/// The value after `prefix` on the file's first line.
+/// The value after `prefix` on the file's first line (after a byte-order mark, if any).
 fn expectation(path: &Path, prefix: &str) -> String {
     let text = std::fs::read_to_string(path).expect("case is readable");
-    let first = text.lines().next().unwrap_or_default();
+    let first = text.trim_start_matches('\u{feff}').lines().next().unwrap_or_default();
     first.strip_prefix(prefix).unwrap_or_else(|| panic!("{} lacks `{prefix}`", path.display())).trim().to_owned()
+}
+
+/// What the diagnostic must contain, from the `# expect-help:` and
+/// `# expect-text:` lines among the comments at the top of the file.
+fn expected_texts(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).expect("case is readable");
+    let header = text.lines().take_while(|line| line.starts_with('#'));
+    header
+        .filter_map(|line| {
+            let help = line.strip_prefix("# expect-help: ").map(|help| format!("\nhelp: {help}\n"));
+            help.or_else(|| line.strip_prefix("# expect-text: ").map(str::to_owned))
+        })
+        .collect()
 }
 
 /// Runs `rayrepl --check` on `path`: exit code, stdout, stderr.
@@ -70,8 +86,11 @@ fn invalid_cases_fail_at_the_expected_line() {
             .unwrap_or_default();
         let line = location.split(':').next().unwrap_or_default();
         let clear = stderr.starts_with("error: ") && !stderr.contains("panicked");
-        if code != Some(1) || line != expected || !clear {
-            failures.push(format!("{name}: expected line {expected}, got `{location}` (exit {code:?})\n{stderr}"));
+        let missing: Vec<String> = expected_texts(&path).into_iter().filter(|text| !stderr.contains(text)).collect();
+        if code != Some(1) || line != expected || !clear || !missing.is_empty() {
+            failures.push(format!(
+                "{name}: expected line {expected} and {missing:?}, got `{location}` (exit {code:?})\n{stderr}"
+            ));
         }
     }
     assert!(failures.is_empty(), "{} invalid case(s) failed:\n{}", failures.len(), failures.join("\n"));

@@ -69,7 +69,7 @@ fn deep_unclosed_nesting_is_a_clear_error() {
     assert!(is_incomplete(&text));
     let text = format!("put {}s", "group ".repeat(DEPTH));
     let error = parse_items(SourceId(0), &text).expect_err("unclosed");
-    assert_eq!(error.message, "unexpected end of file: the `group` opened at line 1 is not closed with `end`");
+    assert_eq!(error.message, "unexpected end of file: expected `end` to close this `group`");
     let text = format!("let x = {}1{}", "(".repeat(DEPTH), ")".repeat(DEPTH + 1));
     assert!(parse_items(SourceId(0), &text).is_err());
 }

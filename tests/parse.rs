@@ -3,7 +3,7 @@
 //! syntax errors with their line and column.
 
 use rayrepl::lang::ast::{ExprKind, Instr, InstrKind, Item, Obj, ObjKind, Program, Texture, Triple};
-use rayrepl::lang::{Diagnostic, SourceId, SourceMap, parse_file, parse_items};
+use rayrepl::lang::{Diagnostic, Note, SourceId, SourceMap, parse_file, parse_items};
 
 mod common;
 use common::sexpr::{cond, expr};
@@ -430,9 +430,10 @@ fn a_file_has_one_camera_and_one_ambient() {
 fn missing_end_names_the_open_construct() {
     let text = format!("let a = 1\nput sphere center 0, 0, 0 radius 1 {TEXTURE}\nput s\n");
     let error = session_error(&text);
-    assert_error(&error, "expected `end` to close the `sphere` opened at line 2", 3, 1);
-    let (span, _) = &error.diagnostic.related[0];
+    assert_error(&error, "expected `end` to close this `sphere`", 3, 1);
+    let (span, label) = &error.diagnostic.related[0];
     assert_eq!((span.start, span.end), (14, 20), "related points at `sphere`");
+    assert_eq!(label, "this `sphere` is not closed");
 }
 
 #[test]
@@ -440,7 +441,7 @@ fn missing_end_of_a_group() {
     let error = session_error("put group a b\nlet x = 1");
     assert_error(
         &error,
-        "expected an object (`sphere`, `plane`, `box`, a name...) or `end` to close the `group` opened at line 1",
+        "expected an object (`sphere`, `plane`, `box`, a name...) or `end` to close this `group`",
         2,
         1,
     );
@@ -478,9 +479,10 @@ fn missing_then() {
 #[test]
 fn texture_out_of_order() {
     let text = "put sphere center 0, 0, 0 radius 1 ks 1 kd 1 phong 1 color 1, 2, 3 end";
+    let missing_kd = "missing `kd`: a texture is `kd ... ks ... phong ... color r, g, b`, in this order";
+    assert_error(&session_error(text), missing_kd, 1, 36);
     let expected = "the texture must be `kd ... ks ... phong ... color r, g, b` in this order";
-    assert_error(&session_error(text), expected, 1, 36);
-    let text = "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 color 1, 2, 3 end";
+    let text = "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 kd 1 phong 1 color 1, 2, 3 end";
     assert_error(&session_error(text), expected, 1, 46);
 }
 
@@ -499,9 +501,9 @@ fn unexpected_end() {
 #[test]
 fn unexpected_end_of_file_names_the_open_construct() {
     let error = session_error("let x = 1\n\nproc p(a)\n  put a\n");
-    assert_error(&error, "unexpected end of file: the `proc` opened at line 3 is not closed with `end`", 4, 7);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `proc p`", 4, 7);
     let error = file_error(&format!("{HEADER}if x < 1 then\n  put s"));
-    assert_error(&error, "unexpected end of file: the `if` opened at line 3 is not closed with `end`", 4, 7);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 4, 7);
 }
 
 #[test]
@@ -599,13 +601,6 @@ fn error_messages_never_list_raw_token_names() {
 }
 
 #[test]
-fn messages_count_lines_from_the_line_offset() {
-    let text = "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1, 2, 3\nput s";
-    let error = rayrepl::lang::parser::parse_items_with_line_offset(SourceId(0), text, 16).expect_err("missing end");
-    assert_eq!(error.message, "expected `end` to close the `sphere` opened at line 17");
-}
-
-#[test]
 fn hints_for_common_mistakes() {
     let help = |text: &str| session_error(text).diagnostic.help.unwrap_or_default();
     assert_eq!(help("if x == 1 then end"), "a comparison is written with a single `=`");
@@ -616,8 +611,14 @@ fn hints_for_common_mistakes() {
         help("light vector (0, 0, 1) intensity 1 end"),
         "write the three parts without parentheses, like `0, 0, 1`"
     );
-    assert_eq!(help("let pi = 3"), "`pi` is a reserved word of the language; choose another name");
-    assert_eq!(help("proc p(a, end) end"), "`end` is a reserved word of the language; choose another name");
+    assert_eq!(
+        help("let pi = 3"),
+        "`pi` is a reserved word of the language (the number pi, half a turn in radians); choose another name"
+    );
+    assert_eq!(
+        help("proc p(a, end) end"),
+        "`end` is a reserved word of the language (closes the construct opened last); choose another name"
+    );
     assert_eq!(help("end"), "", "no hint where none applies");
     assert!(help("let x = 1;").contains("`;`"));
     assert!(help("let café = 1").contains("without accents"));
@@ -631,4 +632,150 @@ fn print_is_an_instruction_wherever_one_may_be() {
     );
     // One instruction ends where the next begins, as after `ambient`.
     assert_eq!(session("print a p(1)"), ["(print a)", "(call p 1)"]);
+}
+
+// ---- Missing `end`s: which construct is blamed ------------------------------
+
+/// The related places of an error, as (source text, label).
+fn related(text: &str, located: &Located) -> Vec<(String, String)> {
+    let slice = |span: &rayrepl::lang::Span| text[span.start as usize..span.end as usize].to_string();
+    located.diagnostic.related.iter().map(|(span, label)| (slice(span), label.clone())).collect()
+}
+
+#[test]
+fn a_missing_end_of_an_if_inside_a_proc_is_blamed_on_the_if() {
+    let text = "proc p(n)\n  if n < 1 then\n    put s\nend\nproc q()\n  p(0)\nend\n";
+    let error = session_error(text);
+    assert_error(&error, "expected `end` to close this `if`", 5, 1);
+    assert_eq!(error.diagnostic.label.as_deref(), Some("`proc p` is still open here"));
+    assert_eq!(
+        related(text, &error),
+        [
+            ("if".to_string(), "this `if` is not closed".to_string()),
+            ("end".to_string(), "this `end`, lined up with `proc p`, closed the `if`".to_string()),
+        ]
+    );
+    assert_eq!(error.diagnostic.notes, [Note::from("so the lines after that `end` were read as the body of `proc p`")]);
+}
+
+#[test]
+fn the_body_of_an_unclosed_if_ends_at_the_first_line_lined_up_with_it() {
+    let text = "proc p(n)\n  if n < 1 then\n    put s\n  put t\nend\np(1)\n";
+    let error = session_error(text);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 6, 4);
+    let related = related(text, &error);
+    assert_eq!(related[2], ("put".to_string(), "the `if`'s body seems to end before this line".to_string()));
+}
+
+#[test]
+fn an_end_lined_up_with_its_own_construct_blames_the_innermost_open_one() {
+    // The `if` is closed where it should be: the `proc` lacks its `end`.
+    let error = session_error("proc p(n)\n  if n < 1 then\n    put s\n  end\n");
+    assert_error(&error, "unexpected end of file: expected `end` to close this `proc p`", 4, 5);
+}
+
+#[test]
+fn a_missing_end_of_a_sphere_inside_a_group() {
+    let text = format!(
+        "object g = group\n  sphere center 0, 0, 0 radius 1 {TEXTURE}\n  sphere center 1, 0, 0 radius 1 {TEXTURE} end\nend\n"
+    );
+    let error = session_error(&text);
+    assert_error(&error, "expected `end` to close this `sphere`", 3, 3);
+    assert_eq!(related(&text, &error), [("sphere".to_string(), "this `sphere` is not closed".to_string())]);
+}
+
+#[test]
+fn a_missing_end_of_a_proc_before_another_proc() {
+    let text = format!("{HEADER}proc a()\n  put s\n\nproc b()\n  a()\nend\n");
+    let error = file_error(&text);
+    assert_eq!((error.line, error.column), (6, 1));
+    assert!(error.diagnostic.message.ends_with("or `end` to close this `proc a`"), "{}", error.diagnostic.message);
+    assert_eq!(related(&text, &error), [("proc".to_string(), "this `proc a` is not closed".to_string())]);
+}
+
+#[test]
+fn else_if_needs_its_own_end() {
+    let text = "if x < 1 then\n  put s\nelse if x < 2 then\n  put t\nend\n";
+    let error = session_error(text);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 5, 3);
+    assert!(error.diagnostic.help.is_some_and(|help| help.contains("each `if` needs its own `end`")));
+}
+
+#[test]
+fn no_message_names_a_line() {
+    let texts = [
+        "proc p(n)\n  if n < 1 then\n    put s\nend\nproc q()\nend\n",
+        "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 color 1, 2, 3\nput s",
+        "let x = (1 +\n2",
+        "camera distance 1 angle 1 end\nambient 1\ncamera distance 1 angle 1 end\n",
+    ];
+    for text in texts {
+        let error = parse_file(SourceId(0), text).expect_err("invalid");
+        let mut words = vec![error.message.clone()];
+        words.extend(error.label.clone());
+        words.extend(error.related.iter().map(|(_, label)| label.clone()));
+        let map = SourceMap::new();
+        words.extend(error.notes.iter().map(|note| note.display(&map, SourceId(0))));
+        for said in words {
+            assert!(!said.contains("line "), "{text:?} gave {said:?}");
+        }
+    }
+}
+
+// ---- Hints for beginners ------------------------------------------------------
+
+#[test]
+fn hints_for_words_from_elsewhere() {
+    let help = |text: &str| session_error(text).diagnostic.help.unwrap_or_default();
+    assert_eq!(help("CAMERA distance 1 angle 1 end"), "keywords are written in lower case: `camera`");
+    assert_eq!(help("Put Sphere center 0, 0, 0"), "keywords are written in lower case: `put`, `sphere`");
+    assert_eq!(
+        help("put sphere centre 0, 0, 0"),
+        "`centre` is the French and British spelling: the keyword is `center`"
+    );
+    assert_eq!(help("put boîte center 0, 0, 0"), "`boîte` is French: the keyword is `box`");
+    assert_eq!(help("si x < 1 alors put s fin"), "`si` is French: the keyword is `if`");
+    assert_eq!(help("let x = exp(1)"), "there is no function `exp`; the functions are `sin`, `cos` and `sqrt`");
+    let error = session_error("let y = 2 * tan(x)");
+    assert_error(&error, "unknown function `tan`", 1, 13);
+}
+
+#[test]
+fn hints_for_typing_habits() {
+    let help = |text: &str| session_error(text).diagnostic.help.unwrap_or_default();
+    assert_eq!(help("let x = 0,25"), "decimal numbers are written with a point: `0.25`");
+    assert_eq!(help("put sphere center 1,5, 2,5, 0 radius 1"), "decimal numbers are written with a point: `2.5`");
+    assert_eq!(help("let x = 1 \u{2013} 2"), "this is a Unicode dash; type `-`");
+    assert_eq!(help("/* a ball */"), "comments start with `#` and run to the end of the line");
+    assert_eq!(
+        help("put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color #0f8\nput s"),
+        "`#` starts a comment; colours are three numbers from 0 to 255: `color 0, 255, 136`"
+    );
+    let error = session_error("let x\u{200b} = 1");
+    assert_error(&error, "invisible character U+200B", 1, 6);
+}
+
+#[test]
+fn a_missing_texture_part_is_reported_missing() {
+    let text = "put sphere center 0, 0, 0 radius 1 kd 1 phong 1 color 1, 2, 3 end";
+    assert_error(
+        &session_error(text),
+        "missing `ks`: a texture is `kd ... ks ... phong ... color r, g, b`, in this order",
+        1,
+        41,
+    );
+    let text = "put sphere center 0, 0, 0 radius 1 kd 1 ks 1 phong 1 end";
+    assert_error(
+        &session_error(text),
+        "missing `color`: a texture is `kd ... ks ... phong ... color r, g, b`, in this order",
+        1,
+        54,
+    );
+}
+
+#[test]
+fn a_byte_order_mark_at_the_start_is_accepted() {
+    assert!(parse_file(SourceId(0), &format!("\u{feff}{HEADER}put s\n")).is_ok());
+    let error = session_error("let x = 1\n\u{feff}");
+    assert_eq!(error.diagnostic.message, "invisible character U+FEFF");
 }

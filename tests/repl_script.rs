@@ -178,6 +178,51 @@ fn errors_point_at_the_script_line() {
     assert!(run.err.contains("nowhere"), "{}", run.err);
 }
 
+/// Whether `rendered` shows the source line `text` numbered `line`.
+fn shows_line(rendered: &str, line: usize, text: &str) -> bool {
+    rendered.lines().any(|shown| shown.trim_start().starts_with(&format!("{line} ")) && shown.ends_with(text))
+}
+
+#[test]
+fn a_missing_end_is_shown_at_the_script_lines() {
+    let script = "\
+let a = 1
+
+# the sphere below has no `end`
+put sphere center 0, 0, 0 radius 1 $T
+put sphere center 0, 0, 0 radius 2 $T end
+";
+    let run = run(script);
+    assert_eq!(run.code, 1);
+    assert!(run.err.starts_with("error: expected `end` to close this `sphere`\n"), "{}", run.err);
+    assert!(run.err.contains("<stdin>:5:1"), "{}", run.err);
+    assert!(shows_line(&run.err, 4, &format!("radius 1 {TEX}")), "{}", run.err);
+    assert!(run.err.contains("this `sphere` is not closed"), "{}", run.err);
+}
+
+#[test]
+fn a_missing_end_of_an_if_inside_a_proc_is_shown_at_the_script_lines() {
+    let script = "\
+let a = 1
+# a procedure whose `if` lacks its `end`
+proc p(n)
+  if n < 1 then
+    put sphere center 0, 0, 0 radius 1 $T end
+end
+proc q()
+  p(0)
+end
+";
+    let run = run(script);
+    assert_eq!(run.code, 1);
+    assert!(run.err.starts_with("error: expected `end` to close this `if`\n"), "{}", run.err);
+    assert!(run.err.contains("<stdin>:7:1"), "{}", run.err);
+    assert!(shows_line(&run.err, 4, "if n < 1 then"), "{}", run.err);
+    assert!(shows_line(&run.err, 6, "end"), "{}", run.err);
+    assert!(run.err.contains("this `end`, lined up with `proc p`, closed the `if`"), "{}", run.err);
+    assert!(!run.err.contains("line "), "{}", run.err);
+}
+
 #[test]
 fn the_first_error_stops_the_script() {
     let run = run("let a = 1\nlet b = oops\nlet c = 3\n");

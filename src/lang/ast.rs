@@ -260,12 +260,12 @@ pub struct CameraDef {
     pub span: Span,
 }
 
-/// `ambient e`
+/// `ambient i`
 #[derive(Debug, Clone, PartialEq)]
 pub struct AmbientDef {
-    /// Intensity of the light that reaches every surface.
+    /// Intensity of the light that reaches every surface, 0..1.
     pub intensity: Expr,
-    /// Source range of the whole definition, keyword included.
+    /// Source range of the whole definition.
     pub span: Span,
 }
 
@@ -310,7 +310,7 @@ pub enum Item {
 }
 
 impl Item {
-    /// The source range of the whole item, from its first word to its last.
+    /// Where the whole item is.
     pub fn span(&self) -> Span {
         match self {
             Item::Camera(def) => def.span,

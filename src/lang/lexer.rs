@@ -4,15 +4,18 @@
 //! lalrpop's external-lexer interface expects; `start` and `end` are byte
 //! offsets into the text. It allocates nothing per token except the first
 //! time a name is seen: names are interned as [`Rc<str>`] because they go
-//! into the AST.
+//! into the AST. Keywords come from the table of [`super::words`].
 
 use std::collections::HashMap;
 use std::fmt;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::rc::Rc;
 
+use unicode_width::UnicodeWidthChar;
+
 use super::diagnostic::Diagnostic;
 use super::source::{SourceId, Span};
+use super::words::{self, Word};
 
 /// One token of the `.ray` language.
 #[derive(Debug, Clone, PartialEq)]
@@ -129,96 +132,14 @@ pub enum Token {
     Bang,
 }
 
-/// Every keyword of SPEC 1, and `print`, in alphabetical order, with its token.
-pub const KEYWORDS: [(&str, Token); 37] = [
-    ("ambient", Token::Ambient),
-    ("angle", Token::Angle),
-    ("box", Token::Box),
-    ("by", Token::By),
-    ("camera", Token::Camera),
-    ("center", Token::Center),
-    ("color", Token::Color),
-    ("cos", Token::Cos),
-    ("distance", Token::Distance),
-    ("else", Token::Else),
-    ("end", Token::End),
-    ("group", Token::Group),
-    ("if", Token::If),
-    ("intensity", Token::Intensity),
-    ("kd", Token::Kd),
-    ("ks", Token::Ks),
-    ("length", Token::Length),
-    ("let", Token::Let),
-    ("light", Token::Light),
-    ("object", Token::Object),
-    ("phong", Token::Phong),
-    ("pi", Token::Pi),
-    ("plane", Token::Plane),
-    ("print", Token::Print),
-    ("proc", Token::Proc),
-    ("put", Token::Put),
-    ("radius", Token::Radius),
-    ("rotate", Token::Rotate),
-    ("rotation", Token::Rotation),
-    ("scale", Token::Scale),
-    ("shift", Token::Shift),
-    ("sin", Token::Sin),
-    ("sphere", Token::Sphere),
-    ("sqrt", Token::Sqrt),
-    ("then", Token::Then),
-    ("translate", Token::Translate),
-    ("vector", Token::Vector),
-];
-
 /// The names of all keywords, for "did you mean ...?" suggestions.
 pub fn keyword_names() -> impl Iterator<Item = &'static str> {
-    KEYWORDS.iter().map(|(name, _)| *name)
+    words::keywords().map(|(word, _)| word.text)
 }
 
 /// The keyword token spelt `word`, if `word` is a keyword.
 pub fn keyword(word: &str) -> Option<Token> {
-    // A match on the string compiles to length-and-bytes comparisons: no allocation.
-    let token = match word {
-        "ambient" => Token::Ambient,
-        "angle" => Token::Angle,
-        "box" => Token::Box,
-        "by" => Token::By,
-        "camera" => Token::Camera,
-        "center" => Token::Center,
-        "color" => Token::Color,
-        "cos" => Token::Cos,
-        "distance" => Token::Distance,
-        "else" => Token::Else,
-        "end" => Token::End,
-        "group" => Token::Group,
-        "if" => Token::If,
-        "intensity" => Token::Intensity,
-        "kd" => Token::Kd,
-        "ks" => Token::Ks,
-        "length" => Token::Length,
-        "let" => Token::Let,
-        "light" => Token::Light,
-        "object" => Token::Object,
-        "phong" => Token::Phong,
-        "pi" => Token::Pi,
-        "plane" => Token::Plane,
-        "print" => Token::Print,
-        "proc" => Token::Proc,
-        "put" => Token::Put,
-        "radius" => Token::Radius,
-        "rotate" => Token::Rotate,
-        "rotation" => Token::Rotation,
-        "scale" => Token::Scale,
-        "shift" => Token::Shift,
-        "sin" => Token::Sin,
-        "sphere" => Token::Sphere,
-        "sqrt" => Token::Sqrt,
-        "then" => Token::Then,
-        "translate" => Token::Translate,
-        "vector" => Token::Vector,
-        _ => return None,
-    };
-    Some(token)
+    words::keywords().find(|(row, _)| row.text == word).map(|(_, token)| token.clone())
 }
 
 impl Token {
@@ -243,16 +164,14 @@ impl Token {
             Token::And => "&",
             Token::Or => "|",
             Token::Bang => "!",
-            keyword => {
-                return KEYWORDS.iter().find(|(_, token)| token == keyword).map(|(name, _)| *name);
-            }
+            keyword => return words::keywords().find(|(_, token)| *token == keyword).map(|(word, _)| word.text),
         };
         Some(symbol)
     }
 
     /// Whether the token is a keyword of SPEC 1.
     pub fn is_keyword(&self) -> bool {
-        KEYWORDS.iter().any(|(_, token)| token == self)
+        words::keywords().any(|(_, token)| token == self)
     }
 }
 
@@ -269,7 +188,11 @@ impl fmt::Display for Token {
 /// A token with its byte range: the triple lalrpop consumes.
 pub type Spanned = (usize, Token, usize);
 
-/// Splits a text into tokens, skipping blanks and `#` comments.
+/// A token with the row of the words table it comes from, for a keyword.
+pub type WordToken = (Spanned, Option<&'static Word>);
+
+/// Splits a text into tokens, skipping blanks and `#` comments (and a
+/// byte-order mark at the start, which some editors write).
 ///
 /// Yields `Err` once, at the first character that cannot start a token, and
 /// then stops.
@@ -278,7 +201,11 @@ pub struct Lexer<'a> {
     text: &'a str,
     pos: usize,
     source: SourceId,
-    names: HashMap<&'a str, Rc<str>, BuildHasherDefault<NameHasher>>,
+    /// Every word read so far, and the keywords from the start: one lookup
+    /// tells a keyword from a name and interns the name.
+    words: HashMap<&'a str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>,
+    /// Where the line of the last token starts.
+    line_start: usize,
     failed: bool,
 }
 
@@ -308,7 +235,28 @@ impl Hasher for NameHasher {
 impl<'a> Lexer<'a> {
     /// A lexer over `text`, whose spans in diagnostics name `source`.
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
-        Lexer { text, pos: 0, source, names: HashMap::default(), failed: false }
+        let pos = if text.starts_with(BYTE_ORDER_MARK) { BYTE_ORDER_MARK.len_utf8() } else { 0 };
+        let words = words::keywords().map(|(word, token)| (word.text, (token.clone(), Some(word)))).collect();
+        Lexer { text, pos, source, words, line_start: 0, failed: false }
+    }
+
+    /// Where the line of the last token read starts, as a byte offset.
+    pub fn line_start(&self) -> usize {
+        self.line_start
+    }
+
+    /// The next token, with its row of the words table if it is a keyword.
+    pub fn next_word(&mut self) -> Option<Result<WordToken, Box<Diagnostic>>> {
+        if self.failed {
+            return None;
+        }
+        self.skip_trivia();
+        if self.pos >= self.text.len() {
+            return None;
+        }
+        let result = self.token();
+        self.failed = result.is_err();
+        Some(result)
     }
 
     /// Moves past blanks and comments.
@@ -316,10 +264,14 @@ impl<'a> Lexer<'a> {
         let bytes = self.text.as_bytes();
         while let Some(&byte) = bytes.get(self.pos) {
             match byte {
-                b' ' | b'\t' | b'\n' | b'\r' | b'\x0b' | b'\x0c' => self.pos += 1,
+                b' ' | b'\t' | b'\r' | b'\x0b' | b'\x0c' => self.pos += 1,
+                b'\n' => {
+                    self.pos += 1;
+                    self.line_start = self.pos;
+                }
                 b'#' => {
                     self.pos = match bytes[self.pos..].iter().position(|&b| b == b'\n') {
-                        Some(newline) => self.pos + newline + 1,
+                        Some(newline) => self.pos + newline,
                         None => bytes.len(),
                     };
                 }
@@ -329,15 +281,16 @@ impl<'a> Lexer<'a> {
     }
 
     /// Reads the token starting at the current position, which is not blank.
-    fn token(&mut self) -> Result<Spanned, Box<Diagnostic>> {
+    fn token(&mut self) -> Result<WordToken, Box<Diagnostic>> {
         let bytes = self.text.as_bytes();
         let start = self.pos;
         let first = bytes[start];
         let next = bytes.get(start + 1).copied();
         let (token, len) = match first {
-            b'0'..=b'9' => return self.number(),
-            b'.' if next.is_some_and(|b| b.is_ascii_digit()) => return self.number(),
+            b'0'..=b'9' => return Ok((self.number()?, None)),
+            b'.' if next.is_some_and(|b| b.is_ascii_digit()) => return Ok((self.number()?, None)),
             b'A'..=b'Z' | b'a'..=b'z' | b'_' => return Ok(self.word()),
+            b'/' if matches!(next, Some(b'/' | b'*')) => return Err(self.foreign_comment()),
             b'+' => (Token::Plus, 1),
             b'-' => (Token::Minus, 1),
             b'*' => (Token::Star, 1),
@@ -357,11 +310,11 @@ impl<'a> Lexer<'a> {
             _ => return Err(self.unexpected_character()),
         };
         self.pos += len;
-        Ok((start, token, self.pos))
+        Ok(((start, token, self.pos), None))
     }
 
     /// Reads a name or a keyword.
-    fn word(&mut self) -> Spanned {
+    fn word(&mut self) -> WordToken {
         let start = self.pos;
         let len = self.text.as_bytes()[start..]
             .iter()
@@ -369,13 +322,8 @@ impl<'a> Lexer<'a> {
             .unwrap_or(self.text.len() - start);
         self.pos += len;
         let word = &self.text[start..self.pos];
-        let token = keyword(word).unwrap_or_else(|| Token::Ident(self.intern(word)));
-        (start, token, self.pos)
-    }
-
-    /// The shared copy of `name`, made the first time it is seen.
-    fn intern(&mut self, name: &'a str) -> Rc<str> {
-        self.names.entry(name).or_insert_with(|| Rc::from(name)).clone()
+        let (token, row) = self.words.entry(word).or_insert_with(|| (Token::Ident(Rc::from(word)), None)).clone();
+        ((start, token, self.pos), row)
     }
 
     /// Reads `[0-9]*(\.[0-9]+)?([eE][+-]?[0-9]+)?` (at least one digit).
@@ -408,25 +356,70 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// The diagnostic for `//` or `/*`, which start comments in other languages.
+    fn foreign_comment(&mut self) -> Box<Diagnostic> {
+        let start = self.pos;
+        self.pos += 2;
+        let written = &self.text[start..self.pos];
+        Box::new(
+            Diagnostic::error(Span::new(self.source, start, self.pos), format!("`{written}` does not start a comment"))
+                .with_label("not a comment in this language")
+                .with_help("comments start with `#` and run to the end of the line"),
+        )
+    }
+
     /// The diagnostic for a character that cannot start a token.
     fn unexpected_character(&mut self) -> Box<Diagnostic> {
         let start = self.pos;
         let character = self.text[start..].chars().next().unwrap_or('\u{fffd}');
         let end = start + character.len_utf8();
         self.pos = end;
-        let shown: String = if character.is_control() || character.is_whitespace() {
-            character.escape_default().collect()
-        } else {
-            character.to_string()
-        };
         let span = Span::new(self.source, start, end);
-        let diagnostic = Diagnostic::error(span, format!("unexpected character `{shown}`"))
+        if is_invisible(character) {
+            let help = if character.is_whitespace() {
+                "replace it with an ordinary space"
+            } else {
+                "delete it: such characters come with text copied from web pages and documents"
+            };
+            return Box::new(
+                Diagnostic::error(span, format!("invisible character U+{:04X}", u32::from(character)))
+                    .with_label("an invisible character is here")
+                    .with_help(help),
+            );
+        }
+        let diagnostic = Diagnostic::error(span, format!("unexpected character `{character}`"))
             .with_label("this character is not part of the language");
-        Box::new(match character_help(character) {
+        let help = if character.is_alphabetic() {
+            Some(self.accented_word_help(start, end))
+        } else {
+            character_help(character).map(str::to_string)
+        };
+        Box::new(match help {
             Some(help) => diagnostic.with_help(help),
             None => diagnostic,
         })
     }
+
+    /// The help for a letter outside a to z at `start..end`: what the whole
+    /// word around it means if it is a French keyword (`sphère`), otherwise
+    /// which letters names may use.
+    fn accented_word_help(&self, start: usize, end: usize) -> String {
+        let is_letter = |c: char| c.is_alphanumeric() || c == '_';
+        let before = self.text[..start].trim_end_matches(is_letter);
+        let after = self.text[end..].trim_start_matches(is_letter);
+        let word = &self.text[before.len()..self.text.len() - after.len()];
+        words::hint_for_name(word)
+            .unwrap_or_else(|| "names use only the letters a to z without accents, digits and `_`".to_string())
+    }
+}
+
+/// U+FEFF, which some editors write at the start of a file.
+const BYTE_ORDER_MARK: char = '\u{feff}';
+
+/// Whether `character` shows as nothing, or as a blank, on screen: a
+/// control character, a zero-width one (U+200B) or an unusual space (U+00A0).
+fn is_invisible(character: char) -> bool {
+    character.is_whitespace() || matches!(character.width(), None | Some(0))
 }
 
 /// The value of `literal` if it is a plain integer of at most 15 digits,
@@ -442,16 +435,21 @@ fn small_integer(literal: &str) -> Option<f64> {
     Some(value as f64)
 }
 
-/// A hint for characters learners often type by habit from other languages.
+/// A hint for characters learners often type by habit from other languages,
+/// or that a word processor puts in their place.
 fn character_help(character: char) -> Option<&'static str> {
     match character {
+        '\u{2212}' => Some("this is a Unicode minus sign; type `-`"),
+        '\u{2010}'..='\u{2015}' | '\u{fe63}' | '\u{ff0d}' => Some("this is a Unicode dash; type `-`"),
+        '\u{d7}' => Some("to multiply, type `*`"),
+        '\u{f7}' => Some("to divide, type `/`"),
+        '\u{2018}'..='\u{201f}' => Some("the language has no strings: names are written without quotes"),
         ';' => Some("instructions need no separator: remove the `;`"),
         '{' | '}' => Some("blocks are closed with `end`, not with braces"),
         '"' | '\'' => Some("the language has no strings: names are written without quotes"),
         '.' => Some("write decimals with digits on both sides of the point, like `0.5`"),
         '^' => Some("there is no power operator: multiply, like `x * x`"),
         '[' | ']' => Some("use `(` and `)` for grouping"),
-        c if c.is_alphabetic() => Some("names use only the letters a to z without accents, digits and `_`"),
         _ => None,
     }
 }
@@ -460,16 +458,7 @@ impl Iterator for Lexer<'_> {
     type Item = Result<Spanned, Box<Diagnostic>>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        self.skip_trivia();
-        if self.pos >= self.text.len() {
-            return None;
-        }
-        let result = self.token();
-        self.failed = result.is_err();
-        Some(result)
+        self.next_word().map(|result| result.map(|(token, _)| token))
     }
 }
 
@@ -514,9 +503,9 @@ mod tests {
 
     #[test]
     fn every_keyword_is_its_own_token() {
-        for (name, token) in KEYWORDS {
-            assert_eq!(tokens(name), vec![token.clone()], "{name}");
-            assert_eq!(token.spelling(), Some(name));
+        for (word, token) in words::keywords() {
+            assert_eq!(tokens(word.text), vec![token.clone()], "{}", word.text);
+            assert_eq!(token.spelling(), Some(word.text));
             assert!(token.is_keyword());
         }
     }
@@ -598,6 +587,46 @@ mod tests {
     fn a_semicolon_gets_a_hint() {
         let diagnostic = error("let x = 1;");
         assert!(diagnostic.help.is_some_and(|h| h.contains("`;`")));
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped_at_the_start_only() {
+        assert_eq!(tokens("\u{feff}let"), vec![Token::Let]);
+        assert_eq!(error("let \u{feff}").message, "invisible character U+FEFF");
+    }
+
+    #[test]
+    fn invisible_characters_are_named_by_their_code() {
+        let diagnostic = error("let\u{200b} x");
+        assert_eq!(diagnostic.message, "invisible character U+200B");
+        assert_eq!((diagnostic.span.start, diagnostic.span.end), (3, 6));
+        assert_eq!(error("a\u{1}").message, "invisible character U+0001");
+        assert!(error("a\u{a0}b").help.is_some_and(|help| help.contains("ordinary space")));
+    }
+
+    #[test]
+    fn comments_of_other_languages_are_errors_with_a_hint() {
+        for text in ["// note", "x /* note */"] {
+            let diagnostic = error(text);
+            assert!(diagnostic.message.ends_with("does not start a comment"), "{text}");
+            assert_eq!(diagnostic.help.as_deref(), Some("comments start with `#` and run to the end of the line"));
+        }
+        assert_eq!(tokens("a / b"), vec![Token::Ident("a".into()), Token::Slash, Token::Ident("b".into())]);
+    }
+
+    #[test]
+    fn typographic_dashes_get_a_hint() {
+        assert_eq!(error("\u{2212}1").help.as_deref(), Some("this is a Unicode minus sign; type `-`"));
+        assert_eq!(error("1 \u{2014} 2").help.as_deref(), Some("this is a Unicode dash; type `-`"));
+    }
+
+    #[test]
+    fn an_accented_letter_names_the_whole_word() {
+        assert_eq!(error("put sphère").help.as_deref(), Some("`sphère` is French: the keyword is `sphere`"));
+        assert_eq!(
+            error("let café = 1").help.as_deref(),
+            Some("names use only the letters a to z without accents, digits and `_`")
+        );
     }
 
     #[test]

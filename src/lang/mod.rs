@@ -9,6 +9,7 @@ pub mod parser;
 pub mod source;
 pub mod suggest;
 pub mod walk;
+pub mod words;
 
 pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};

@@ -9,6 +9,7 @@
 // shared with the rest of the crate); a syntax error happens once per parse,
 // so its size costs nothing that matters.
 
+mod context;
 mod errors;
 mod order;
 
@@ -18,8 +19,8 @@ use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
 use super::lexer::{Lexer, Token};
 use super::source::{SourceId, Span};
-
-pub(crate) use order::ItemOrder;
+use context::Tracked;
+use errors::Mode;
 
 lalrpop_mod!(
     #[allow(clippy::all, clippy::pedantic, unused_qualifications)]
@@ -30,60 +31,32 @@ lalrpop_mod!(
 /// Parses a whole `.ray` file: camera, ambient, lights, procedures, then
 /// instructions, in the order SPEC 2 gives.
 pub fn parse_file(source: SourceId, text: &str) -> Result<Program, Diagnostic> {
-    parse_file_with_line_offset(source, text, 0)
+    let program = parse(source, text, Mode::File)?;
+    order::check(source, text, &program)?;
+    Ok(program)
 }
 
 /// Parses one input of the interactive session: any items, in any order (SPEC 7).
 pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> {
-    parse_items_with_line_offset(source, text, 0)
+    parse(source, text, Mode::Session)
 }
 
-/// Like [`parse_file`], for a text whose first line is line `line_offset + 1`
-/// of what the user sees (see [`super::source::SourceFile::line_offset`]), so
-/// that messages such as "opened at line 12" give the user's line numbers.
-pub fn parse_file_with_line_offset(source: SourceId, text: &str, line_offset: usize) -> Result<Program, Diagnostic> {
-    parse(source, text, &ItemOrder::file(source, text), line_offset)
-}
-
-/// Like [`parse_items`], for a text whose first line is line `line_offset + 1`.
-pub fn parse_items_with_line_offset(source: SourceId, text: &str, line_offset: usize) -> Result<Program, Diagnostic> {
-    parse(source, text, &ItemOrder::any(), line_offset)
-}
-
-/// Runs the generated parser over the lexer, then the end-of-file order check.
-fn parse(source: SourceId, text: &str, order: &ItemOrder, line_offset: usize) -> Result<Program, Diagnostic> {
-    let tokens = Lexer::new(source, text);
-    match grammar::ItemsParser::new().parse(source, order, tokens) {
-        Ok(items) => {
-            order.check_end(text)?;
-            Ok(Program { items })
-        }
-        Err(error) => Err(errors::syntax_error(source, text, line_offset, order, error)),
+/// Runs the generated parser over the tokens, recording what they open so
+/// that a syntax error can say what is not closed.
+fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic> {
+    let mut tokens = Tracked::new(source, text);
+    let parsed = grammar::ItemsParser::new().parse(source, &mut tokens);
+    match parsed {
+        Ok(items) => Ok(Program { items }),
+        Err(error) => Err(errors::syntax_error(source, text, mode, tokens.context(), error)),
     }
-}
-
-/// Appends `item`, spanning `span`, to `items` if the file order allows it
-/// here (the grammar's action for each completed item).
-pub(crate) fn push_item(
-    mut items: Vec<Item>,
-    item: Item,
-    order: &ItemOrder<'_>,
-    span: Span,
-) -> Result<Vec<Item>, ParseError<usize, Token, Box<Diagnostic>>> {
-    order.check(&item, span).map_err(|error| ParseError::User { error })?;
-    items.push(item);
-    Ok(items)
 }
 
 /// Appends the instruction of `kind` spanning `span` to `items` (the
 /// grammar's action for a top-level instruction).
-pub(crate) fn push_instr(
-    items: Vec<Item>,
-    kind: InstrKind,
-    order: &ItemOrder<'_>,
-    span: Span,
-) -> Result<Vec<Item>, ParseError<usize, Token, Box<Diagnostic>>> {
-    push_item(items, Item::Instr(Instr { kind, span }), order, span)
+pub(crate) fn push_instr(mut items: Vec<Item>, kind: InstrKind, span: Span) -> Vec<Item> {
+    items.push(Item::Instr(Instr { kind, span }));
+    items
 }
 
 /// Appends the instruction of `kind` spanning `span` to a block.
@@ -109,7 +82,7 @@ pub enum EntryState {
 /// at the end of the text means only that more is needed.
 pub fn entry_state(text: &str) -> EntryState {
     let source = SourceId::default();
-    match grammar::ItemsParser::new().parse(source, &ItemOrder::any(), Lexer::new(source, text)) {
+    match grammar::ItemsParser::new().parse(source, Lexer::new(source, text)) {
         Ok(_) => EntryState::Complete,
         Err(ParseError::UnrecognizedEof { .. }) => EntryState::Unfinished,
         Err(_) => EntryState::Broken,
@@ -127,49 +100,20 @@ pub fn entry_state(text: &str) -> EntryState {
 /// lexing error, or with an `end` or `)` that closes nothing, is complete:
 /// submitting it shows the error at once instead of waiting for more lines.
 pub fn is_incomplete(text: &str) -> bool {
-    let mut open_constructs = 0usize;
-    let mut open_parens = 0usize;
+    let mut tokens = Tracked::new(SourceId::default(), text);
     let mut last = None;
-    for token in Lexer::new(SourceId::default(), text) {
+    while let Some(token) = tokens.next() {
         let Ok((_, token, _)) = token else {
             return false;
         };
-        if opens_construct(&token) {
-            open_constructs += 1;
-        }
-        match token {
-            Token::End => match open_constructs.checked_sub(1) {
-                Some(depth) => open_constructs = depth,
-                None => return false,
-            },
-            Token::LParen => open_parens += 1,
-            Token::RParen => match open_parens.checked_sub(1) {
-                Some(depth) => open_parens = depth,
-                None => return false,
-            },
-            _ => {}
+        if tokens.context().stray_closer {
+            return false;
         }
         last = Some(token);
     }
-    open_constructs > 0 || open_parens > 0 || last.is_some_and(|token| needs_more(&token))
-}
-
-/// Whether `token` opens a construct that `end` closes.
-pub(crate) fn opens_construct(token: &Token) -> bool {
-    matches!(
-        token,
-        Token::Camera
-            | Token::Light
-            | Token::Proc
-            | Token::Sphere
-            | Token::Plane
-            | Token::Box
-            | Token::Translate
-            | Token::Rotate
-            | Token::Scale
-            | Token::Group
-            | Token::If
-    )
+    let context = tokens.context();
+    !context.stray_closer
+        && (!context.open.is_empty() || !context.parens.is_empty() || last.is_some_and(|token| needs_more(&token)))
 }
 
 /// Whether an input cannot end with `token`.

@@ -21,13 +21,10 @@ use super::commands::{COMMANDS, is_command};
 use super::help;
 use super::session::Vocabulary;
 use super::syntax::{TokenKind, is_word_char, tokens};
-use crate::lang::lexer::keyword_names;
+use crate::lang::words::{self, Role};
 
 /// Commands whose arguments are file names.
 const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim", ":watch", ":write"];
-
-/// Keywords that are functions: they complete up to their parenthesis.
-const FUNCTIONS: &[&str] = &["sin", "cos", "sqrt"];
 
 /// Lines longer than this are not coloured: colouring repaints the line at
 /// every key, and a long pasted line would take seconds.
@@ -89,7 +86,7 @@ impl RayHelper {
         if typed.is_empty() {
             return (pos, Vec::new());
         }
-        let keywords = keyword_names().map(keyword_candidate);
+        let keywords = words::language().map(keyword_candidate);
         let mut candidates: Vec<Pair> =
             keywords.chain(self.names.iter().cloned()).filter(|pair| pair.replacement.starts_with(typed)).collect();
         candidates.sort_by(|a, b| a.display.cmp(&b.display));
@@ -109,12 +106,13 @@ pub(crate) fn name_candidates(vocabulary: &Vocabulary) -> Vec<Pair> {
     variables.chain(procedures).collect()
 }
 
-/// A keyword followed by a space, or a function with its parenthesis.
-fn keyword_candidate(keyword: &str) -> Pair {
-    if FUNCTIONS.contains(&keyword) {
-        Pair { display: format!("{keyword}(x)"), replacement: format!("{keyword}(") }
+/// A word of the language followed by a space, or a function with its parenthesis.
+fn keyword_candidate(word: &words::Word) -> Pair {
+    let text = word.text;
+    if word.role() == Some(Role::Function) {
+        Pair { display: format!("{text}(x)"), replacement: format!("{text}(") }
     } else {
-        plain(keyword, &format!("{keyword} "))
+        plain(text, &format!("{text} "))
     }
 }
 

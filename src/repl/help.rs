@@ -2,6 +2,7 @@
 //! language and every command of the session, written for learners.
 
 use crate::lang::suggest::closest;
+use crate::lang::words::{self, Kind};
 
 /// One help page.
 #[derive(Debug, Clone, Copy)]
@@ -52,7 +53,7 @@ const GROUPS: &[(&str, &[&str])] = &[
 pub(crate) const TOPICS: &[Topic] = &[
     Topic {
         name: "camera",
-        aliases: &["distance", "angle"],
+        aliases: &[],
         summary: "where the eye is and how wide it sees",
         text: "\
 camera distance D angle A end
@@ -76,7 +77,7 @@ Example:
     },
     Topic {
         name: "light",
-        aliases: &["vector", "intensity"],
+        aliases: &[],
         summary: "a far away light shining from one direction",
         text: "\
 light vector RX, RY, RZ intensity I end
@@ -89,7 +90,7 @@ Example:
     },
     Topic {
         name: "sphere",
-        aliases: &["radius", "center"],
+        aliases: &[],
         summary: "a ball: center and radius",
         text: "\
 sphere center X, Y, Z radius R TEXTURE end
@@ -100,7 +101,7 @@ Example:
     },
     Topic {
         name: "plane",
-        aliases: &["shift"],
+        aliases: &[],
         summary: "a flat floor, wall or ceiling that goes on forever",
         text: "\
 plane rotation RX, RY, RZ shift D TEXTURE end
@@ -112,7 +113,7 @@ Example (a floor one unit below the origin):
     },
     Topic {
         name: "box",
-        aliases: &["length"],
+        aliases: &[],
         summary: "a box: center and sizes along x, y and z",
         text: "\
 box center X, Y, Z length W, H, D TEXTURE end
@@ -123,7 +124,7 @@ Example:
     },
     Topic {
         name: "texture",
-        aliases: &["kd", "ks", "phong", "color"],
+        aliases: &[],
         summary: "how a surface looks: kd ks phong color",
         text: "\
 kd KD ks KS phong N color R, G, B
@@ -265,7 +266,7 @@ Example:
     },
     Topic {
         name: "if",
-        aliases: &["then", "else"],
+        aliases: &[],
         summary: "do something only when a condition holds",
         text: "\
 if CONDITION then INSTRUCTIONS [else INSTRUCTIONS] end
@@ -332,7 +333,7 @@ Example (a ball that rises in an animation):
     },
     Topic {
         name: "functions",
-        aliases: &["sin", "cos", "sqrt"],
+        aliases: &[],
         summary: "sin, cos and sqrt",
         text: "\
 sin(X)  cos(X)  sqrt(X)
@@ -647,9 +648,11 @@ Example:
     },
 ];
 
-/// The page for `name` (a topic or one of its aliases), if there is one.
+/// The page for `name` (a topic or one of its aliases, a word of the
+/// language, or a word from elsewhere that means one), if there is one.
 pub(crate) fn find(name: &str) -> Option<&'static Topic> {
-    TOPICS.iter().find(|topic| topic.name == name || topic.aliases.contains(&name)).or_else(|| {
+    let topic = |wanted: &str| TOPICS.iter().find(|topic| topic.name == wanted || topic.aliases.contains(&wanted));
+    topic(name).or_else(|| topic(word_topic(name)?)).or_else(|| {
         // `:help :sphere` or `:help help`: try with and without the colon.
         let other = match name.strip_prefix(':') {
             Some(bare) => bare.to_string(),
@@ -659,9 +662,21 @@ pub(crate) fn find(name: &str) -> Option<&'static Topic> {
     })
 }
 
-/// Every name `:help` knows, for completion and suggestions.
+/// The page the words table gives for `name`, or for the word of the
+/// language that `name` means (`rayon` leads to the page of `radius`).
+fn word_topic(name: &str) -> Option<&'static str> {
+    let word = words::lookup(name)?;
+    match word.kind {
+        Kind::Elsewhere { means } => words::lookup(means).map(|meant| meant.topic),
+        _ => Some(word.topic).filter(|topic| !topic.is_empty()),
+    }
+}
+
+/// Every name `:help` knows, for completion and suggestions: the pages, and
+/// the words of the language.
 pub(crate) fn all_names() -> impl Iterator<Item = &'static str> {
-    TOPICS.iter().flat_map(|topic| std::iter::once(topic.name).chain(topic.aliases.iter().copied()))
+    let pages = TOPICS.iter().flat_map(|topic| std::iter::once(topic.name).chain(topic.aliases.iter().copied()));
+    pages.chain(words::language().map(|word| word.text))
 }
 
 /// The known name closest to a misspelt one.
@@ -686,14 +701,13 @@ pub(crate) fn overview() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::lexer::keyword_names;
     use crate::repl::commands::COMMANDS;
 
     #[test]
-    fn every_keyword_has_a_page_with_an_example() {
-        for keyword in keyword_names() {
-            let topic = find(keyword).unwrap_or_else(|| panic!("no help for `{keyword}`"));
-            assert!(topic.text.contains("Example"), "no example for `{keyword}`");
+    fn every_word_of_the_language_has_a_page_with_an_example() {
+        for word in words::language() {
+            let topic = find(word.text).unwrap_or_else(|| panic!("no help for `{}`", word.text));
+            assert!(topic.text.contains("Example"), "no example for `{}`", word.text);
         }
         for word in ["time", "conditions", "texture"] {
             assert!(find(word).is_some(), "no help for `{word}`");
@@ -745,6 +759,7 @@ mod tests {
         assert_eq!(find("time").map(|t| t.name), Some("time"));
         assert_eq!(find(":time").map(|t| t.name), Some(":time"));
         assert_eq!(find("kd").map(|t| t.name), Some("texture"));
+        assert_eq!(find("rayon").map(|t| t.name), Some("sphere"));
         assert_eq!(suggestion("spehre"), Some("sphere"));
     }
 }

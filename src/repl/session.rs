@@ -10,7 +10,6 @@ use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::Program;
 use crate::lang::eval::PrintLog;
-use crate::lang::parser::parse_items_with_line_offset;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
 use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
@@ -154,7 +153,7 @@ impl Session {
     /// error the session is unchanged (SPEC 7).
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
-        let program = parse_items_with_line_offset(source, text, line_offset)?;
+        let program = parse_items(source, text)?;
         self.run(Input { text: text.to_string(), loaded_from: None, program: Rc::new(program) })
     }
 

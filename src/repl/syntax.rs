@@ -4,15 +4,7 @@
 //! The language's own lexer reports errors; this one never fails, because the
 //! line being edited is usually not a valid program yet.
 
-use crate::lang::lexer::keyword;
-
-/// Keywords that open a construct closed by `end`.
-const OPENERS: &[&str] =
-    &["camera", "light", "proc", "sphere", "plane", "box", "translate", "rotate", "scale", "group", "if"];
-
-/// Names the language gives a meaning to without reserving them as keywords
-/// (plus the built-in functions and `pi`, coloured alike).
-const BUILTINS: &[&str] = &["time", "sin", "cos", "sqrt", "pi"];
+use crate::lang::words::{self, Kind, Role};
 
 /// What a piece of text is, for colouring.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -94,8 +86,8 @@ pub(crate) fn open_constructs(text: &str) -> Vec<&'static str> {
         let word = &text[token.start..token.end];
         if word == "end" {
             open.pop();
-        } else if let Some(opener) = OPENERS.iter().find(|o| **o == word) {
-            open.push(*opener);
+        } else if let Some(opener) = words::lookup(word).filter(|word| word.opens()) {
+            open.push(opener.text);
         }
     }
     open
@@ -111,13 +103,13 @@ pub(crate) fn continuation_prompt(pending: &str) -> String {
     }
 }
 
+/// The colour of a word: the built-in functions, `pi` and `time` apart from
+/// the other keywords.
 fn classify_word(word: &str) -> TokenKind {
-    if BUILTINS.contains(&word) {
-        TokenKind::Builtin
-    } else if keyword(word).is_some() {
-        TokenKind::Keyword
-    } else {
-        TokenKind::Ident
+    match words::lookup(word).map(|word| &word.kind) {
+        Some(Kind::Keyword { role: Role::Function | Role::Constant, .. } | Kind::Predefined) => TokenKind::Builtin,
+        Some(Kind::Keyword { .. }) => TokenKind::Keyword,
+        _ => TokenKind::Ident,
     }
 }
 

@@ -1,61 +1,62 @@
 //! From lalrpop's syntax errors to messages a learner can act on.
 //!
 //! lalrpop reports the unexpected token and the list of grammar terminals it
-//! would have accepted. This module reads the tokens before the error again to
-//! know what is still open (`proc`, `sphere`, `(`...), groups the expected
-//! terminals into categories ("an expression", "an object", "`end` to close
-//! the `sphere` opened at line 12"), and recognises the usual mistakes (a
-//! missing comma in a triple, a texture out of order, a misspelt keyword).
+//! would have accepted. This module takes what the tokens before it left
+//! open from the [`Context`] recorded while parsing, groups the expected
+//! terminals into categories of the words table ("an expression", "an
+//! object", "`end` to close this `sphere`"), and recognises the usual
+//! mistakes (a missing comma in a triple, a missing texture part, a decimal
+//! comma, a misspelt keyword). Messages carry no line numbers: positions are
+//! spans, turned into lines when the diagnostic is shown.
 
 use lalrpop_util::ParseError;
 
-use super::opens_construct;
-use super::order::{ItemOrder, Phase, line_number};
+use super::context::{Blame, Context, Misclosed, Open};
+use super::order::start_error;
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::lexer::{self, Lexer, Token};
 use crate::lang::source::{SourceId, Span};
 use crate::lang::suggest;
+use crate::lang::words::{self, Role};
 
 /// The error type of the generated parser.
 pub(super) type GrammarError = ParseError<usize, Token, Box<Diagnostic>>;
 
-/// The terminals that can start an expression.
-const EXPRESSION_STARTS: [&str; 8] = ["NUMBER", "NAME", "(", "-", "pi", "sin", "cos", "sqrt"];
-/// The terminals that can start an object expression.
-const OBJECT_STARTS: [&str; 8] = ["sphere", "plane", "box", "translate", "rotate", "scale", "group", "NAME"];
-/// The terminals that can start an instruction.
-const INSTRUCTION_STARTS: [&str; 6] = ["let", "object", "put", "if", "print", "NAME"];
-/// The keywords that start the items other than instructions.
-const DEFINITION_STARTS: [&str; 4] = ["camera", "ambient", "light", "proc"];
+/// What is being parsed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Mode {
+    /// A whole file, which starts with the camera.
+    File,
+    /// An input of the session, or a file loaded into it: any items.
+    Session,
+}
+
 /// The comparison operators.
 const COMPARISONS: [&str; 6] = ["=", "!=", "<", "<=", ">", ">="];
 /// Operators that may continue an expression or a condition; they are
 /// always expected after one, so they are left out of messages.
 const CONTINUATIONS: [&str; 6] = ["+", "-", "*", "/", "&", "|"];
-/// The keywords of a texture, in their required order.
-const TEXTURE: [&str; 4] = ["kd", "ks", "phong", "color"];
 /// How a texture is written.
 const TEXTURE_SHAPE: &str = "`kd ... ks ... phong ... color r, g, b`";
 
-/// Turns an error of the generated parser into a diagnostic.
+/// Turns an error of the generated parser into a diagnostic; `context`
+/// tells what the tokens before the error left open.
 pub(super) fn syntax_error(
     source: SourceId,
     text: &str,
-    line_offset: usize,
-    order: &ItemOrder<'_>,
+    mode: Mode,
+    context: &Context,
     error: GrammarError,
 ) -> Diagnostic {
-    let place = Place { source, text, line_offset };
+    let place = Place { source, text };
     match error {
         ParseError::User { error } => *error,
         ParseError::UnrecognizedEof { location, expected } => {
-            let context = Context::scan(place, usize::MAX);
-            end_of_file_error(place, &context, &Expected::new(expected), location)
+            end_of_file_error(place, context, &Expected::new(expected), location)
         }
         ParseError::UnrecognizedToken { token: (start, token, end), expected } => {
-            let context = Context::scan(place, start);
             let found = Found { token, span: Span::new(source, start, end) };
-            token_error(place, &context, &Expected::new(expected), order, &found)
+            token_error(place, mode, context, &Expected::new(expected), &found)
         }
         ParseError::ExtraToken { token: (start, _, end) } => {
             let span = Span::new(source, start, end);
@@ -69,12 +70,11 @@ pub(super) fn syntax_error(
     }
 }
 
-/// The text being parsed and how to name positions in it.
+/// The text being parsed.
 #[derive(Debug, Clone, Copy)]
 struct Place<'t> {
     source: SourceId,
     text: &'t str,
-    line_offset: usize,
 }
 
 impl Place<'_> {
@@ -83,9 +83,25 @@ impl Place<'_> {
         self.text.get(span.start as usize..span.end as usize).unwrap_or("")
     }
 
-    /// The line, as the user sees it, where `span` starts.
-    fn line(&self, span: Span) -> usize {
-        line_number(self.text, span.start as usize, self.line_offset)
+    /// The token at `span`, read again from the text: the context keeps
+    /// only where the last tokens are.
+    fn token(&self, span: Option<Span>) -> Option<(Token, Span)> {
+        let span = span?;
+        let (_, token, _) = Lexer::new(self.source, self.slice(span)).next()?.ok()?;
+        Some((token, span))
+    }
+
+    /// The token before the one the parser stopped at.
+    fn previous(&self, context: &Context) -> Option<(Token, Span)> {
+        self.token(context.previous())
+    }
+
+    /// How to name an open construct: "`proc ring`", "`sphere`".
+    fn construct(&self, open: &Open) -> String {
+        match open.name {
+            Some(name) => format!("`{} {}`", open.word.text, self.slice(name)),
+            None => format!("`{}`", open.word.text),
+        }
     }
 }
 
@@ -93,84 +109,6 @@ impl Place<'_> {
 struct Found {
     token: Token,
     span: Span,
-}
-
-/// What the tokens before an error leave open.
-#[derive(Debug, Default)]
-struct Context {
-    /// Constructs opened and not yet closed by `end`, innermost last.
-    openers: Vec<(Token, Span)>,
-    /// Parentheses opened and not yet closed, innermost last, each with the
-    /// token before it (`sqrt` in `sqrt(`).
-    parens: Vec<(Span, Option<Token>)>,
-    /// The last token before the error, and the one before it.
-    previous: Option<(Token, Span)>,
-    before_previous: Option<(Token, Span)>,
-    /// The name of the triple being read, if any ("the centre").
-    triple: Option<&'static str>,
-}
-
-impl Context {
-    /// Reads the tokens of `place` that start before byte `limit`.
-    fn scan(place: Place<'_>, limit: usize) -> Context {
-        let mut context = Context::default();
-        for token in Lexer::new(place.source, place.text) {
-            let Ok((start, token, end)) = token else {
-                break;
-            };
-            if start >= limit {
-                break;
-            }
-            context.read(token, Span::new(place.source, start, end));
-        }
-        context
-    }
-
-    /// Takes one token into account.
-    fn read(&mut self, token: Token, span: Span) {
-        if opens_construct(&token) {
-            self.openers.push((token.clone(), span));
-        }
-        match token {
-            Token::End => {
-                self.openers.pop();
-            }
-            Token::LParen => {
-                let before = self.previous.as_ref().map(|(token, _)| token.clone());
-                self.parens.push((span, before));
-            }
-            Token::RParen => {
-                self.parens.pop();
-            }
-            _ => {}
-        }
-        if token.is_keyword() && !matches!(token, Token::Pi | Token::Sin | Token::Cos | Token::Sqrt) {
-            self.triple = self.triple_after(&token);
-        }
-        self.before_previous = self.previous.take();
-        self.previous = Some((token, span));
-    }
-
-    /// The name of the triple that follows `keyword`, if one does.
-    fn triple_after(&self, keyword: &Token) -> Option<&'static str> {
-        match keyword {
-            Token::Center => Some("the centre"),
-            Token::Length => Some("the lengths"),
-            Token::Rotation | Token::Vector => Some("the rotation"),
-            Token::Color => Some("the colour"),
-            Token::By => match self.openers.last() {
-                Some((Token::Translate, _)) => Some("the vector"),
-                Some((Token::Rotate, _)) => Some("the rotation"),
-                _ => None,
-            },
-            _ => None,
-        }
-    }
-
-    /// The innermost open construct.
-    fn innermost(&self) -> Option<&(Token, Span)> {
-        self.openers.last()
-    }
 }
 
 /// The terminals lalrpop would have accepted, as plain names (`end`, `NUMBER`).
@@ -196,11 +134,6 @@ impl Expected {
         self.names.iter().any(|n| n == name)
     }
 
-    /// Whether any of `names` was expected.
-    fn has_any(&self, names: &[&str]) -> bool {
-        names.iter().any(|name| self.has(name))
-    }
-
     /// The expected names, without the operators that merely could have
     /// continued what came before (unless nothing else is expected).
     fn essential(&self) -> Vec<&str> {
@@ -220,27 +153,46 @@ impl Expected {
     }
 }
 
+/// The role of the keyword `name` in the grammar, if it is one.
+fn role(name: &str) -> Option<Role> {
+    words::lookup(name).and_then(|word| word.role())
+}
+
+/// Whether the terminal `name` can start an expression.
+fn starts_expression(name: &str) -> bool {
+    matches!(name, "NUMBER" | "NAME" | "(" | "-") || matches!(role(name), Some(Role::Function | Role::Constant))
+}
+
+/// Whether the terminal `name` can start an object expression.
+fn starts_object(name: &str) -> bool {
+    name == "NAME" || matches!(role(name), Some(Role::Shape | Role::Transformation))
+}
+
+/// Whether the terminal `name` can start an instruction.
+fn starts_instruction(name: &str) -> bool {
+    name == "NAME" || role(name) == Some(Role::Instruction)
+}
+
 /// The error when the text ends too early.
 fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, location: usize) -> Diagnostic {
     let span = last_character(place, location);
-    if let Some((opener, opened)) = context.innermost().filter(|_| expected.has("end")) {
-        let name = opener.to_string();
-        let line = place.line(*opened);
-        return Diagnostic::error(
-            span,
-            format!("unexpected end of file: the `{name}` opened at line {line} is not closed with `end`"),
-        )
-        .with_label("the file ends here")
-        .with_related(*opened, format!("this `{name}` needs an `end`"));
+    if expected.has("end")
+        && let Some(blame) = context.blame()
+    {
+        return unclosed_error(place, blame, span, None);
     }
     let what = describe(place, context, &expected.essential());
-    let message = match &context.previous {
-        Some((_, previous)) => {
-            format!("unexpected end of file: expected {what} after `{}`", place.slice(*previous))
+    let message = match context.previous() {
+        Some(previous) => {
+            format!("unexpected end of file: expected {what} after `{}`", place.slice(previous))
         }
         None => format!("unexpected end of file: expected {what}"),
     };
-    Diagnostic::error(span, message).with_label("the file ends here")
+    let diagnostic = Diagnostic::error(span, message).with_label("the file ends here");
+    match colour_help(place, context, place.text.len()) {
+        Some(help) => diagnostic.with_help(help),
+        None => diagnostic,
+    }
 }
 
 /// The span of the character that ends at byte `location` (the end of the
@@ -253,21 +205,91 @@ fn last_character(place: Place<'_>, location: usize) -> Span {
     }
 }
 
-/// The error at a token the parser did not expect.
-fn token_error(
+/// The error for a construct that lacks its `end`, found at `at`: the
+/// unexpected token `found`, or the end of the file when `None`.
+fn unclosed_error(place: Place<'_>, blame: Blame<'_>, at: Span, found: Option<&Found>) -> Diagnostic {
+    let prefix = if found.is_some() { "" } else { "unexpected end of file: " };
+    let (open, diagnostic) = match blame {
+        Blame::Unclosed(open) => {
+            let construct = place.construct(open);
+            let label = match found {
+                Some(found) => format!("unexpected `{}`", place.slice(found.span)),
+                None => "the file ends here".to_string(),
+            };
+            let diagnostic = Diagnostic::error(at, format!("{prefix}expected `end` to close this {construct}"))
+                .with_label(label)
+                .with_related(open.span, format!("this {construct} is not closed"));
+            (open, diagnostic)
+        }
+        Blame::Misclosed(misclosed) => (&misclosed.construct, misclosed_error(place, misclosed, at, found, prefix)),
+    };
+    match else_if_help(open) {
+        Some((help, related)) => {
+            let diagnostic = diagnostic.with_help(help);
+            match related {
+                Some(span) => diagnostic.with_related(span, "this `if` needs its own `end`"),
+                None => diagnostic,
+            }
+        }
+        None => diagnostic,
+    }
+}
+
+/// The error for a construct closed by an `end` that lines up with an
+/// outer one: says which `end` went astray and what was read differently.
+fn misclosed_error(
     place: Place<'_>,
-    context: &Context,
-    expected: &Expected,
-    order: &ItemOrder<'_>,
-    found: &Found,
+    misclosed: &Misclosed,
+    at: Span,
+    found: Option<&Found>,
+    prefix: &str,
 ) -> Diagnostic {
-    let diagnostic = token_message(place, context, expected, order, found);
-    let diagnostic = add_spelling_help(diagnostic, place, context, expected, found);
+    let construct = place.construct(&misclosed.construct);
+    let outer = place.construct(&misclosed.meant_for);
+    let label = match found {
+        Some(_) => format!("{outer} is still open here"),
+        None => format!("the file ends here, with {outer} still open"),
+    };
+    let diagnostic = Diagnostic::error(at, format!("{prefix}expected `end` to close this {construct}"))
+        .with_label(label)
+        .with_related(misclosed.construct.span, format!("this {construct} is not closed"))
+        .with_related(misclosed.end, format!("this `end`, lined up with {outer}, closed the {construct}"));
+    let body_end = misclosed.construct.dedent.filter(|_| misclosed.construct.body_indented == Some(true));
+    let diagnostic = match body_end {
+        Some(body_end) => diagnostic
+            .with_related(body_end, format!("the {construct}'s body seems to end before this line"))
+            .with_note(format!(
+                "so the lines from there to that `end` were read as the body of the {construct}, \
+                 and the lines after it as the body of {outer}"
+            )),
+        None => diagnostic.with_note(format!("so the lines after that `end` were read as the body of {outer}")),
+    };
+    diagnostic.with_help(format!("add an `end` lined up with the {construct} where its body ends"))
+}
+
+/// The help for an `if` written as `else if`, which needs an `end` of its
+/// own, and the inner `if` to point at, if `open` is one of the two.
+fn else_if_help(open: &Open) -> Option<(&'static str, Option<Span>)> {
+    let help = "`else if` starts a second `if` inside the `else`, and each `if` needs its own `end`: \
+                `if a then ... else if b then ... end end`";
+    if open.after_else {
+        return Some((help, None));
+    }
+    open.else_if.map(|inner| (help, Some(inner)))
+}
+
+/// The error at a token the parser did not expect.
+fn token_error(place: Place<'_>, mode: Mode, context: &Context, expected: &Expected, found: &Found) -> Diagnostic {
+    let diagnostic = token_message(place, mode, context, expected, found);
     if diagnostic.help.is_some() {
         return diagnostic;
     }
-    match common_mistake(place, context, expected, found) {
-        Some(help) => diagnostic.with_help(help),
+    if let Some(help) = common_mistake(place, context, expected, found) {
+        return diagnostic.with_help(help);
+    }
+    match spelling_help(place, context, expected, found) {
+        Some((help, Some((span, text)))) => diagnostic.with_related(span, text).with_help(help),
+        Some((help, None)) => diagnostic.with_help(help),
         None => diagnostic,
     }
 }
@@ -275,18 +297,21 @@ fn token_error(
 /// A hint for mistakes learners often make, recognised from the unexpected
 /// token and what comes before it.
 fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, found: &Found) -> Option<String> {
-    let previous = context.previous.as_ref().map(|(token, _)| token);
+    let previous = place.previous(context);
+    if let Some(help) = decimal_comma_help(place, context, found) {
+        return Some(help);
+    }
     match (&found.token, previous) {
-        (Token::Eq, Some(Token::Eq)) => Some("a comparison is written with a single `=`".to_string()),
-        (Token::LParen, Some(Token::Number(_) | Token::RParen)) if expected.has("*") => {
+        (Token::Eq, Some((Token::Eq, _))) => Some("a comparison is written with a single `=`".to_string()),
+        (Token::LParen, Some((Token::Number(_) | Token::RParen, _))) if expected.has("*") => {
             Some("to multiply, write `*`, like `2 * (x + 1)`".to_string())
         }
-        (Token::Eq, Some(keyword)) if keyword.is_keyword() && expected.has("NUMBER") => {
+        (Token::Eq, Some((keyword, _))) if keyword.is_keyword() && expected.has("NUMBER") => {
             Some(format!("write the value right after `{keyword}`, without `=`"))
         }
         (Token::Comma, _) => match context.parens.last() {
-            Some((_, Some(function @ (Token::Sin | Token::Cos | Token::Sqrt)))) => {
-                Some(format!("`{function}` takes a single number"))
+            Some((_, Some(function))) if function.role() == Some(Role::Function) => {
+                Some(format!("`{}` takes a single number", function.text))
             }
             Some(_) if context.triple.is_some() => {
                 Some("write the three parts without parentheses, like `0, 0, 1`".to_string())
@@ -294,43 +319,70 @@ fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, foun
             _ => None,
         },
         (token, _) if token.is_keyword() && expects_only_a_name(expected) => {
-            Some(format!("`{}` is a reserved word of the language; choose another name", place.slice(found.span)))
+            let word = place.slice(found.span);
+            let about = words::lookup(word).map(|w| format!(" ({})", w.about)).unwrap_or_default();
+            Some(format!("`{word}` is a reserved word of the language{about}; choose another name"))
         }
-        _ => None,
+        _ => colour_help(place, context, found.span.start as usize),
     }
+}
+
+/// "decimal numbers are written with a point", when `found` is a comma
+/// between digits, as in `0,5`.
+fn decimal_comma_help(place: Place<'_>, context: &Context, found: &Found) -> Option<String> {
+    let (Token::Number(_), number) = place.previous(context)? else { return None };
+    if found.token != Token::Comma || number.end != found.span.start {
+        return None;
+    }
+    let fraction: String = place.text[found.span.end as usize..].chars().take_while(char::is_ascii_digit).collect();
+    (!fraction.is_empty())
+        .then(|| format!("decimal numbers are written with a point: `{}.{fraction}`", place.slice(number)))
+}
+
+/// "colours are three numbers", when a `#ff0000` colour (read as a comment)
+/// follows `color` in the text before byte `until`.
+fn colour_help(place: Place<'_>, context: &Context, until: usize) -> Option<String> {
+    let (Token::Color, color) = place.previous(context)? else { return None };
+    let after = place.text.get(color.end as usize..until)?.trim_start();
+    let digits: String = after.strip_prefix('#')?.chars().take_while(char::is_ascii_alphanumeric).collect();
+    let six_digits: String = match digits.len() {
+        6 => digits,
+        3 => digits.chars().flat_map(|digit| [digit, digit]).collect(),
+        _ => return None,
+    };
+    let [_, red, green, blue] = u32::from_str_radix(&six_digits, 16).ok()?.to_be_bytes();
+    Some(format!("`#` starts a comment; colours are three numbers from 0 to 255: `color {red}, {green}, {blue}`"))
 }
 
 /// The message (and label and related spans) for an unexpected token,
 /// before any spelling help.
-fn token_message(
-    place: Place<'_>,
-    context: &Context,
-    expected: &Expected,
-    order: &ItemOrder<'_>,
-    found: &Found,
-) -> Diagnostic {
+fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Expected, found: &Found) -> Diagnostic {
     let span = found.span;
     let found_text = place.slice(span);
     let unexpected = format!("unexpected `{found_text}`");
-    let innermost = context.innermost();
+    let innermost = context.open.last();
     if found.token == Token::End && innermost.is_none() {
         return Diagnostic::error(span, "unexpected `end`: nothing is open here")
             .with_label("this `end` closes nothing");
     }
-    if found.token == Token::Else && !matches!(innermost, Some((Token::If, _))) {
+    if found.token == Token::Else && innermost.is_none_or(|open| open.word.text != "if") {
         return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`")
             .with_label("this `else` has no `if`");
     }
-    if order.is_file() && order.phase() == Phase::Start && context.previous.is_none() {
-        return Diagnostic::error(span, "a scenario file must start with `camera ... end`")
-            .with_label("expected `camera` here")
-            .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`");
+    if mode == Mode::File && context.previous().is_none() {
+        return start_error(span);
     }
-    if TEXTURE.contains(&found_text) && expected.has_any(&TEXTURE) {
-        return Diagnostic::error(span, format!("the texture must be {TEXTURE_SHAPE} in this order"))
-            .with_label("out of order");
+    if let Some(diagnostic) = texture_error(place, expected, found) {
+        return diagnostic;
     }
-    if expected.has("let") && OBJECT_STARTS[..7].contains(&found_text) {
+    if let (Token::LParen, Some((Token::Ident(name), name_span))) = (&found.token, place.previous(context))
+        && expected.has("*")
+    {
+        return Diagnostic::error(name_span, format!("unknown function `{name}`"))
+            .with_label("not a function of the language")
+            .with_help(words::hint_for_function(&name));
+    }
+    if expected.has("let") && found.token.is_keyword() && starts_object(found_text) {
         return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))
             .with_label("an object is not an instruction")
             .with_help("write `put` before it to add it to the scene, or `object name =` to give it a name");
@@ -353,52 +405,104 @@ fn token_message(
                     .with_related(*paren, "the parenthesis opened here");
             }
         }
+        ["end"] => {
+            if let Some(blame) = context.blame() {
+                return unclosed_error(place, blame, span, Some(found));
+            }
+        }
         _ => {}
+    }
+    if essential.contains(&"end")
+        && let Some(blame @ Blame::Misclosed(_)) = context.blame()
+    {
+        return unclosed_error(place, blame, span, Some(found));
     }
     let what = describe(place, context, &essential);
     let closes = essential.contains(&"end") && innermost.is_some();
-    let message = match &context.previous {
-        Some((_, previous)) if !closes => {
-            format!("expected {what} after `{}`", place.slice(*previous))
+    let message = match context.previous() {
+        Some(previous) if !closes => {
+            format!("expected {what} after `{}`", place.slice(previous))
         }
         _ => format!("expected {what}"),
     };
     let diagnostic = Diagnostic::error(span, message).with_label(unexpected);
     match innermost {
-        Some((opener, opened)) if closes => diagnostic.with_related(*opened, format!("the `{opener}` opened here")),
+        Some(open) if closes => {
+            diagnostic.with_related(open.span, format!("this {} is not closed", place.construct(open)))
+        }
         _ => diagnostic,
     }
 }
 
-/// Adds "did you mean `sphere`?" when a name near the error looks like a
-/// misspelt keyword.
-fn add_spelling_help(
-    diagnostic: Diagnostic,
+/// The error for a texture whose parts are missing or out of order, when a
+/// part of it is expected and `found` is another part, or `end`.
+fn texture_error(place: Place<'_>, expected: &Expected, found: &Found) -> Option<Diagnostic> {
+    let texture: Vec<&str> = words::with_role(Role::Texture).collect();
+    let wanted = texture.iter().position(|part| expected.has(part))?;
+    let found_text = place.slice(found.span);
+    let missing = match texture.iter().position(|part| *part == found_text) {
+        Some(given) => given > wanted,
+        None => found.token == Token::End && wanted > 0,
+    };
+    if missing {
+        let part = texture[wanted];
+        return Some(
+            Diagnostic::error(found.span, format!("missing `{part}`: a texture is {TEXTURE_SHAPE}, in this order"))
+                .with_label(format!("expected `{part}` before this")),
+        );
+    }
+    texture.contains(&found_text).then(|| {
+        Diagnostic::error(found.span, format!("the texture must be {TEXTURE_SHAPE} in this order"))
+            .with_label("out of order")
+    })
+}
+
+/// The help for names near the error that the words table knows (a keyword
+/// in capitals, a word of the French course) or that look like a misspelt
+/// keyword, and the place to point at when the name is not the error spot.
+fn spelling_help(
     place: Place<'_>,
     context: &Context,
     expected: &Expected,
     found: &Found,
-) -> Diagnostic {
+) -> Option<(String, Option<(Span, String)>)> {
+    let earlier = [place.token(context.before_previous()), place.previous(context)];
+    let names: Vec<(&str, Span)> = earlier
+        .into_iter()
+        .flatten()
+        .chain([(found.token.clone(), found.span)])
+        .filter(|(token, _)| matches!(token, Token::Ident(_)))
+        .map(|(_, span)| (place.slice(span), span))
+        .collect();
+    let in_capitals: Vec<String> =
+        names.iter().filter_map(|(name, _)| words::in_lower_case(name)).map(|k| format!("`{k}`")).collect();
+    if !in_capitals.is_empty() {
+        return Some((format!("keywords are written in lower case: {}", in_capitals.join(", ")), None));
+    }
+    let not_a_keyword = |name: &str, span: Span| {
+        (span != found.span).then(|| (span, format!("`{name}` is not a keyword, so it is read as a name")))
+    };
+    for (name, span) in names.iter().rev() {
+        if let Some(hint) = words::hint_for_name(name) {
+            return Some((hint, not_a_keyword(name, *span)));
+        }
+    }
     if let Token::Ident(name) = &found.token {
         let suggestion = suggest::closest(name, expected.keywords())
             .or_else(|| suggest::closest(name, lexer::keyword_names()).filter(|_| name.len() >= 3));
         if let Some(keyword) = suggestion {
-            return diagnostic.with_help(format!("did you mean `{keyword}`?"));
+            return Some((format!("did you mean `{keyword}`?"), None));
         }
     }
-    let earlier = [&context.previous, &context.before_previous];
-    for (token, span) in earlier.into_iter().flatten() {
-        let Token::Ident(name) = token else { continue };
+    for (name, span) in names.iter().rev().filter(|(_, span)| *span != found.span) {
         if name.len() < 3 {
             continue;
         }
         if let Some(keyword) = suggest::closest(name, lexer::keyword_names()) {
-            return diagnostic
-                .with_related(*span, format!("`{}` is not a keyword, so it is read as a name", place.slice(*span)))
-                .with_help(format!("did you mean `{keyword}`?"));
+            return Some((format!("did you mean `{keyword}`?"), not_a_keyword(name, *span)));
         }
     }
-    diagnostic
+    None
 }
 
 /// Whether the parser wanted a new name there (after `let`, `object`,
@@ -408,32 +512,35 @@ fn expects_only_a_name(expected: &Expected) -> bool {
 }
 
 /// Describes the expected terminals in words: "an expression (...)",
-/// "`end` to close the `sphere` opened at line 12", joined with "or".
+/// "`end` to close this `sphere`", joined with "or".
 fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
     let mut left: Vec<&str> = essential.to_vec();
     let mut phrases: Vec<String> = Vec::new();
-    let mut take = |left: &mut Vec<&str>, names: &[&str], phrase: &str| {
-        left.retain(|name| !names.contains(name));
+    let mut take = |left: &mut Vec<&str>, belongs: &dyn Fn(&str) -> bool, phrase: &str| {
+        left.retain(|name| !belongs(name));
         phrases.push(phrase.to_string());
     };
     if left.contains(&"!") {
-        take(&mut left, &EXPRESSION_STARTS, "a condition (like `x < 1`)");
-        left.retain(|name| *name != "!");
+        take(&mut left, &|name| starts_expression(name) || name == "!", "a condition (like `x < 1`)");
     } else if left.contains(&"NUMBER") {
-        take(&mut left, &EXPRESSION_STARTS, "an expression (a number, a name, `(`...)");
+        take(&mut left, &starts_expression, "an expression (a number, a name, `(`...)");
     }
     if left.contains(&"sphere") {
-        take(&mut left, &OBJECT_STARTS, "an object (`sphere`, `plane`, `box`, a name...)");
+        take(&mut left, &starts_object, "an object (`sphere`, `plane`, `box`, a name...)");
     }
     if left.contains(&"let") {
-        take(&mut left, &INSTRUCTION_STARTS, "an instruction (`let`, `object`, `put`, `if` or a procedure call)");
-        left.retain(|name| !DEFINITION_STARTS.contains(name));
+        let instruction_or_definition = |name: &str| starts_instruction(name) || role(name) == Some(Role::Definition);
+        take(
+            &mut left,
+            &instruction_or_definition,
+            "an instruction (`let`, `object`, `put`, `if` or a procedure call)",
+        );
     }
     if left.contains(&"<") {
-        take(&mut left, &COMPARISONS, "a comparison (`=`, `<`, `>`, `<=`, `>=` or `!=`)");
+        take(&mut left, &|name| COMPARISONS.contains(&name), "a comparison (`=`, `<`, `>`, `<=`, `>=` or `!=`)");
     }
     if left.contains(&"kd") {
-        take(&mut left, &["kd"], &format!("the texture {TEXTURE_SHAPE}"));
+        take(&mut left, &|name| name == "kd", &format!("the texture {TEXTURE_SHAPE}"));
     }
     let mut end = None;
     for name in left {
@@ -450,8 +557,8 @@ fn describe(place: Place<'_>, context: &Context, essential: &[&str]) -> String {
 
 /// "`end`", and what it would close if something is open.
 fn end_phrase(place: Place<'_>, context: &Context) -> String {
-    match context.innermost() {
-        Some((opener, opened)) => format!("`end` to close the `{opener}` opened at line {}", place.line(*opened)),
+    match context.open.last() {
+        Some(open) => format!("`end` to close this {}", place.construct(open)),
         None => "`end`".to_string(),
     }
 }
