@@ -28,7 +28,7 @@ fn expected_texts(path: &Path) -> Vec<String> {
     let header = text.lines().take_while(|line| line.starts_with('#'));
     header
         .filter_map(|line| {
-            let help = line.strip_prefix("# expect-help: ").map(|help| format!("\nhelp: {help}\n"));
+            let help = line.strip_prefix("# expect-help: ").map(|help| format!("= help: {help}\n"));
             help.or_else(|| line.strip_prefix("# expect-text: ").map(str::to_owned))
         })
         .collect()

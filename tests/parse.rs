@@ -710,12 +710,13 @@ fn no_message_names_a_line() {
         "camera distance 1 angle 1 end\nambient 1\ncamera distance 1 angle 1 end\n",
     ];
     for text in texts {
-        let error = parse_file(SourceId(0), text).expect_err("invalid");
+        let mut map = SourceMap::new();
+        let id = map.add("scene.ray", text.to_string(), 0);
+        let error = parse_file(id, text).expect_err("invalid");
         let mut words = vec![error.message.clone()];
         words.extend(error.label.clone());
         words.extend(error.related.iter().map(|(_, label)| label.clone()));
-        let map = SourceMap::new();
-        words.extend(error.notes.iter().map(|note| note.display(&map, SourceId(0))));
+        words.extend(error.notes.iter().map(|note| note.display(&map, id)));
         for said in words {
             assert!(!said.contains("line "), "{text:?} gave {said:?}");
         }
