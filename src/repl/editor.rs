@@ -35,15 +35,53 @@ pub(crate) struct RayHelper {
     color: bool,
     /// The lines of the current input entered so far (empty at the first line).
     pending: String,
-    /// Names defined by the session, as completion candidates.
-    names: Vec<Pair>,
+    /// Names defined by the session, for completion.
+    vocabulary: Vocabulary,
     files: FilenameCompleter,
+}
+
+/// What the grammar lets come where a word is being typed, judged from the
+/// word or sign just before it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Slot {
+    /// An object: after `put`, a transformation, `group`, `object NAME =`.
+    Object,
+    /// A number: after an operator, a comma, `(`, `let NAME =` or a part
+    /// that takes numbers (`center`, `color`, ...).
+    Number,
+    /// A new name: after `let`, `object` or `proc`; nothing to complete.
+    NewName,
+    /// The start of an item, or anything else.
+    Any,
+}
+
+/// The slot of the word being typed after `before`.
+fn slot(before: &str) -> Slot {
+    let before = before.trim_end();
+    let Some(last) = before.chars().next_back() else { return Slot::Any };
+    if !is_word_char(last) {
+        let head = &before[..before.len() - last.len_utf8()];
+        let defines_object = last == '=' && head.split_whitespace().rev().nth(1) == Some("object");
+        return match last {
+            '=' if defines_object => Slot::Object,
+            ')' => Slot::Any,
+            _ => Slot::Number,
+        };
+    }
+    let word = &before[word_start(before)..];
+    match (word, words::lookup(word).and_then(words::Word::role)) {
+        ("let" | "object" | "proc", _) => Slot::NewName,
+        ("put", _) | (_, Some(Role::Transformation)) => Slot::Object,
+        ("then" | "else" | "end", _) => Slot::Any,
+        ("if" | "print", _) | (_, Some(Role::Part | Role::Texture)) => Slot::Number,
+        _ => Slot::Any,
+    }
 }
 
 impl RayHelper {
     /// A helper; `color` turns syntax colouring on.
     pub(crate) fn new(color: bool) -> RayHelper {
-        RayHelper { color, pending: String::new(), names: Vec::new(), files: FilenameCompleter::new() }
+        RayHelper { color, pending: String::new(), vocabulary: Vocabulary::default(), files: FilenameCompleter::new() }
     }
 
     /// Tells the helper the lines of the current input entered so far.
@@ -53,7 +91,7 @@ impl RayHelper {
 
     /// Refreshes the names offered by completion.
     pub(crate) fn set_names(&mut self, vocabulary: &Vocabulary) {
-        self.names = name_candidates(vocabulary);
+        self.vocabulary.clone_from(vocabulary);
     }
 
     fn complete_command(&self, line: &str, pos: usize, ctx: &Context<'_>) -> rustyline::Result<(usize, Vec<Pair>)> {
@@ -80,30 +118,42 @@ impl RayHelper {
         Ok((pos, Vec::new()))
     }
 
+    /// Completes the word before `pos` with what may come there: after
+    /// `put` only objects, after `color` only numbers, and so on.
     fn complete_word(&self, line: &str, pos: usize) -> (usize, Vec<Pair>) {
         let start = word_start(&line[..pos]);
         let typed = &line[start..pos];
         if typed.is_empty() {
             return (pos, Vec::new());
         }
-        let keywords = words::language().map(keyword_candidate);
+        let vocabulary = &self.vocabulary;
+        let is_object = |name: &String| vocabulary.objects.contains(name);
+        let objects = vocabulary.variables.iter().filter(|name| is_object(name)).map(|name| plain(name, name));
+        let numbers = vocabulary.variables.iter().filter(|name| !is_object(name)).map(|name| plain(name, name));
+        let procedures = vocabulary.procedures.iter().map(|(name, params)| Pair {
+            display: format!("{name}({})", params.join(", ")),
+            replacement: format!("{name}("),
+        });
+        let language = words::language();
+        let candidates: Vec<Pair> = match slot(&line[..start]) {
+            Slot::NewName => Vec::new(),
+            Slot::Object => {
+                let shapes = language.filter(|word| matches!(word.role(), Some(Role::Shape | Role::Transformation)));
+                shapes.map(keyword_candidate).chain(objects).collect()
+            }
+            Slot::Number => {
+                let values =
+                    language.filter(|word| matches!(word.role(), Some(Role::Function | Role::Constant) | None));
+                values.map(keyword_candidate).chain(numbers).collect()
+            }
+            Slot::Any => language.map(keyword_candidate).chain(objects).chain(numbers).chain(procedures).collect(),
+        };
         let mut candidates: Vec<Pair> =
-            keywords.chain(self.names.iter().cloned()).filter(|pair| pair.replacement.starts_with(typed)).collect();
+            candidates.into_iter().filter(|pair| pair.replacement.starts_with(typed)).collect();
         candidates.sort_by(|a, b| a.display.cmp(&b.display));
         candidates.dedup_by(|a, b| a.display == b.display);
         (start, candidates)
     }
-}
-
-/// Completion candidates for the session's names: procedures show their
-/// parameters and complete up to the opening parenthesis.
-pub(crate) fn name_candidates(vocabulary: &Vocabulary) -> Vec<Pair> {
-    let variables = vocabulary.variables.iter().map(|name| plain(name, name));
-    let procedures = vocabulary.procedures.iter().map(|(name, params)| Pair {
-        display: format!("{name}({})", params.join(", ")),
-        replacement: format!("{name}("),
-    });
-    variables.chain(procedures).collect()
 }
 
 /// A word of the language followed by a space, or a function with its parenthesis.
@@ -241,14 +291,18 @@ mod tests {
         let (start, found) = complete(&helper, "put sph");
         assert_eq!((start, found), (4, vec!["sphere".to_string()]));
         helper.set_names(&Vocabulary {
-            variables: vec!["spin".to_string(), "time".to_string()],
+            variables: vec!["spin".to_string(), "saucer".to_string(), "time".to_string()],
+            objects: vec!["saucer".to_string()],
             procedures: vec![("spiral".to_string(), vec!["n".to_string(), "r".to_string()])],
         });
-        let found = complete(&helper, "let a = sp").1;
+        let found = complete(&helper, "sp").1;
         assert_eq!(found, ["sphere", "spin", "spiral(n, r)"].map(String::from));
         let found = complete(&helper, "let a = s").1;
-        let expected = ["scale", "shift", "sin(x)", "sphere", "spin", "spiral(n, r)", "sqrt(x)"];
-        assert_eq!(found, expected.map(String::from));
+        assert_eq!(found, ["sin(x)", "spin", "sqrt(x)"].map(String::from), "a number: no object, no keyword");
+        assert_eq!(complete(&helper, "put s").1, ["saucer", "scale", "sphere"].map(String::from));
+        assert_eq!(complete(&helper, "object o = translate s").1, ["saucer", "scale", "sphere"].map(String::from));
+        assert_eq!(complete(&helper, "put sphere center 1, s").1, ["sin(x)", "spin", "sqrt(x)"].map(String::from));
+        assert!(complete(&helper, "let s").1.is_empty(), "a new name");
         assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
         assert_eq!(complete(&helper, "spir").1, vec!["spiral(n, r)".to_string()]);
     }

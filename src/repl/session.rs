@@ -71,6 +71,8 @@ pub(crate) enum Undone {
 pub(crate) struct Vocabulary {
     /// Global numbers and objects.
     pub variables: Vec<String>,
+    /// Which of them are objects.
+    pub objects: Vec<String>,
     /// Procedures with their parameters.
     pub procedures: Vec<(String, Vec<String>)>,
 }
@@ -476,6 +478,7 @@ impl Session {
     pub(crate) fn vocabulary(&self) -> Vocabulary {
         Vocabulary {
             variables: self.interpreter.global_names().iter().map(|name| name.to_string()).collect(),
+            objects: self.objects().into_iter().map(|(name, _)| name.to_string()).collect(),
             procedures: self
                 .procedures()
                 .into_iter()
