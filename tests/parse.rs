@@ -501,15 +501,15 @@ fn unexpected_end() {
 #[test]
 fn unexpected_end_of_file_names_the_open_construct() {
     let error = session_error("let x = 1\n\nproc p(a)\n  put a\n");
-    assert_error(&error, "unexpected end of file: expected `end` to close this `proc p`", 4, 7);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `proc p`", 4, 8);
     let error = file_error(&format!("{HEADER}if x < 1 then\n  put s"));
-    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 4, 7);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 4, 8);
 }
 
 #[test]
 fn unexpected_end_of_file_in_an_expression() {
     let error = session_error("let x =");
-    assert_error(&error, "unexpected end of file: expected an expression (a number, a name, `(`...) after `=`", 1, 7);
+    assert_error(&error, "unexpected end of file: expected an expression (a number, a name, `(`...) after `=`", 1, 8);
 }
 
 #[test]
@@ -662,7 +662,7 @@ fn a_missing_end_of_an_if_inside_a_proc_is_blamed_on_the_if() {
 fn the_body_of_an_unclosed_if_ends_at_the_first_line_lined_up_with_it() {
     let text = "proc p(n)\n  if n < 1 then\n    put s\n  put t\nend\np(1)\n";
     let error = session_error(text);
-    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 6, 4);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 6, 5);
     let related = related(text, &error);
     assert_eq!(related[2], ("put".to_string(), "the `if`'s body seems to end before this line".to_string()));
 }
@@ -671,7 +671,7 @@ fn the_body_of_an_unclosed_if_ends_at_the_first_line_lined_up_with_it() {
 fn an_end_lined_up_with_its_own_construct_blames_the_innermost_open_one() {
     // The `if` is closed where it should be: the `proc` lacks its `end`.
     let error = session_error("proc p(n)\n  if n < 1 then\n    put s\n  end\n");
-    assert_error(&error, "unexpected end of file: expected `end` to close this `proc p`", 4, 5);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `proc p`", 4, 6);
 }
 
 #[test]
@@ -697,7 +697,7 @@ fn a_missing_end_of_a_proc_before_another_proc() {
 fn else_if_needs_its_own_end() {
     let text = "if x < 1 then\n  put s\nelse if x < 2 then\n  put t\nend\n";
     let error = session_error(text);
-    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 5, 3);
+    assert_error(&error, "unexpected end of file: expected `end` to close this `if`", 5, 4);
     assert!(error.diagnostic.help.is_some_and(|help| help.contains("each `if` needs its own `end`")));
 }
 

@@ -175,7 +175,9 @@ fn starts_instruction(name: &str) -> bool {
 
 /// The error when the text ends too early.
 fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, location: usize) -> Diagnostic {
-    let span = last_character(place, location);
+    // Just after the last token: the caret says "here, more was needed".
+    let end = location.min(place.text.len());
+    let span = Span::new(place.source, end, end);
     if expected.has("end")
         && let Some(blame) = context.blame()
     {
