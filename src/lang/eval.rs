@@ -171,7 +171,6 @@ struct Snapshot {
     warnings: usize,
     camera_origin: Option<CameraOrigin>,
     ambient_origin: Option<Span>,
-    objects: ObjectDefinitions,
     branched_on_time: bool,
 }
 
@@ -384,6 +383,7 @@ impl Interpreter {
     fn snapshot(&mut self) -> Snapshot {
         self.env.begin();
         self.procs_undo.clear();
+        self.origins.objects.begin();
         Snapshot {
             camera: self.scene.camera,
             ambient: self.scene.ambient,
@@ -397,7 +397,6 @@ impl Interpreter {
             warnings: self.warnings.len(),
             camera_origin: self.origins.camera,
             ambient_origin: self.origins.ambient,
-            objects: self.origins.objects.clone(),
             branched_on_time: self.origins.branched_on_time,
         }
     }
@@ -425,7 +424,7 @@ impl Interpreter {
         self.origins.lights.truncate(snapshot.lights);
         self.origins.primitives.truncate(snapshot.primitives);
         self.origins.timed_primitives.truncate(snapshot.timed_primitives);
-        self.origins.objects = snapshot.objects;
+        self.origins.objects.rollback();
         self.origins.branched_on_time = snapshot.branched_on_time;
         for warning in self.warnings.drain(snapshot.warnings..) {
             self.warned.remove(&warning.span);

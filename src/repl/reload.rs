@@ -4,7 +4,6 @@
 //! and `:undo` takes a reload back.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
 
 use crate::output;
 use crate::watch::{FileWatcher, Waited};
@@ -76,7 +75,7 @@ pub(crate) fn watch(
         }
         let loaded = reload_text(session, &path, &text, console);
         last_text = Some(std::mem::take(&mut text));
-        let interrupted = armed.flag().load(Ordering::SeqCst);
+        let interrupted = armed.pressed();
         drop(armed);
         if interrupted {
             break Ok(Flow::Continue);

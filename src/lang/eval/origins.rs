@@ -138,6 +138,12 @@ pub struct ObjectDefinitions {
     index: HashMap<Span, u32, BuildHasherDefault<NameHasher>>,
     /// How many are not used (yet).
     unused: usize,
+    /// How many definitions there were at [`ObjectDefinitions::begin`].
+    begun_with: usize,
+    /// The definitions from before that mark that the current run marked
+    /// used, so that a failed run is taken back in time proportional to what
+    /// it did, not to all the definitions.
+    marked: Vec<u32>,
 }
 
 impl ObjectDefinitions {
@@ -160,6 +166,30 @@ impl ObjectDefinitions {
         {
             definition.used = true;
             self.unused -= 1;
+            if (id as usize) < self.begun_with {
+                self.marked.push(id);
+            }
+        }
+    }
+
+    /// Starts recording what [`ObjectDefinitions::rollback`] undoes.
+    pub(crate) fn begin(&mut self) {
+        self.begun_with = self.list.len();
+        self.marked.clear();
+    }
+
+    /// Forgets the definitions added, and the marks made, since
+    /// [`ObjectDefinitions::begin`].
+    pub(crate) fn rollback(&mut self) {
+        for id in self.marked.drain(..) {
+            self.list[id as usize].used = false;
+            self.unused += 1;
+        }
+        for definition in self.list.drain(self.begun_with..) {
+            self.index.remove(&definition.span);
+            if !definition.used {
+                self.unused -= 1;
+            }
         }
     }
 
@@ -181,6 +211,23 @@ mod tests {
 
     fn span(start: usize) -> Span {
         Span::new(SourceId(0), start, start + 3)
+    }
+
+    #[test]
+    fn rollback_forgets_the_definitions_and_marks_of_the_run() {
+        let name: Rc<str> = "ball".into();
+        let mut objects = ObjectDefinitions::default();
+        let kept = objects.define(&name, span(0));
+        let before = objects.clone();
+        objects.begin();
+        objects.mark_used(kept);
+        let added = objects.define(&name, span(40));
+        objects.mark_used(added);
+        objects.define(&name, span(80));
+        objects.rollback();
+        assert_eq!(objects.iter().collect::<Vec<_>>(), before.iter().collect::<Vec<_>>());
+        assert!(objects.has_unused());
+        assert_eq!(objects.define(&name, span(40)), 1, "a forgotten definition is new again");
     }
 
     #[test]
