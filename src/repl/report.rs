@@ -52,7 +52,7 @@ fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
             Item::Ambient(_) => lines.push(format!("ambient light: {}", number(scene.ambient))),
             Item::Proc(proc_def) => {
                 let name = &*proc_def.name.name;
-                let known = accepted.procedures_before.iter().any(|before| &**before == name);
+                let known = accepted.redefined.iter().any(|before| &**before == name);
                 let verb = if known { "redefined" } else { "defined" };
                 let params: Vec<&str> = proc_def.params.iter().map(|p| &*p.name).collect();
                 lines.push(format!("{verb} proc {name}({})", params.join(", ")));

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 
-use crate::lang::ast::Program;
+use crate::lang::ast::{Item, Program};
 use crate::lang::eval::PrintLog;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
 use crate::lint::{Allowed, Check, Picture, check_scene};
@@ -47,8 +47,9 @@ pub(crate) struct Accepted {
     pub program: Rc<Program>,
     /// Warnings the interpreter raised (clamped colours, ...).
     pub warnings: Vec<Diagnostic>,
-    /// The procedures defined before the input (to tell new from redefined).
-    pub procedures_before: Vec<Rc<str>>,
+    /// The procedures the input defines that were defined before it (to
+    /// tell new from redefined).
+    pub redefined: Vec<Rc<str>>,
     /// What the scene held before the input.
     pub counts_before: Counts,
 }
@@ -206,7 +207,17 @@ impl Session {
         let counts_before = self.counts;
         let scene = self.interpreter.scene();
         let mark = (scene.primitives.len(), scene.timed_primitives.len());
-        let procedures_before = self.interpreter.procedure_names();
+        // Only the input's own procedures: listing all of them at every
+        // input would make a long script quadratic.
+        let redefined = input
+            .program
+            .items
+            .iter()
+            .filter_map(|item| match item {
+                Item::Proc(def) if self.interpreter.procedure(&def.name.name).is_some() => Some(def.name.name.clone()),
+                _ => None,
+            })
+            .collect();
         let result = self.interpreter.run(&input.program);
         self.printed.borrow_mut().absorb(self.interpreter.take_printed());
         if let Err(error) = result {
@@ -227,7 +238,7 @@ impl Session {
             self.history.push(input);
             self.undo_steps.push(UndoStep::Input);
         }
-        Ok(Accepted { program, warnings, procedures_before, counts_before })
+        Ok(Accepted { program, warnings, redefined, counts_before })
     }
 
     /// How many primitives of each kind, and lights, the scene holds.
