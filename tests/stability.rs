@@ -73,7 +73,7 @@ fn render_checked(scene: &Scene, options: &RenderOptions) -> RgbImage {
 /// directions, so they are covered too. Returns the number of hits checked.
 fn assert_sane_paths(scene: &Scene, options: &RenderOptions) -> usize {
     let prepared = SceneGeometry::new(scene);
-    let rays = PrimaryRays::new(&scene.camera, options.width, options.height, options.screen);
+    let rays = prepared.primary_rays(&scene.camera, options.width, options.height, options.screen);
     let mut hits = 0;
     for j in 0..options.height {
         for i in 0..options.width {
@@ -87,7 +87,7 @@ fn assert_sane_paths(scene: &Scene, options: &RenderOptions) -> usize {
                 assert!(hit.point.is_finite(), "bad point at {at}");
                 assert!((hit.normal.length() - 1.0).abs() < 1e-9, "normal not unit at {at}");
                 assert!(hit.normal.dot(ray.dir) <= 1e-12, "normal not facing the ray at {at}");
-                let origin = offset_origin(hit.point, hit.normal);
+                let origin = offset_origin(hit.point, hit.normal, hit.t);
                 assert!(origin.is_finite(), "bad offset origin at {at}");
                 let d = ray.dir;
                 let reflected = d - hit.normal * (2.0 * d.dot(hit.normal));
@@ -168,7 +168,7 @@ fn count_near(image: &RgbImage, expected: [u8; 3], tolerance: u8) -> usize {
 /// normal (within `1e-9`), and the image's bytes there.
 fn face_pixels(scene: &Scene, options: &RenderOptions, image: &RgbImage, normal: DVec3) -> Vec<[u8; 3]> {
     let prepared = SceneGeometry::new(scene);
-    let rays = PrimaryRays::new(&scene.camera, options.width, options.height, Screen::Centered);
+    let rays = prepared.primary_rays(&scene.camera, options.width, options.height, Screen::Centered);
     let mut out = Vec::new();
     for j in 0..options.height {
         for i in 0..options.width {
@@ -544,17 +544,19 @@ fn a_thousand_reflections_inside_a_sphere_stay_on_it() {
     let center = DVec3::new(0.5, -0.3, 0.2);
     let s = scene(3.0, 1.2, 0.3, vec![], vec![sphere(center.into(), 20.0, m)]);
     let prepared = SceneGeometry::new(&s);
-    let rays = PrimaryRays::new(&s.camera, 8, 6, Screen::Centered);
+    let rays = prepared.primary_rays(&s.camera, 8, 6, Screen::Centered);
+    // The geometry's points are in its own unit.
+    let (center, radius) = (center * prepared.scale(), 20.0 * prepared.scale());
     let mut worst: f64 = 0.0;
     for (i, j) in [(0, 0), (3, 2), (7, 5), (1, 4)] {
         let mut ray = rays.ray(i, j, glam::DVec2::splat(0.5));
         for _ in 0..1000 {
             let hit = prepared.closest_hit(&ray).expect("inside a closed sphere every ray hits");
-            worst = worst.max(((hit.point - center).length() - 20.0).abs());
+            worst = worst.max(((hit.point - center).length() - radius).abs() / radius);
             let d = ray.dir;
-            ray = Ray::new(offset_origin(hit.point, hit.normal), d - hit.normal * (2.0 * d.dot(hit.normal)));
+            ray = Ray::new(offset_origin(hit.point, hit.normal, hit.t), d - hit.normal * (2.0 * d.dot(hit.normal)));
         }
     }
-    eprintln!("1000 reflections inside a sphere of radius 20: hit points at most {worst:e} off it");
-    assert!(worst < 1e-9 * 20.0, "{worst:e}");
+    eprintln!("1000 reflections inside a sphere of radius 20: hit points at most {worst:e} radii off it");
+    assert!(worst < 1e-9, "{worst:e}");
 }

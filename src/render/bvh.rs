@@ -117,7 +117,7 @@ impl SharedFrame {
             // Far above the rounding of either way of turning a ray into the
             // frame (a few ulps of the coordinates involved), so culling is
             // conservative.
-            let p = 1e-6 * (1.0 + b.min.abs().max(b.max.abs()).max_element());
+            let p = 1e-6 * b.min.abs().max(b.max.abs()).max_element();
             Aabb { min: b.min - p, max: b.max + p }
         };
         let bounds = nodes.iter().map(|n| pad(&n.bounds)).collect();
