@@ -215,6 +215,54 @@ fn coordinates_from_1e_minus_4_to_1e7_in_one_scene() {
     assert!(face.len() > 500 && off == 0);
 }
 
+/// Sizes from 1e-300 to 1e300 in one scene: a sphere of radius 1e-300 at
+/// the origin, one of radius 1e300 whose top is a floor 2 below it, a
+/// ball of radius 1, a box a million times longer than thick, and a light
+/// that grazes the floor and the box's top. Nothing here can be drawn
+/// exactly in f64 (the huge sphere's squares overflow), but every path is
+/// finite, the picture does not depend on threads, and the ball is drawn.
+#[test]
+fn sizes_from_1e_minus_300_to_1e300_in_one_scene() {
+    let ball = sphere([2.0, 0.0, 0.0], 1.0, material([0.9, 0.2, 0.2], 0.7, 0.3, 40.0));
+    let lights = vec![light([1.0, 0.0, 0.0], 0.5), light([0.3, 1.0, 0.5], 0.5)];
+    let s = scene(
+        10.0,
+        1.0,
+        0.2,
+        lights,
+        vec![
+            sphere([0.0, 0.0, 0.0], 1e-300, matte([0.2, 0.9, 0.2])),
+            sphere([0.0, -1e300 - 2.0, 0.0], 1e300, matte([0.8, 0.8, 0.8])),
+            ball,
+            cube([-2.0, 1.5, -1.0], [10.0, 1e-5, 10.0], DMat3::from_rotation_x(0.3), matte([0.2, 0.3, 0.9])),
+        ],
+    );
+    let o = options(64, 48, 5);
+    let image = render_checked(&s, &o);
+    // The ball's centre is seen 2 f / 10 = 11.7 pixels right of the middle.
+    let [r, g, b] = image.get_pixel(43, 24).0;
+    assert!(r > 2 * g.max(b), "the ball is red: {:?}", [r, g, b]);
+}
+
+/// The eye on a surface: on a sphere, on a box face and on a plane, with a
+/// light grazing the plane (N·L = 0): finite paths, no panic.
+#[test]
+fn the_camera_on_a_surface() {
+    let m = material([0.8, 0.6, 0.4], 0.5, 0.4, 20.0);
+    let lights = vec![light([1.0, 0.0, 0.0], 0.6), light([0.2, 1.0, 0.4], 0.4)];
+    for (name, wall) in [
+        ("sphere", sphere([0.0, 0.0, 0.0], 5.0, m)),
+        ("box", cube([0.0, 0.0, 0.0], [4.0, 4.0, 10.0], DMat3::IDENTITY, m)),
+        ("plane", plane([0.0, 0.0, 1.0], 5.0, m)),
+    ] {
+        let floor = plane([0.0, 1.0, 0.0], -1.0, m);
+        let s = scene(5.0, 1.2, 0.3, lights.clone(), vec![wall, floor]);
+        let hits = assert_sane_paths(&s, &options(32, 24, 5));
+        eprintln!("the eye on a {name}: {hits} hits");
+        render_checked(&s, &options(32, 24, 5));
+    }
+}
+
 /// A box of aspect 1:10,000 (a sheet 10 wide, 1e-3 thick), slightly tilted,
 /// and a needle (1e-3 x 10 x 1e-3): the sheet's top face is uniform.
 #[test]

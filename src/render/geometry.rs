@@ -174,24 +174,26 @@ impl Geometry {
     }
 }
 
-/// The power of two `2^-e` that brings the largest length of `scene` (the
-/// camera distance, and each primitive's distance from the origin plus its
-/// size) into `[1, 2)`: in that unit the intersection formulas' squares stay
-/// far from overflow and underflow. Multiplying by a power of two is exact,
-/// and every formula of the renderer gives lengths proportional to its
-/// input lengths (no absolute epsilon), so the choice changes no pixel.
+/// The power of two `2^-e` that brings the scene's size into `[1, 2)`:
+/// in that unit the intersection formulas' squares stay far from overflow
+/// and underflow. The size is the camera distance, which sets the scale of
+/// what the picture shows (a huge sphere used as a floor does not push the
+/// rest out of range); without one, the largest primitive's reach.
+/// Multiplying by a power of two is exact, and every formula of the
+/// renderer gives lengths proportional to its input lengths (no absolute
+/// epsilon), so the choice changes no pixel.
 fn working_scale(scene: &Scene) -> f64 {
     let reach = |shape: &Shape| match *shape {
         Shape::Sphere { center, radius } => center.abs().max_element() + radius,
         Shape::Box { center, half, .. } => center.abs().max_element() + half.max_element(),
         Shape::Plane { shift, .. } => shift.abs(),
     };
-    let size = scene
-        .primitives
-        .iter()
-        .chain(&scene.timed_primitives)
-        .map(|p| reach(&p.shape))
-        .fold(scene.camera.distance.abs(), f64::max);
+    let distance = scene.camera.distance.abs();
+    let size = if distance > 0.0 && distance.is_finite() {
+        distance
+    } else {
+        scene.primitives.iter().chain(&scene.timed_primitives).map(|p| reach(&p.shape)).fold(0.0, f64::max)
+    };
     if !(size > 0.0 && size.is_finite()) {
         return 1.0;
     }
