@@ -141,3 +141,27 @@ proptest! {
         prop_assert!(off == 0, "moved by {} of the distance: {} pixels off", fraction, off);
     }
 }
+
+/// Two boxes whose front faces coincide, turned (so that their distances
+/// are computed along different roundings): at every scale, the same box
+/// is seen where they overlap, the one put first.
+#[test]
+fn coinciding_faces_show_the_object_put_first_at_every_scale() {
+    let turned = |center: [f64; 3], length: [f64; 3], color: [f64; 3]| {
+        let mut primitive = Primitive {
+            shape: Shape::Box { center: center.into(), half: DVec3::from(length) / 2.0, axes: glam::DMat3::IDENTITY },
+            material: material(color, 0.8, 0.3, 40.0),
+        };
+        primitive.rotate(&rotation_matrix(0.3, 0.2, 0.0));
+        primitive
+    };
+    let red = turned([0.0, 0.0, 0.0], [0.6, 4.0, 0.6], [0.9, 0.2, 0.2]);
+    let blue = turned([0.7, 0.2, 0.0], [1.4, 0.6, 0.6], [0.2, 0.3, 0.9]);
+    let lights = vec![light([0.5, 1.0, 0.8], 0.7)];
+    let s = scene(8.0, 0.8, 0.2, lights, vec![red, blue]);
+    let original = image(&s);
+    for k in (-150..=150).step_by(5) {
+        let factor: f64 = format!("1e{k}").parse().expect("a number");
+        assert_eq!(pixels_off(&original, &image(&scaled(&s, factor))), 0, "scaled by 1e{k}");
+    }
+}

@@ -15,7 +15,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::bvh::Bvh;
+use super::bvh::{self, Bvh};
 use super::camera::{PrimaryRays, Screen};
 use super::intersect::{Aabb, Bounded, PlaneShape, Ray, ShapeClass};
 use crate::scene::{Camera, Material, Primitive, Scene, Shape};
@@ -122,15 +122,19 @@ impl Geometry {
         self.bvh.objects().len() + self.planes.len()
     }
 
-    /// The nearest hit with `0 < t < t_max`, if any.
+    /// The nearest hit with `0 < t < t_max`, if any (up to the BVH's
+    /// tolerance past `t_max`). Of hits at the same distance (see
+    /// [`bvh::goes_before`]), a sphere or a box goes before a plane, and an
+    /// earlier plane before a later one.
     #[inline(always)]
     fn closest_hit(&self, ray: &Ray, t_max: f64) -> Option<GeometryHit> {
         let (mut t, index) = self.bvh.closest_hit(ray, t_max);
         let mut object = (index != u32::MAX).then_some(ObjectId::Bounded(index));
+        let mut before = bvh::nearer_than(t);
         for (k, plane) in self.planes.iter().enumerate() {
             let tp = plane.hit(ray);
-            if tp < t {
-                t = tp;
+            if tp < before {
+                (t, before) = (tp, bvh::nearer_than(tp));
                 object = Some(ObjectId::Plane(k as u32));
             }
         }
