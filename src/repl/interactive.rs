@@ -20,7 +20,7 @@ use super::cancel::CancelSwitch;
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::editor::RayHelper;
-use super::paste::{Arrival, wait_at_prompt};
+use super::paste::{Arrival, erase_prompt, wait_at_prompt};
 use super::preview::Preview;
 use super::report::counted;
 use super::session::Session;
@@ -165,8 +165,7 @@ impl Lines for Terminal {
                     return Ok(Line { text, typed });
                 }
                 // Only an unfinished line: the editor takes it, with its own prompt.
-                let mut out = std::io::stdout();
-                out.write_all(b"\r\x1b[K").and_then(|()| out.flush())?;
+                erase_prompt()?;
                 initial = std::mem::take(&mut self.unfinished);
             }
         } else if initial.is_empty() {

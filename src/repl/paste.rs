@@ -52,9 +52,15 @@ pub(crate) fn wait_at_prompt(prompt: &str) -> io::Result<Arrival> {
     if ioctl_fionread(terminal)? > KEYS_OF_A_PERSON {
         return Ok(Arrival::Paste(pasted_text(&read_burst(terminal)?)));
     }
-    out.write_all(b"\r\x1b[K")?;
-    out.flush()?;
+    erase_prompt()?;
     Ok(Arrival::Keys)
+}
+
+/// Erases the prompt [`wait_at_prompt`] showed, for the editor to draw its own.
+pub(crate) fn erase_prompt() -> io::Result<()> {
+    let mut out = io::stdout();
+    out.write_all(b"\r\x1b[K")?;
+    out.flush()
 }
 
 /// The terminal in raw mode, put back as it was on drop.
