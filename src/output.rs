@@ -10,6 +10,7 @@ use std::fmt;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -122,6 +123,11 @@ pub enum OutputError {
         /// The file concerned.
         path: PathBuf,
     },
+    /// Ctrl-C stopped the writing: the file is as it was before.
+    Cancelled {
+        /// The file concerned.
+        path: PathBuf,
+    },
 }
 
 impl fmt::Display for OutputError {
@@ -158,6 +164,9 @@ impl fmt::Display for OutputError {
             OutputError::NoFrames { path } => {
                 write!(f, "cannot write `{}`: the animation has no frame", path.display())
             }
+            OutputError::Cancelled { path } => {
+                write!(f, "writing `{}` was cancelled: the file is as it was before", path.display())
+            }
         }
     }
 }
@@ -172,24 +181,39 @@ impl std::error::Error for OutputError {
     }
 }
 
+/// A cancel flag that is never raised, for writes that Ctrl-C does not stop
+/// (it ends the process instead, see [`exit_discarding_unfinished`]).
+pub(crate) static NEVER_CANCELLED: AtomicBool = AtomicBool::new(false);
+
 /// Writes `image` to `path` as PNG or PPM, as its extension says, atomically.
 pub fn write_image(path: &Path, image: &RgbImage) -> Result<(), OutputError> {
+    write_image_cancellable(path, image, &NEVER_CANCELLED)
+}
+
+/// [`write_image`], stopped with [`OutputError::Cancelled`] as soon as
+/// `cancel` is raised (Ctrl-C in a session): the target is left as it was.
+pub(crate) fn write_image_cancellable(
+    path: &Path,
+    image: &RgbImage,
+    cancel: &'static AtomicBool,
+) -> Result<(), OutputError> {
     let format = check_output(path, Content::Still)?;
-    let (pending, mut writer) = PendingFile::create(path)?;
-    match format {
-        ImageFormat::Ppm => write_ppm(&mut writer, image).map_err(|e| io_error(path, e))?,
-        _ => write_png(&mut writer, image).map_err(|e| encode_error(path, e))?,
-    }
-    writer.flush().map_err(|e| io_error(path, e))?;
+    let (pending, mut writer) = PendingFile::create(path, cancel)?;
+    let written = match format {
+        ImageFormat::Ppm => write_ppm(&mut writer, image).map_err(|e| io_error(path, e)),
+        _ => write_png(&mut writer, image).map_err(|e| encode_error(path, e)),
+    };
+    written.and_then(|()| writer.flush().map_err(|e| io_error(path, e))).map_err(|e| pending.failure(e))?;
     drop(writer);
     pending.commit()
 }
 
 /// Writes `text` to `path` atomically, as images are written (a scene file
-/// written back by the session).
-pub(crate) fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
-    let (pending, mut writer) = PendingFile::create(path)?;
-    writer.write_all(text.as_bytes()).and_then(|()| writer.flush()).map_err(|e| io_error(path, e))?;
+/// written back by the session), unless `cancel` is raised meanwhile.
+pub(crate) fn write_text(path: &Path, text: &str, cancel: &'static AtomicBool) -> Result<(), OutputError> {
+    let (pending, mut writer) = PendingFile::create(path, cancel)?;
+    let written = writer.write_all(text.as_bytes()).and_then(|()| writer.flush());
+    written.map_err(|e| pending.failure(io_error(path, e)))?;
     drop(writer);
     pending.commit()
 }
@@ -276,7 +300,7 @@ impl FrameSink {
 /// gets a palette of its own, which the frames after it keep while it fits.
 struct GifStream {
     pending: PendingFile,
-    encoder: gif::Encoder<BufWriter<File>>,
+    encoder: gif::Encoder<BufWriter<CancellableFile>>,
     width: u16,
     height: u16,
     delay: u16,
@@ -317,7 +341,7 @@ impl GifStream {
         let width = u16::try_from(first.width()).map_err(|_| too_large())?;
         let height = u16::try_from(first.height()).map_err(|_| too_large())?;
         let palette = learn_palette(first);
-        let (pending, writer) = PendingFile::create(path)?;
+        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
         let gif_error = |e| gif_encode_error(path, e);
         let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
         encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?;
@@ -435,24 +459,41 @@ struct PendingFile {
     path: PathBuf,
     temp_path: PathBuf,
     temp: Option<tempfile::NamedTempFile>,
+    cancel: &'static AtomicBool,
 }
 
 impl PendingFile {
-    /// A temporary file for `path`, and a writer into it.
-    fn create(path: &Path) -> Result<(PendingFile, BufWriter<File>), OutputError> {
+    /// A temporary file for `path`, and a writer into it that fails as soon
+    /// as `cancel` is raised.
+    fn create(
+        path: &Path,
+        cancel: &'static AtomicBool,
+    ) -> Result<(PendingFile, BufWriter<CancellableFile>), OutputError> {
         let mut unfinished = unfinished();
         let temp = temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
         unfinished.push(temp.path().to_owned());
-        let writer = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
-        let pending = PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp) };
-        Ok((pending, BufWriter::new(writer)))
+        let file = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
+        let pending =
+            PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp), cancel };
+        Ok((pending, BufWriter::new(CancellableFile { file, cancel })))
+    }
+
+    /// `error`, or [`OutputError::Cancelled`] if the write failed because
+    /// `cancel` was raised (encoders pass the writer's error on in their own
+    /// words).
+    fn failure(&self, error: OutputError) -> OutputError {
+        if self.cancel.load(Ordering::SeqCst) { OutputError::Cancelled { path: self.path.clone() } } else { error }
     }
 
     /// Puts the written file in place of the target, with the target's
-    /// permissions if it existed.
+    /// permissions if it existed; not if `cancel` was raised meanwhile
+    /// (syncing a large file to disk can take a while).
     fn commit(mut self) -> Result<(), OutputError> {
         let temp = self.temp.take().expect("a pending file is committed once");
         temp.as_file().sync_all().map_err(|e| io_error(&self.path, e))?;
+        if self.cancel.load(Ordering::SeqCst) {
+            return Err(OutputError::Cancelled { path: self.path.clone() });
+        }
         if let Ok(existing) = std::fs::metadata(&self.path) {
             temp.as_file().set_permissions(existing.permissions()).map_err(|e| io_error(&self.path, e))?;
         }
@@ -468,6 +509,31 @@ impl Drop for PendingFile {
         let mut unfinished = unfinished();
         drop(self.temp.take());
         unfinished.retain(|p| *p != self.temp_path);
+    }
+}
+
+/// The largest piece written at once, so that a large image written in one
+/// call still sees Ctrl-C within a few milliseconds.
+const CANCELLABLE_PIECE: usize = 1 << 20;
+
+/// A file whose writes fail once `cancel` is raised. It sits under the
+/// `BufWriter`, so the flag is read once per buffer's worth, not per byte.
+struct CancellableFile {
+    file: File,
+    cancel: &'static AtomicBool,
+}
+
+impl Write for CancellableFile {
+    fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+        if self.cancel.load(Ordering::Relaxed) {
+            // Not `ErrorKind::Interrupted`: `write_all` would retry it.
+            return Err(io::Error::other("cancelled"));
+        }
+        self.file.write(&bytes[..bytes.len().min(CANCELLABLE_PIECE)])
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.file.flush()
     }
 }
 
@@ -593,6 +659,31 @@ mod tests {
         std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o600)).expect("chmod");
         write_image(&path, &sample()).expect("replaced");
         assert_eq!(std::fs::metadata(&path).expect("exists").permissions().mode() & 0o777, 0o600);
+    }
+
+    #[test]
+    fn a_cancelled_write_leaves_the_target_as_it_was_and_no_temporary_file() {
+        static RAISED: AtomicBool = AtomicBool::new(true);
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (png, ppm, text) = (dir.path().join("a.png"), dir.path().join("b.ppm"), dir.path().join("c.ray"));
+        for path in [&png, &ppm, &text] {
+            std::fs::write(path, b"old").expect("written");
+        }
+        // Large enough that the encoders write through the buffer before the end.
+        let large = RgbImage::from_fn(400, 300, |x, y| image::Rgb([x as u8, y as u8, (x ^ y) as u8]));
+        for path in [&png, &ppm] {
+            let error = write_image_cancellable(path, &large, &RAISED).expect_err("cancelled");
+            assert!(matches!(&error, OutputError::Cancelled { path: p } if p == path), "{error:?}");
+        }
+        let error = write_text(&text, "camera distance 8 angle 1 end\n", &RAISED).expect_err("cancelled");
+        assert_eq!(
+            error.to_string(),
+            format!("writing `{}` was cancelled: the file is as it was before", text.display())
+        );
+        for path in [&png, &ppm, &text] {
+            assert_eq!(std::fs::read(path).expect("still there"), b"old");
+        }
+        assert_eq!(std::fs::read_dir(dir.path()).expect("list").count(), 3, "no temporary file left");
     }
 
     #[test]

@@ -203,7 +203,7 @@ pub struct Lexer<'a> {
     source: SourceId,
     /// Every word read so far, and the keywords from the start: one lookup
     /// tells a keyword from a name and interns the name.
-    words: HashMap<&'a str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>,
+    words: WordTable<'a>,
     /// Where the line of the last token starts.
     line_start: usize,
     failed: bool,
@@ -232,11 +232,21 @@ impl Hasher for NameHasher {
     }
 }
 
+/// The words table of a lexer: names read so far, keywords from the start.
+type WordTable<'a> = HashMap<&'a str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>;
+
+thread_local! {
+    /// The keywords' words table, built once: a session or a script makes a
+    /// lexer per input, and copying a built table is cheaper than building it.
+    static KEYWORDS: WordTable<'static> =
+        words::keywords().map(|(word, token)| (word.text, (token.clone(), Some(word)))).collect();
+}
+
 impl<'a> Lexer<'a> {
     /// A lexer over `text`, whose spans in diagnostics name `source`.
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
         let pos = if text.starts_with(BYTE_ORDER_MARK) { BYTE_ORDER_MARK.len_utf8() } else { 0 };
-        let words = words::keywords().map(|(word, token)| (word.text, (token.clone(), Some(word)))).collect();
+        let words = KEYWORDS.with(WordTable::clone);
         Lexer { text, pos, source, words, line_start: 0, failed: false }
     }
 

@@ -44,6 +44,12 @@ impl CancelSwitch {
     }
 }
 
+/// The flag Ctrl-C raises while `switch` is armed; without a switch, one
+/// never raised (Ctrl-C then ends the process).
+pub(crate) fn cancel_flag(switch: Option<&'static CancelSwitch>) -> &'static AtomicBool {
+    switch.map_or(&crate::output::NEVER_CANCELLED, CancelSwitch::flag)
+}
+
 /// A switch armed for the duration of one job.
 #[derive(Debug)]
 pub(crate) struct ArmedSwitch {

@@ -14,6 +14,7 @@ use crate::render::{RenderControl, SceneGeometry};
 use crate::scene::Scene;
 use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH, check_size, parse_time};
 
+use super::cancel::cancel_flag;
 use super::console::Console;
 use super::help;
 use super::inspect;
@@ -255,7 +256,7 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     explain_defaults(session, console);
     show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    output::write_image(&path, &image).map_err(|e| CommandError::Failed(e.to_string()))?;
+    output::write_image_cancellable(&path, &image, cancel_flag(console.cancel)).map_err(write_failure)?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)
 }
@@ -272,9 +273,9 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     show_scene_warnings(session, console, size, true);
     let started = Instant::now();
     let mut sink = FrameSink::new(&path, frames as usize);
-    let cannot_write = |e: OutputError| CommandError::Failed(e.to_string());
-    let rendered =
-        render_frames(session, frames, size, console, &mut |frame, image| sink.add(frame, image).map_err(cannot_write));
+    let rendered = render_frames(session, frames, size, console, &mut |frame, image| {
+        sink.add(frame, image).map_err(write_failure)
+    });
     if let Err(error) = rendered {
         // Numbered frames already written stay: say which (an unfinished GIF is removed).
         if !sink.written().is_empty() {
@@ -282,7 +283,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
         }
         return Err(error);
     }
-    let written = sink.finish().map_err(cannot_write)?;
+    let written = sink.finish().map_err(write_failure)?;
     let names = output::describe_files(&written);
     console.say(format!(
         "wrote {names} ({} of {size}, {})",
@@ -597,6 +598,14 @@ fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {
 fn render_failure(error: RenderError) -> CommandError {
     match error {
         RenderError::Cancelled => CommandError::Cancelled("render cancelled; the session is as it was".to_string()),
+    }
+}
+
+/// A write that failed, or that Ctrl-C cancelled.
+pub(super) fn write_failure(error: OutputError) -> CommandError {
+    match error {
+        OutputError::Cancelled { .. } => CommandError::Cancelled(format!("{error}; the session is as it was")),
+        error => CommandError::Failed(error.to_string()),
     }
 }
 

@@ -31,7 +31,8 @@ A first scene:
 
 An input may span several lines: the prompt shows `...sphere>` while a
 `sphere` is still waiting for its `end` (a command typed meanwhile runs at
-once). Ctrl-C drops the input being typed, Ctrl-D leaves. Tab completes
+once). Ctrl-C drops the input being typed, or stops what an input does (a
+render, the writing of a file: it stays as it was). Ctrl-D leaves. Tab completes
 names, commands and file names.
 
 `:help NAME` explains one of these:";

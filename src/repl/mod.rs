@@ -24,6 +24,7 @@ mod help;
 mod inspect;
 mod interactive;
 mod outcome;
+mod paste;
 mod preview;
 mod reload;
 mod rendering;

@@ -22,6 +22,8 @@ use crate::output;
 use crate::render::Screen;
 use crate::settings::RenderSettings;
 
+use super::cancel::cancel_flag;
+use super::commands::write_failure;
 use super::console::Console;
 use super::excerpt::{item_text, location, raw};
 use super::outcome::{CommandError, CommandResult, Flow};
@@ -48,7 +50,7 @@ pub(crate) fn write(session: &mut Session, arguments: &[String], console: &mut C
         let bug = "the file would not give the session's scene (a bug of rayrepl: please report it)";
         return Err(CommandError::Failed(format!("{bug}; nothing was written")));
     }
-    output::write_text(path, &text).map_err(|error| CommandError::Failed(error.to_string()))?;
+    output::write_text(path, &text, cancel_flag(console.cancel)).map_err(write_failure)?;
     let summary = parts.summary();
     session.mark_written();
     console.say(format!("wrote {} ({summary})", path.display()));
