@@ -23,7 +23,9 @@ mod excerpt;
 mod help;
 mod inspect;
 mod interactive;
+mod lessons;
 mod outcome;
+mod play;
 mod preview;
 mod reload;
 mod rendering;
@@ -107,6 +109,7 @@ pub(crate) fn handle_input(
             for line in report::confirmations(&accepted, session) {
                 console.say(line);
             }
+            lessons::check_input(session, console);
             Ok(())
         }
         Err(error) => {
