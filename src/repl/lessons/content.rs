@@ -96,9 +96,9 @@ put plane rotation 0, 0, 0 shift -1 kd 0.8 ks 0 phong 1 color 200, 200, 200 end"
                 task: "A ball on a floor, in the dark. Light it from the right, so that its shadow \
                        falls to the left: a light straight up turned about z by a negative angle \
                        leans to the right.",
-                example: "light vector 0, 0, -0.6 intensity 0.8 end",
+                example: "light vector 0, 0, -0.9 intensity 0.8 end",
                 example_up_front: true,
-                hint: "turning \"straight up\" about z by -0.6 leans it to the right (+x); about x, \
+                hint: "turning \"straight up\" about z by -0.9 leans it to the right (+x); about x, \
                        it leans to the front or the back.",
                 check: light_from_the_right,
             },
@@ -112,7 +112,7 @@ put plane rotation 0, 0, 0 shift -1 kd 0.8 ks 0 phong 1 color 200, 200, 200 end"
             },
             Step {
                 task: "Add a second, weaker light from the left: the ball now casts two shadows.",
-                example: "light vector 0, 0, 0.6 intensity 0.4 end",
+                example: "light vector 0, 0, 0.9 intensity 0.4 end",
                 example_up_front: false,
                 hint: "a positive angle about z leans the light to the left (-x); each `light` adds one.",
                 check: lights_from_both_sides,
@@ -176,8 +176,9 @@ light vector 0.5, 0, -0.5 intensity 0.8 end",
                 check: wall_facing_the_camera,
             },
             Step {
-                task: "A box 2 wide, 2 high and 2 deep standing on the floor (its bottom at y = -1).",
-                example: "put box center 0, 0, 0 length 2, 2, 2 kd 0.7 ks 0.2 phong 10 color 250, 200, 40 end",
+                task: "A flat box, 3 wide, 0.6 high and 2 deep, lying on the floor (its bottom at \
+                       y = -1), low enough to be seen from above.",
+                example: "put box center 0, -0.7, 0 length 3, 0.6, 2 kd 0.7 ks 0.2 phong 10 color 250, 200, 40 end",
                 example_up_front: false,
                 hint: "`box center X, Y, Z length W, H, D`: its bottom is at Y - H/2.",
                 check: box_on_the_floor,
@@ -335,12 +336,12 @@ end",
                 check: moves_with_time,
             },
             Step {
-                task: "A procedure `spin(n)` that puts n small balls on a circle turning with time \
-                       (each at angle n + time / 4), by recursion.",
+                task: "A procedure `spin(n)` that puts n small balls on a rising circle turning \
+                       with time (ball n at angle n * pi / 4 + time / 4), by recursion.",
                 example: "\
 proc spin(n)
   if 0 < n then
-    put sphere center 2.5 * cos(n + time / 4), n * 0.3 - 0.5, 2.5 * sin(n + time / 4) radius 0.3
+    put sphere center 2.5 * cos(n * pi / 4 + time / 4), n * 0.3 - 0.7, 2.5 * sin(n * pi / 4 + time / 4) radius 0.3
       kd 0.7 ks 0.3 phong 30 color 40, 160, 90 end
     spin(n - 1)
   end

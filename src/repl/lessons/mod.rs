@@ -208,8 +208,9 @@ fn show_pictures(session: &Session, console: &mut Console, lesson: usize, step: 
 /// as large as a preview.
 fn pictures(session: &Session, preview: &Preview, lesson: usize, step: usize) -> Result<RgbImage, String> {
     let settings = session.settings();
-    let whole = preview.render_size(Size { width: settings.width, height: settings.height });
-    let half = Size { width: (whole.width.saturating_sub(PICTURE_GAP) / 2).max(1), height: (whole.height / 2).max(1) };
+    // Two pictures of the configured shape, side by side, fitted together.
+    let pair = preview.render_size(Size { width: settings.width.saturating_mul(2), height: settings.height });
+    let half = Size { width: (pair.width.saturating_sub(PICTURE_GAP) / 2).max(1), height: pair.height };
     let goal = goal_session(session, lesson, step).map_err(|_| "the lesson's example fails".to_string())?;
     let render = |scene| {
         let never = AtomicBool::new(false);
@@ -243,4 +244,71 @@ fn wrap(text: &str, first: &str) -> String {
 /// A program shown indented by four spaces.
 fn indent(program: &str) -> String {
     program.lines().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use super::*;
+    use crate::lang::Limits;
+    use crate::repl::RenderSettings;
+
+    /// The size and samples of the pictures of docs/learning.md.
+    const DOCS_PICTURE: RenderSettings =
+        RenderSettings { width: 400, height: 300, samples: 4, ..crate::settings::DEFAULTS };
+
+    fn docs() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs")
+    }
+
+    /// The picture of what lesson `index` builds, as docs/learning.md shows it.
+    fn lesson_picture(index: usize) -> RgbImage {
+        let mut session = Session::new(DOCS_PICTURE, Limits::default());
+        let lesson = &LESSONS[index];
+        session.submit("<lesson>", &lesson_scene(lesson, lesson.steps.len()), 0).expect("the lesson's examples run");
+        let size = Size { width: DOCS_PICTURE.width, height: DOCS_PICTURE.height };
+        let scene = session.scene();
+        render_image(scene, &SceneGeometry::new(scene), size, &DOCS_PICTURE, &AtomicBool::new(false), &|_| {})
+            .expect("nothing cancels it")
+    }
+
+    /// docs/learning.md shows every example of every lesson, and the
+    /// picture of each lesson is what rayrepl renders of it now.
+    /// `RAYREPL_BLESS=1 cargo test --release --lib learning_page` (or
+    /// tools/learning-pictures) writes the pictures again.
+    #[test]
+    fn the_learning_page_shows_every_lesson_as_rendered_now() {
+        let page = std::fs::read_to_string(docs().join("learning.md")).expect("docs/learning.md exists");
+        let bless = std::env::var_os("RAYREPL_BLESS").is_some();
+        for (index, lesson) in LESSONS.iter().enumerate() {
+            for step in lesson.steps {
+                assert!(page.contains(step.example), "docs/learning.md lacks the example\n{}", step.example);
+            }
+            let name = format!("learning/lesson-{}.png", index + 1);
+            assert!(page.contains(&name), "docs/learning.md does not show {name}");
+            let picture = lesson_picture(index);
+            let path = docs().join(&name);
+            if bless {
+                crate::output::write_image(&path, &picture).expect("the picture is written");
+                continue;
+            }
+            let committed = image::open(&path).map(|image| image.to_rgb8());
+            assert!(
+                committed.is_ok_and(|committed| committed == picture),
+                "{name} is not what lesson {} renders now: RAYREPL_BLESS=1 cargo test --release --lib learning_page",
+                index + 1
+            );
+        }
+    }
+
+    #[test]
+    fn text_is_wrapped_under_its_label() {
+        let text = "one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen";
+        assert_eq!(
+            wrap(text, "step 1 of 2: "),
+            "step 1 of 2: one two three four five six seven eight nine ten eleven twelve\n             thirteen fourteen fifteen"
+        );
+        assert_eq!(indent("a\nb"), "    a\n    b");
+    }
 }
