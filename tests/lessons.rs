@@ -167,40 +167,58 @@ fn a_wrong_answer_gets_the_hint_then_the_example() {
     assert_eq!(quit(session), 0);
 }
 
+/// Inputs, each with what the session answers, written otherwise than
+/// the examples of the lessons.
+const OTHER_ANSWERS: &[(&str, &str)] = &[
+    (":lesson 5", "step 1 of 3"),
+    // A box turned about y then about z, not just about z.
+    (
+        "put rotate rotate box center 1, 0, 0 length 1, 1, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0.3, 0 end \
+         by 0, 0, 1 end",
+        "✓ step 1 done",
+    ),
+    // The ball written where it belongs at once, through a name.
+    ("let big = 1.5", "not yet: "),
+    ("put sphere center -2 - 1, 1 / 2, 0 radius big kd 0.5 ks 0.5 phong 9 color 1, 2, 3 end", "✓ step 2 done"),
+    // The snowman from a procedure, without a group.
+    (
+        "proc ball(y, r) put translate sphere center 0, y, 0 radius r kd 1 ks 0 phong 1 color 250, 250, 250 end \
+         by 3, 0, 0 end end",
+        "not yet: ",
+    ),
+    ("ball(-0.2, 0.8) ball(1, 0.5)", "✓ step 3 done"),
+    (":lesson 8", "step 1 of 4"),
+    ("proc row(k) if k < 5 then row(k + 1) end end", "✓ step 1 done"),
+    // Five balls from one `put` by a recursion counting up, in another procedure.
+    (
+        "proc line(k) if k < 5 then put sphere center k, 1, 0 radius 0.2 kd 1 ks 0 phong 1 color 0, 0, 255 end \
+         line(k + 1) end end",
+        "not yet: ",
+    ),
+    ("line(0)", "✓ step 2 done"),
+];
+
 #[test]
 fn answers_written_otherwise_than_the_examples_pass() {
     let home = tempfile::tempdir().expect("temporary directory");
     let mut session = spawn(&home.path().join("lessons"), false);
-    answer(&mut session, ":lesson 5", "step 1 of 3");
-    // A box turned about y then about z, not just about z.
-    answer(
-        &mut session,
-        "put rotate rotate box center 1, 0, 0 length 1, 1, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0.3, 0 end by 0, 0, 1 end",
-        "✓ step 1 done",
-    );
-    // The ball written where it belongs at once, through a name.
-    answer(&mut session, "let big = 1.5", "not yet: ");
-    answer(
-        &mut session,
-        "put sphere center -2 - 1, 1 / 2, 0 radius big kd 0.5 ks 0.5 phong 9 color 1, 2, 3 end",
-        "✓ step 2 done",
-    );
-    // The snowman from a procedure, without a group.
-    answer(
-        &mut session,
-        "proc ball(y, r) put translate sphere center 0, y, 0 radius r kd 1 ks 0 phong 1 color 250, 250, 250 end by 3, 0, 0 end end",
-        "not yet: ",
-    );
-    answer(&mut session, "ball(-0.2, 0.8) ball(1, 0.5)", "✓ step 3 done");
-    answer(&mut session, ":lesson 8", "step 1 of 4");
-    answer(&mut session, "proc row(k) if k < 5 then row(k + 1) end end", "✓ step 1 done");
-    // Five balls from one `put` by a recursion counting up, in another procedure.
-    answer(
-        &mut session,
-        "proc line(k) if k < 5 then put sphere center k, 1, 0 radius 0.2 kd 1 ks 0 phong 1 color 0, 0, 255 end line(k + 1) end end",
-        "not yet: ",
-    );
-    answer(&mut session, "line(0)", "✓ step 2 done");
+    for (input, expected) in OTHER_ANSWERS {
+        answer(&mut session, input, expected);
+    }
+    assert_eq!(quit(session), 0);
+}
+
+#[test]
+fn a_step_the_scene_already_does_is_passed_at_once() {
+    let home = tempfile::tempdir().expect("temporary directory");
+    let mut session = spawn(&home.path().join("lessons"), false);
+    answer(&mut session, ":lesson 2", "step 1 of 3");
+    // A light from the left first: wrong for step 1, but what step 3 asks.
+    answer(&mut session, "light vector 0, 0, 0.9 intensity 0.4 end", "not yet: no light comes from the right");
+    answer(&mut session, RIGHT_ANSWERS[1][0], "✓ step 1 done");
+    answer(&mut session, "ambient 0.1", "✓ step 2 done");
+    session.expect("✓ step 3 done: your scene already does it").expect("step 3 passes at once");
+    session.expect("✓ lesson 2 done").expect("the lesson ends");
     assert_eq!(quit(session), 0);
 }
 

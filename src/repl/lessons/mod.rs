@@ -75,8 +75,8 @@ pub(crate) fn check_input(session: &mut Session, console: &mut Console) {
         Err(missing) => {
             show_pictures(session, console, lesson, step);
             session.tutor.wrong_tries += 1;
-            console.say(format!("not yet: {missing}"));
-            console.say(wrap(&format!("hint: {}", current.hint), ""));
+            console.say(format!("not yet: {missing} (`:undo` takes your last input back)"));
+            console.say(wrap(current.hint, "hint: "));
             if session.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front {
                 console.say(format!("for example:\n{}", indent(current.example)));
             }
@@ -114,16 +114,15 @@ fn start(session: &mut Session, lesson: usize, console: &mut Console) -> Result<
     };
     let setup = lesson_scene(&LESSONS[lesson], step);
     session.reset();
+    let mut undo = "`:undo` brings yours back";
     if !setup.trim().is_empty() {
         session.submit(&format!("<lesson {}>", lesson + 1), &setup, 0).map_err(lesson_failure)?;
+        undo = "`:undo` twice brings yours back";
     }
     console.say(format!("lesson {} of {}: {}", lesson + 1, LESSONS.len(), LESSONS[lesson].title));
     let holds = session.counts();
-    console.say(format!(
-        "the scene starts with {} and {} (`:list` shows it; `:undo` twice brings yours back)",
-        holds.primitives_in_words(),
-        super::report::counted(holds.lights, "light")
-    ));
+    let lights = super::report::counted(holds.lights, "light");
+    console.say(format!("starting scene: {}, {lights} (`:list` shows it; {undo})", holds.primitives_in_words()));
     if step > 0 {
         console.say(format!("going on at step {}, where you stopped", step + 1));
     }
@@ -148,10 +147,15 @@ fn begin_step(session: &mut Session, console: &mut Console, lesson: usize, step:
     session.tutor = Tutor { place: Some((lesson, step)), wrong_tries: 0 };
     let steps = LESSONS[lesson].steps;
     say_step(console, &steps[step], step, steps.len());
-    show_pictures(session, console, lesson, step);
     let mut progress = Progress::load();
     progress.at = Some((lesson + 1, step + 1));
     save(&progress, console);
+    if (steps[step].check)(session).is_ok() {
+        console.say(format!("✓ step {} done: your scene already does it", step + 1));
+        advance(session, console, lesson, step);
+        return;
+    }
+    show_pictures(session, console, lesson, step);
 }
 
 fn say_step(console: &mut Console, step: &Step, index: usize, steps: usize) {
