@@ -28,6 +28,9 @@ const DEFAULT_FPS: u32 = 12;
 /// Frames `:play` keeps: all of them stay in memory to be replayed.
 const PLAY_FRAMES: Limit =
     Limit { name: "the number of frames", min: 1, max: 1000, why: "every frame is kept in memory to be played again" };
+/// Most bytes the frames may take together, so that a long animation on a
+/// large graphics terminal does not fill the memory.
+const PLAY_BYTES: u64 = 512 << 20;
 /// Frames a second.
 const PLAY_FPS: Limit = Limit { name: "the frames a second", min: 1, max: 60, why: "a terminal redraws no faster" };
 
@@ -47,6 +50,13 @@ pub(crate) fn play(session: &mut Session, arguments: &[String], console: &mut Co
         ));
     };
     let size = preview.render_size(Size { width: session.settings().width, height: session.settings().height });
+    let most = frames_that_fit(size);
+    if u64::from(frames) > most {
+        return Err(CommandError::Failed(format!(
+            "{frames} frames of {size} take more than {} MiB: at most {most} fit (`:preview small` makes them smaller)",
+            PLAY_BYTES >> 20
+        )));
+    }
     explain_defaults(session, console);
     show_scene_warnings(session, console, size, true);
     if !session.depends_on_time() {
@@ -62,6 +72,11 @@ pub(crate) fn play(session: &mut Session, arguments: &[String], console: &mut Co
         .map_err(|problem| CommandError::Failed(format!("cannot play here: {problem}")))?;
     console.say(format!("stopped after {shown} frames"));
     Ok(Flow::Continue)
+}
+
+/// How many frames of `size` fit in [`PLAY_BYTES`] (3 bytes a pixel).
+fn frames_that_fit(size: Size) -> u64 {
+    PLAY_BYTES / (3 * u64::from(size.width) * u64::from(size.height)).max(1)
 }
 
 /// Draws `images` in a loop, each in place of the one before, one every
@@ -105,5 +120,18 @@ impl RawMode {
 impl Drop for RawMode {
     fn drop(&mut self) {
         let _ = terminal::disable_raw_mode();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frames_are_kept_within_the_memory_allowed() {
+        // A small half-block preview keeps every frame allowed; a large
+        // graphics preview (1600x928 pixels) about 120.
+        assert!(frames_that_fit(Size { width: 60, height: 32 }) > u64::from(PLAY_FRAMES.max));
+        assert_eq!(frames_that_fit(Size { width: 1600, height: 928 }), 120);
     }
 }
