@@ -223,6 +223,18 @@ fn a_step_the_scene_already_does_is_passed_at_once() {
 }
 
 #[test]
+fn a_lesson_that_cannot_start_leaves_the_session_as_it_was() {
+    let home = tempfile::tempdir().expect("temporary directory");
+    let mut session = spawn(&home.path().join("lessons"), false);
+    answer(&mut session, "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end", "put 1 sphere");
+    answer(&mut session, ":limits primitives 1", "primitives = 1");
+    // Lesson 2's scene has two objects: more than the limit.
+    answer(&mut session, ":lesson 2", "error");
+    answer(&mut session, ":scene", "objects:  1 (1 sphere, 0 planes, 0 boxes)");
+    assert_eq!(quit(session), 0);
+}
+
+#[test]
 fn a_lesson_left_halfway_goes_on_where_it_stopped() {
     let home = tempfile::tempdir().expect("temporary directory");
     let progress = home.path().join("lessons");

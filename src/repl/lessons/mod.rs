@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use crate::lang::Diagnostic;
+use crate::lang::{Diagnostic, Limits};
 
 use super::commands::shown;
 use super::console::Console;
@@ -116,7 +116,11 @@ fn start(session: &mut Session, lesson: usize, console: &mut Console) -> Result<
     session.reset();
     let mut undo = "`:undo` brings yours back";
     if !setup.trim().is_empty() {
-        session.submit(&format!("<lesson {}>", lesson + 1), &setup, 0).map_err(lesson_failure)?;
+        if let Err(error) = session.submit(&format!("<lesson {}>", lesson + 1), &setup, 0) {
+            // Low `:limits` can stop the lesson's own program: leave the session as it was.
+            let _ = session.undo();
+            return Err(CommandError::Program(Box::new(error)));
+        }
         undo = "`:undo` twice brings yours back";
     }
     console.say(format!("lesson {} of {}: {}", lesson + 1, LESSONS.len(), LESSONS[lesson].title));
@@ -227,14 +231,10 @@ fn pictures(session: &Session, preview: &Preview, lesson: usize, step: usize) ->
 /// A session holding what `step` of `lesson` asks for: the setup and the
 /// examples up to that step.
 fn goal_session(session: &Session, lesson: usize, step: usize) -> Result<Session, Diagnostic> {
-    let mut goal = Session::new(*session.settings(), session.limits());
+    let mut goal = Session::new(*session.settings(), Limits::default());
     let text = lesson_scene(&LESSONS[lesson], step + 1);
     goal.submit("<goal>", &text, 0)?;
     Ok(goal)
-}
-
-fn lesson_failure(error: Diagnostic) -> CommandError {
-    CommandError::Program(Box::new(error))
 }
 
 /// `text` wrapped to [`TEXT_COLUMNS`], its first line after `first`, the
@@ -255,7 +255,6 @@ mod tests {
     use std::path::{Path, PathBuf};
 
     use super::*;
-    use crate::lang::Limits;
     use crate::repl::RenderSettings;
 
     /// The size and samples of the pictures of docs/learning.md.
