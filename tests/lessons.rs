@@ -31,7 +31,8 @@ fn spawn(progress: &Path, pictures: bool) -> Terminal {
     session
 }
 
-/// Types `input` line by line, then waits for `expected`.
+/// Types `input` line by line (nothing if it is empty), then waits for
+/// `expected`.
 fn answer(session: &mut Terminal, input: &str, expected: &str) {
     for line in input.lines() {
         session.send_line(line).expect("a line is typed");
@@ -198,40 +199,44 @@ const OTHER_ANSWERS: &[(&str, &str)] = &[
     ("line(0)", "✓ step 2 done"),
 ];
 
-#[test]
-fn answers_written_otherwise_than_the_examples_pass() {
+/// Runs `answers` (inputs, each with what the session says after it) in a
+/// new session without pictures, then leaves it.
+fn converse(answers: &[(&str, &str)]) {
     let home = tempfile::tempdir().expect("temporary directory");
     let mut session = spawn(&home.path().join("lessons"), false);
-    for (input, expected) in OTHER_ANSWERS {
+    for (input, expected) in answers {
         answer(&mut session, input, expected);
     }
     assert_eq!(quit(session), 0);
 }
 
 #[test]
+fn answers_written_otherwise_than_the_examples_pass() {
+    converse(OTHER_ANSWERS);
+}
+
+#[test]
 fn a_step_the_scene_already_does_is_passed_at_once() {
-    let home = tempfile::tempdir().expect("temporary directory");
-    let mut session = spawn(&home.path().join("lessons"), false);
-    answer(&mut session, ":lesson 2", "step 1 of 3");
-    // A light from the left first: wrong for step 1, but what step 3 asks.
-    answer(&mut session, "light vector 0, 0, 0.9 intensity 0.4 end", "not yet: no light comes from the right");
-    answer(&mut session, RIGHT_ANSWERS[1][0], "✓ step 1 done");
-    answer(&mut session, "ambient 0.1", "✓ step 2 done");
-    session.expect("✓ step 3 done: your scene already does it").expect("step 3 passes at once");
-    session.expect("✓ lesson 2 done").expect("the lesson ends");
-    assert_eq!(quit(session), 0);
+    converse(&[
+        (":lesson 2", "step 1 of 3"),
+        // A light from the left first: wrong for step 1, but what step 3 asks.
+        ("light vector 0, 0, 0.9 intensity 0.4 end", "not yet: no light comes from the right"),
+        (RIGHT_ANSWERS[1][0], "✓ step 1 done"),
+        ("ambient 0.1", "✓ step 2 done"),
+        ("", "✓ step 3 done: your scene already does it"),
+        ("", "✓ lesson 2 done"),
+    ]);
 }
 
 #[test]
 fn a_lesson_that_cannot_start_leaves_the_session_as_it_was() {
-    let home = tempfile::tempdir().expect("temporary directory");
-    let mut session = spawn(&home.path().join("lessons"), false);
-    answer(&mut session, "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end", "put 1 sphere");
-    answer(&mut session, ":limits primitives 1", "primitives = 1");
-    // Lesson 2's scene has two objects: more than the limit.
-    answer(&mut session, ":lesson 2", "error");
-    answer(&mut session, ":scene", "objects:  1 (1 sphere, 0 planes, 0 boxes)");
-    assert_eq!(quit(session), 0);
+    converse(&[
+        ("put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end", "put 1 sphere"),
+        (":limits primitives 1", "primitives = 1"),
+        // Lesson 2's scene has two objects: more than the limit.
+        (":lesson 2", "error"),
+        (":scene", "objects:  1 (1 sphere, 0 planes, 0 boxes)"),
+    ]);
 }
 
 #[test]
