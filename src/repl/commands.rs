@@ -45,7 +45,7 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":render", usage: ":render [WIDTH HEIGHT]", run: render },
     CommandSpec { name: ":save", usage: ":save FILE [WIDTH HEIGHT]", run: save },
     CommandSpec { name: ":anim", usage: ":anim FRAMES FILE", run: anim },
-    CommandSpec { name: ":play", usage: ":play [FRAMES [FRAMES A SECOND]]", run: play::play },
+    CommandSpec { name: ":play", usage: ":play [FRAMES [FPS]]", run: play::play },
     CommandSpec { name: ":time", usage: ":time [NUMBER]", run: time },
     CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
     CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },

@@ -40,12 +40,12 @@ names, commands and file names.
 
 /// Groups of topics for the overview, in the order a learner meets them.
 const GROUPS: &[(&str, &[&str])] = &[
+    ("Learning", &[":lesson"]),
     ("Scene set-up", &["camera", "ambient", "light"]),
     ("Shapes", &["sphere", "plane", "box", "texture"]),
     ("Moving shapes", &["translate", "rotate", "scale", "group", "by", "rotation"]),
     ("Building the scene", &["put", "object", "let", "proc", "if", "conditions", "end"]),
     ("Numbers", &["numbers", "time", "functions", "pi", "comments", "print"]),
-    ("Learning", &[":lesson"]),
     ("Pictures", &[":render", ":save", ":anim", ":play", ":time", ":size", ":depth", ":samples", ":preview"]),
     ("Files", &[":load", ":reload", ":watch", ":write"]),
     ("Looking inside", &[":env", ":scene", ":show", ":list", ":history"]),
