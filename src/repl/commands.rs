@@ -18,7 +18,9 @@ use super::cancel::cancel_flag;
 use super::console::Console;
 use super::help;
 use super::inspect;
+use super::lessons;
 pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
+use super::play;
 use super::preview::{Preview, PreviewSize};
 use super::reload;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
@@ -40,9 +42,11 @@ pub(crate) struct CommandSpec {
 /// Every command, in the order `:help` lists them.
 pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":help", usage: ":help [NAME]", run: help_command },
+    CommandSpec { name: ":lesson", usage: ":lesson [NUMBER|stop]", run: lessons::lesson },
     CommandSpec { name: ":render", usage: ":render [WIDTH HEIGHT]", run: render },
     CommandSpec { name: ":save", usage: ":save FILE [WIDTH HEIGHT]", run: save },
     CommandSpec { name: ":anim", usage: ":anim FRAMES FILE", run: anim },
+    CommandSpec { name: ":play", usage: ":play [FRAMES [FPS]]", run: play::play },
     CommandSpec { name: ":time", usage: ":time [NUMBER]", run: time },
     CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
     CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },
@@ -154,7 +158,7 @@ fn no_arguments(arguments: &[String]) -> Result<(), CommandError> {
 }
 
 /// A whole-number setting from `text`, within `limit`.
-fn parse_count(text: &str, limit: &'static Limit) -> Result<u32, CommandError> {
+pub(crate) fn parse_count(text: &str, limit: &'static Limit) -> Result<u32, CommandError> {
     limit.parse(text).map_err(usage)
 }
 
@@ -217,7 +221,7 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
 }
 
 /// The previewer, unless previews are off.
-fn shown(console: &Console) -> Option<Preview> {
+pub(crate) fn shown(console: &Console) -> Option<Preview> {
     console.preview.filter(|preview| preview.size != PreviewSize::Off)
 }
 
@@ -520,7 +524,7 @@ fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) ->
 
 /// Prints one note about the defaults a render falls back on, and about
 /// an empty or unlit scene.
-fn explain_defaults(session: &Session, console: &mut Console) {
+pub(crate) fn explain_defaults(session: &Session, console: &mut Console) {
     let scene = session.scene();
     let camera = format!("camera (distance {}, angle {})", number(scene.camera.distance), number(scene.camera.angle));
     let ambient = format!("ambient light ({})", number(scene.ambient));
@@ -560,7 +564,7 @@ fn render_scene(
 /// Renders frames 1..=`frames` of the animation, frame k with `time` = k,
 /// and hands each to `sink` with its number (see [`render_animation`] for
 /// what is computed once and what per frame).
-fn render_frames(
+pub(crate) fn render_frames(
     session: &Session,
     frames: u32,
     size: Size,

@@ -21,6 +21,8 @@ pub(crate) struct Topic {
 pub(crate) const OVERVIEW: &str = "\
 Type items of the .ray language one at a time, or a command starting with `:`.
 Each item is added to the scene you are building; `:render` shows it.
+New to the language? `:lesson` teaches it step by step, checking your scenes.
+Why is a pixel the colour it is? `:pick X Y` explains it, after a `:render`.
 
 A first scene:
     camera distance 10 angle 0.8 end
@@ -39,12 +41,13 @@ names, commands and file names.
 
 /// Groups of topics for the overview, in the order a learner meets them.
 const GROUPS: &[(&str, &[&str])] = &[
+    ("Learning", &[":lesson"]),
     ("Scene set-up", &["camera", "ambient", "light"]),
     ("Shapes", &["sphere", "plane", "box", "texture"]),
     ("Moving shapes", &["translate", "rotate", "scale", "group", "by", "rotation"]),
     ("Building the scene", &["put", "object", "let", "proc", "if", "conditions", "end"]),
     ("Numbers", &["numbers", "time", "functions", "pi", "comments", "print"]),
-    ("Pictures", &[":render", ":save", ":anim", ":time", ":size", ":depth", ":samples", ":preview"]),
+    ("Pictures", &[":render", ":save", ":anim", ":play", ":time", ":size", ":depth", ":samples", ":preview"]),
     ("Files", &[":load", ":reload", ":watch", ":write"]),
     ("Looking inside", &[":env", ":scene", ":show", ":list", ":history"]),
     ("The session", &[":help", ":undo", ":reset", ":limits", ":quit"]),
@@ -392,6 +395,24 @@ Example:
   :help sphere",
     },
     Topic {
+        name: ":lesson",
+        aliases: &["lesson", "lessons", "learn", "tutorial"],
+        summary: "guided lessons, from a first sphere to an animation",
+        text: "\
+:lesson [N|stop]
+  `:lesson` lists the lessons, from a first sphere to an animated recursive
+  scene, with a mark on those you finished. `:lesson N` starts lesson N on
+  a scene of its own (`:undo` twice brings yours back). Each step says what
+  to build; after each input your scene is checked, whatever way you wrote
+  it: a hint if something is missing, the next step when it is right. With
+  pictures on, the goal is shown beside your render. Your progress is kept
+  in rayrepl/lessons in your data folder (or the file RAYREPL_LESSONS
+  names), and `:lesson N` goes on where you stopped. `:lesson stop` leaves.
+Example:
+  :lesson
+  :lesson 1",
+    },
+    Topic {
         name: ":render",
         aliases: &["render"],
         summary: "draw the scene in the terminal",
@@ -425,6 +446,20 @@ Example:
   (spin.png gives spin0001.png, spin0002.png, ...).
 Example:
   :anim 24 spin.gif",
+    },
+    Topic {
+        name: ":play",
+        aliases: &["play"],
+        summary: "play the animation in the terminal, until a key",
+        text: "\
+:play [FRAMES [FPS]]
+  Computes frames 1 to FRAMES (24 unless given) like `:anim`, at the size
+  of a preview, then plays them here in a loop, FPS frames a second (12
+  unless given), until any key (Ctrl-C too) stops it. Needs a terminal
+  with pictures on (see `:preview`); `:anim` writes the frames to a file.
+Example:
+  put sphere center 3 * sin(time / 2), 0, 0 radius 1 kd 0.8 ks 0.2 phong 20 color 255, 120, 40 end
+  :play 24 12",
     },
     Topic {
         name: ":time",

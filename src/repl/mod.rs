@@ -23,8 +23,10 @@ mod excerpt;
 mod help;
 mod inspect;
 mod interactive;
+mod lessons;
 mod outcome;
 mod paste;
+mod play;
 mod preview;
 mod reload;
 mod rendering;
@@ -108,6 +110,7 @@ pub(crate) fn handle_input(
             for line in report::confirmations(&accepted, session) {
                 console.say(line);
             }
+            lessons::check_input(session, console);
             Ok(())
         }
         Err(error) => {

@@ -119,8 +119,9 @@ impl Preview {
     }
 
     /// Prints `image` scaled to fit its part of the terminal, never more
-    /// than one cell per pixel across (a small render stays small).
-    pub(crate) fn show(&self, image: &RgbImage) -> Result<(), String> {
+    /// than one cell per pixel across (a small render stays small); returns
+    /// the rows it took.
+    pub(crate) fn show(&self, image: &RgbImage) -> Result<u32, String> {
         let shape = Size { width: image.width(), height: image.height() };
         let most = self.cells();
         let bounds = Size { width: most.width.min(shape.width), height: most.height.min(shape.height.div_ceil(2)) };
@@ -134,7 +135,7 @@ impl Preview {
             use_iterm: !self.in_tmux,
             ..viuer::Config::default()
         };
-        viuer::print(&DynamicImage::ImageRgb8(image.clone()), &config).map(|_| ()).map_err(|e| e.to_string())
+        viuer::print(&DynamicImage::ImageRgb8(image.clone()), &config).map(|(_, rows)| rows).map_err(|e| e.to_string())
     }
 }
 
@@ -151,6 +152,16 @@ fn has_truecolor(env: impl Fn(&str) -> Option<String>) -> bool {
         || env("VTE_VERSION").and_then(|v| v.parse::<u32>().ok()).is_some_and(|version| version >= 3600)
         || env("KONSOLE_VERSION").is_some()
         || env("WT_SESSION").is_some()
+}
+
+/// `left` and `right` side by side on a black background, `gap` pixels
+/// apart, their tops aligned.
+pub(crate) fn side_by_side(left: &RgbImage, right: &RgbImage, gap: u32) -> RgbImage {
+    let width = left.width() + gap + right.width();
+    let mut both = RgbImage::new(width, left.height().max(right.height()));
+    image::imageops::replace(&mut both, left, 0, 0);
+    image::imageops::replace(&mut both, right, i64::from(left.width() + gap), 0);
+    both
 }
 
 /// The largest size with the proportions of `shape` that fits in `bounds`.
@@ -192,6 +203,18 @@ mod tests {
         assert!(with(&[("VTE_VERSION", "7402"), ("TERM", "xterm-256color")]));
         assert!(!with(&[("TERM", "xterm-256color")]));
         assert!(!with(&[("TERM", "linux")]));
+    }
+
+    #[test]
+    fn pictures_side_by_side_keep_their_pixels() {
+        let left = RgbImage::from_pixel(2, 3, image::Rgb([255, 0, 0]));
+        let right = RgbImage::from_pixel(3, 2, image::Rgb([0, 0, 255]));
+        let both = side_by_side(&left, &right, 1);
+        assert_eq!(both.dimensions(), (6, 3));
+        assert_eq!(
+            (both[(1, 2)], both[(2, 0)], both[(3, 1)], both[(3, 2)]),
+            (image::Rgb([255, 0, 0]), image::Rgb([0, 0, 0]), image::Rgb([0, 0, 255]), image::Rgb([0, 0, 0]))
+        );
     }
 
     #[test]

@@ -9,12 +9,13 @@ use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::{Item, Program};
-use crate::lang::eval::PrintLog;
+use crate::lang::eval::{Origins, PrintLog};
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
 use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
+use super::lessons::Tutor;
 use super::rendering::RenderSettings;
 
 /// One accepted input, kept so the session can be rebuilt without it, and
@@ -107,6 +108,8 @@ pub struct Session {
     /// What `print` wrote and was not yet shown (also by the frames of an
     /// animation, which only read the session).
     printed: RefCell<PrintLog>,
+    /// The lesson being followed, if any (`:lesson`).
+    pub(crate) tutor: Tutor,
 }
 
 impl Session {
@@ -127,6 +130,7 @@ impl Session {
             printed: RefCell::default(),
             counts: Counts::default(),
             interrupt: None,
+            tutor: Tutor::default(),
         }
     }
 
@@ -376,6 +380,11 @@ impl Session {
     /// The scene built so far.
     pub fn scene(&self) -> &Scene {
         self.interpreter.scene()
+    }
+
+    /// Where the scene's parts come from: each primitive's `put`.
+    pub(crate) fn origins(&self) -> &Origins {
+        self.interpreter.origins()
     }
 
     /// What `print` wrote since the last call, at most

@@ -1,0 +1,317 @@
+//! Guided lessons (`:lesson`): each step says what to build, shows the goal
+//! picture beside the learner's render, and checks the learner's scene after
+//! every accepted input: a hint after a wrong try, the next step on success.
+//! Progress is kept between sessions ([`progress`]).
+
+mod content;
+mod progress;
+
+use std::sync::atomic::AtomicBool;
+
+use image::RgbImage;
+
+use crate::lang::{Diagnostic, Limits};
+
+use super::commands::shown;
+use super::console::Console;
+use super::outcome::{CommandError, CommandResult, Flow};
+use super::preview::{Preview, side_by_side};
+use super::rendering::{RenderError, Size, render_image};
+use super::session::Session;
+use crate::render::SceneGeometry;
+use content::{LESSONS, Lesson, Step};
+use progress::Progress;
+
+/// The width lessons' texts are wrapped to.
+const TEXT_COLUMNS: usize = 76;
+/// Wrong tries of a step after which its example is shown with the hint.
+const TRIES_BEFORE_EXAMPLE: u32 = 2;
+/// Columns of background between the goal picture and the learner's.
+const PICTURE_GAP: u32 = 4;
+
+/// The lesson being followed in a session, if any.
+#[derive(Debug, Default)]
+pub(crate) struct Tutor {
+    /// The lesson and step (from 0) being worked on.
+    place: Option<(usize, usize)>,
+    /// Wrong tries of the current step.
+    wrong_tries: u32,
+}
+
+/// `:lesson` lists the lessons; `:lesson N` starts (or resumes) lesson N;
+/// `:lesson stop` leaves the lesson.
+pub(crate) fn lesson(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    match arguments {
+        [] => list(session, console),
+        [word] if word == "stop" => {
+            session.tutor = Tutor::default();
+            console.say("left the lesson; `:lesson` lists them all");
+        }
+        [number] => {
+            let index = number
+                .parse::<usize>()
+                .ok()
+                .filter(|n| (1..=LESSONS.len()).contains(n))
+                .ok_or_else(|| CommandError::Usage(format!("the lessons are numbered 1 to {}", LESSONS.len())))?;
+            start(session, index - 1, console)?;
+        }
+        _ => return Err(CommandError::Usage("give one lesson number, or nothing to list them".to_string())),
+    }
+    Ok(Flow::Continue)
+}
+
+/// After an accepted input: checks the scene against the current step, and
+/// moves on or gives the hint.
+pub(crate) fn check_input(session: &mut Session, console: &mut Console) {
+    let Some((lesson, step)) = session.tutor.place else {
+        return;
+    };
+    let current = &LESSONS[lesson].steps[step];
+    match (current.check)(session) {
+        Ok(()) => {
+            console.say(format!("✓ step {} done", step + 1));
+            advance(session, console, lesson, step);
+        }
+        Err(missing) => {
+            show_pictures(session, console, lesson, step);
+            session.tutor.wrong_tries += 1;
+            console.say(format!("not yet: {missing} (`:undo` takes your last input back)"));
+            console.say(wrap(current.hint, "hint: "));
+            if session.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front {
+                console.say(format!("for example:\n{}", indent(current.example)));
+            }
+        }
+    }
+}
+
+fn list(session: &Session, console: &mut Console) {
+    let progress = Progress::load();
+    console.say("lessons (`:lesson N` starts one):");
+    for (index, lesson) in LESSONS.iter().enumerate() {
+        let number = index + 1;
+        let mark = if progress.done.contains(&number) { "✓" } else { " " };
+        console.say(format!("  {mark} {number}. {} ({} steps)", lesson.title, lesson.steps.len()));
+    }
+    match (session.tutor.place, progress.at) {
+        (Some((lesson, step)), _) => {
+            console.say(format!("you are at lesson {} step {}:", lesson + 1, step + 1));
+            say_step(console, &LESSONS[lesson].steps[step], step, LESSONS[lesson].steps.len());
+        }
+        (None, Some((lesson, step))) => {
+            console.say(format!("you stopped at lesson {lesson} step {step}: `:lesson {lesson}` goes on from there"))
+        }
+        (None, None) => {}
+    }
+}
+
+/// Starts lesson `lesson` (from 0) on a scene of its own, at the step the
+/// learner last reached in it.
+fn start(session: &mut Session, lesson: usize, console: &mut Console) -> Result<(), CommandError> {
+    let progress = Progress::load();
+    let step = match progress.at {
+        Some((at, step)) if at == lesson + 1 && (1..=LESSONS[lesson].steps.len()).contains(&step) => step - 1,
+        _ => 0,
+    };
+    let setup = lesson_scene(&LESSONS[lesson], step);
+    session.reset();
+    let mut undo = "`:undo` brings yours back";
+    if !setup.trim().is_empty() {
+        if let Err(error) = session.submit(&format!("<lesson {}>", lesson + 1), &setup, 0) {
+            // Low `:limits` can stop the lesson's own program: leave the session as it was.
+            let _ = session.undo();
+            return Err(CommandError::Program(Box::new(error)));
+        }
+        undo = "`:undo` twice brings yours back";
+    }
+    console.say(format!("lesson {} of {}: {}", lesson + 1, LESSONS.len(), LESSONS[lesson].title));
+    let holds = session.counts();
+    let lights = super::report::counted(holds.lights, "light");
+    console.say(format!("starting scene: {}, {lights} (`:list` shows it; {undo})", holds.primitives_in_words()));
+    if step > 0 {
+        console.say(format!("going on at step {}, where you stopped", step + 1));
+    }
+    begin_step(session, console, lesson, step);
+    Ok(())
+}
+
+/// The program a lesson's scene starts from at `step`: its setup, then the
+/// examples of the steps before.
+fn lesson_scene(lesson: &Lesson, step: usize) -> String {
+    let mut text = lesson.setup.to_string();
+    for earlier in &lesson.steps[..step] {
+        text.push('\n');
+        text.push_str(earlier.example);
+    }
+    text
+}
+
+/// Says what step `step` asks, shows its goal, and remembers where the
+/// learner is.
+fn begin_step(session: &mut Session, console: &mut Console, lesson: usize, step: usize) {
+    session.tutor = Tutor { place: Some((lesson, step)), wrong_tries: 0 };
+    let steps = LESSONS[lesson].steps;
+    say_step(console, &steps[step], step, steps.len());
+    let mut progress = Progress::load();
+    progress.at = Some((lesson + 1, step + 1));
+    save(&progress, console);
+    if (steps[step].check)(session).is_ok() {
+        console.say(format!("✓ step {} done: your scene already does it", step + 1));
+        advance(session, console, lesson, step);
+        return;
+    }
+    show_pictures(session, console, lesson, step);
+}
+
+fn say_step(console: &mut Console, step: &Step, index: usize, steps: usize) {
+    console.say(wrap(step.task, &format!("step {} of {steps}: ", index + 1)));
+    if step.example_up_front {
+        console.say(indent(step.example));
+    }
+}
+
+/// Moves past step `step` of `lesson`: to the next step, or to the end of
+/// the lesson, which is then remembered as done.
+fn advance(session: &mut Session, console: &mut Console, lesson: usize, step: usize) {
+    if step + 1 < LESSONS[lesson].steps.len() {
+        begin_step(session, console, lesson, step + 1);
+        return;
+    }
+    show_pictures(session, console, lesson, step);
+    session.tutor = Tutor::default();
+    let mut progress = Progress::load();
+    progress.done.insert(lesson + 1);
+    progress.at = None;
+    save(&progress, console);
+    console.say(format!("✓ lesson {} done: {}", lesson + 1, LESSONS[lesson].title));
+    match LESSONS.get(lesson + 1) {
+        Some(next) => console.say(format!("next: `:lesson {}` ({})", lesson + 2, next.title)),
+        None => console.say("that was the last lesson: `:help` lists everything the language has"),
+    }
+}
+
+fn save(progress: &Progress, console: &mut Console) {
+    if let Err(problem) = progress.save() {
+        console.note(format!("cannot keep your progress: {problem}"));
+    }
+}
+
+/// Shows the goal picture of `step` beside the learner's render, where the
+/// terminal shows pictures.
+fn show_pictures(session: &Session, console: &mut Console, lesson: usize, step: usize) {
+    let Some(preview) = shown(console) else {
+        return;
+    };
+    match pictures(session, &preview, lesson, step) {
+        Ok(image) => {
+            console.say("goal (left) and yours (right):");
+            if let Err(problem) = preview.show(&image) {
+                console.note(format!("cannot show the pictures here: {problem}"));
+            }
+        }
+        Err(problem) => console.note(format!("cannot show the pictures: {problem}")),
+    }
+}
+
+/// The goal picture of `step` and the learner's, side by side, together
+/// as large as a preview.
+fn pictures(session: &Session, preview: &Preview, lesson: usize, step: usize) -> Result<RgbImage, String> {
+    let settings = session.settings();
+    // Two pictures of the configured shape, side by side, fitted together.
+    let pair = preview.render_size(Size { width: settings.width.saturating_mul(2), height: settings.height });
+    let half = Size { width: (pair.width.saturating_sub(PICTURE_GAP) / 2).max(1), height: pair.height };
+    let goal = goal_session(session, lesson, step).map_err(|_| "the lesson's example fails".to_string())?;
+    let render = |scene| {
+        let never = AtomicBool::new(false);
+        render_image(scene, &SceneGeometry::new(scene), half, settings, &never, &|_| {})
+            .map_err(|RenderError::Cancelled| "the render was cancelled".to_string())
+    };
+    Ok(side_by_side(&render(goal.scene())?, &render(session.scene())?, PICTURE_GAP))
+}
+
+/// A session holding what `step` of `lesson` asks for: the setup and the
+/// examples up to that step.
+fn goal_session(session: &Session, lesson: usize, step: usize) -> Result<Session, Diagnostic> {
+    let mut goal = Session::new(*session.settings(), Limits::default());
+    let text = lesson_scene(&LESSONS[lesson], step + 1);
+    goal.submit("<goal>", &text, 0)?;
+    Ok(goal)
+}
+
+/// `text` wrapped to [`TEXT_COLUMNS`], its first line after `first`, the
+/// others indented by as much.
+fn wrap(text: &str, first: &str) -> String {
+    let rest = " ".repeat(first.chars().count());
+    let options = textwrap::Options::new(TEXT_COLUMNS).initial_indent(first).subsequent_indent(&rest);
+    textwrap::fill(text, options)
+}
+
+/// A program shown indented by four spaces.
+fn indent(program: &str) -> String {
+    program.lines().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use super::*;
+    use crate::repl::RenderSettings;
+
+    /// The size and samples of the pictures of docs/learning.md.
+    const DOCS_PICTURE: RenderSettings =
+        RenderSettings { width: 400, height: 300, samples: 4, ..crate::settings::DEFAULTS };
+
+    fn docs() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs")
+    }
+
+    /// The picture of what lesson `index` builds, as docs/learning.md shows it.
+    fn lesson_picture(index: usize) -> RgbImage {
+        let mut session = Session::new(DOCS_PICTURE, Limits::default());
+        let lesson = &LESSONS[index];
+        session.submit("<lesson>", &lesson_scene(lesson, lesson.steps.len()), 0).expect("the lesson's examples run");
+        let size = Size { width: DOCS_PICTURE.width, height: DOCS_PICTURE.height };
+        let scene = session.scene();
+        render_image(scene, &SceneGeometry::new(scene), size, &DOCS_PICTURE, &AtomicBool::new(false), &|_| {})
+            .expect("nothing cancels it")
+    }
+
+    /// docs/learning.md shows every example of every lesson, and the
+    /// picture of each lesson is what rayrepl renders of it now.
+    /// `RAYREPL_BLESS=1 cargo test --release --lib learning_page` (or
+    /// tools/learning-pictures) writes the pictures again.
+    #[test]
+    fn the_learning_page_shows_every_lesson_as_rendered_now() {
+        let page = std::fs::read_to_string(docs().join("learning.md")).expect("docs/learning.md exists");
+        let bless = std::env::var_os("RAYREPL_BLESS").is_some();
+        for (index, lesson) in LESSONS.iter().enumerate() {
+            for step in lesson.steps {
+                assert!(page.contains(step.example), "docs/learning.md lacks the example\n{}", step.example);
+            }
+            let name = format!("learning/lesson-{}.png", index + 1);
+            assert!(page.contains(&name), "docs/learning.md does not show {name}");
+            let picture = lesson_picture(index);
+            let path = docs().join(&name);
+            if bless {
+                crate::output::write_image(&path, &picture).expect("the picture is written");
+                continue;
+            }
+            let committed = image::open(&path).map(|image| image.to_rgb8());
+            assert!(
+                committed.is_ok_and(|committed| committed == picture),
+                "{name} is not what lesson {} renders now: RAYREPL_BLESS=1 cargo test --release --lib learning_page",
+                index + 1
+            );
+        }
+    }
+
+    #[test]
+    fn text_is_wrapped_under_its_label() {
+        let text = "one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen";
+        assert_eq!(
+            wrap(text, "step 1 of 2: "),
+            "step 1 of 2: one two three four five six seven eight nine ten eleven twelve\n             thirteen fourteen fifteen"
+        );
+        assert_eq!(indent("a\nb"), "    a\n    b");
+    }
+}
