@@ -122,7 +122,9 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
         })
     } else {
         output_path(cli, path).map_err(BatchError::from).and_then(|output| match cli.anim {
-            Some(count) => animate(cli, &parsed, count, &output),
+            Some(count) => {
+                animation_format(cli, &output).and_then(|format| animate(cli, &parsed, count, &output, format))
+            }
             None => still(cli, &parsed, &output),
         })
     };
@@ -252,12 +254,23 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
     if output::same_file(&path, scene) {
         return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", path.display()));
     }
-    let content = if cli.anim.is_some() { Content::Animation } else { Content::Still };
-    let format = output::check_output(&path, content).map_err(|e| format!("rayrepl: {e}"))?;
-    if format == ImageFormat::Gif && cli.frames.is_some() {
-        return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
+    if cli.anim.is_none() {
+        output::check_output(&path, Content::Still).map_err(|e| format!("rayrepl: {e}"))?;
     }
     Ok(path)
+}
+
+/// The format of the animation's `output`, checked before any work.
+fn animation_format(cli: &Cli, output: &Path) -> Result<ImageFormat, BatchError> {
+    let format =
+        output::check_animation_output(output, &cli.animation_options()).map_err(|e| format!("rayrepl: {e}"))?;
+    if format.holds_every_frame() && cli.frames.is_some() {
+        return Err(BatchError::Other(format!(
+            "rayrepl: --frames writes numbered images; use a .png or .ppm name with it \
+             (and put the frames together afterwards: see `--help`)"
+        )));
+    }
+    Ok(format)
 }
 
 /// The renderer's settings from the command line.
@@ -407,9 +420,10 @@ fn render_frame(
 }
 
 /// Renders frames `--frames` (default all) of an animation of `count`
-/// frames, frame k with `time = k`, to numbered images or one GIF (see
-/// [`animation`] for what is computed once and what per frame).
-fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result<(), BatchError> {
+/// frames, frame k at the time `--time-start` and `--time-step` give it,
+/// to numbered images or one file in `format` (see [`animation`] for what
+/// is computed once and what per frame).
+fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path, format: ImageFormat) -> Result<(), BatchError> {
     let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
@@ -424,8 +438,9 @@ fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result
     let progress = Progress::new(per_frame * u64::from(frames.end() - frames.start() + 1), "animating");
     let tick = |pixels: u64| progress.advance(pixels);
     let control = RenderControl { progress: Some(&tick), cancel: None };
-    let mut frames_out = FrameSink::new(output, count as usize);
-    let evaluate = |k: u32, skip_static: bool| parsed.evaluate(f64::from(k), skip_static);
+    let animation = cli.animation_options();
+    let mut frames_out = FrameSink::new(output, format, count as usize, animation.playback);
+    let evaluate = |k: u32, skip_static: bool| parsed.evaluate(animation.timeline.time_of(k), skip_static);
     let sink = |k: u32, image: RgbImage| {
         frames_out.add(k as usize, image).map_err(|e| BatchError::Other(format!("rayrepl: {e}")))
     };

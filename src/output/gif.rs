@@ -1,0 +1,145 @@
+//! Animated GIF, encoded frame by frame as the frames arrive.
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+use image::RgbImage;
+use rayon::prelude::*;
+
+use super::{OutputError, PendingFile, io_error};
+use crate::playback::{Loops, Playback};
+
+/// An animated GIF being written.
+///
+/// Its palette of 256 colours is learnt (NeuQuant) from the first frame; a
+/// later frame that the palette no longer fits (new colours came into view)
+/// gets a palette of its own, which the frames after it keep while it fits.
+pub(super) struct GifStream {
+    pending: PendingFile,
+    encoder: gif::Encoder<BufWriter<File>>,
+    width: u16,
+    height: u16,
+    delay: u16,
+    /// The palette frames are mapped to.
+    palette: color_quant::NeuQuant,
+    /// Whether `palette` is the GIF's global one (the first frame's).
+    global: bool,
+}
+
+/// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
+/// (fastest).
+const GIF_QUANTISATION_SPEED: usize = 10;
+
+/// How many pixels NeuQuant should learn from at least, where the frame has them.
+const GIF_LEARNT_PIXELS: usize = 48_000;
+
+/// A pixel whose palette colour is off by more than this many levels in a
+/// channel is badly mapped.
+const GIF_MISFIT_LEVELS: u8 = 24;
+
+/// A frame with more badly mapped pixels than one in this many, and more
+/// than [`GIF_MISFIT_PIXELS`], gets a palette of its own.
+const GIF_MISFIT_SHARE: usize = 1000;
+
+/// Fewer badly mapped pixels than this never call for a new palette: in a
+/// small frame a few such pixels are the palette's usual error, and
+/// learning a palette for every frame would take most of the time.
+const GIF_MISFIT_PIXELS: usize = 32;
+
+impl GifStream {
+    /// Starts a GIF at `path` of frames the size of `first`, played as
+    /// `playback` says (its delays in steps of 10 ms, GIF's unit).
+    pub(super) fn start(path: &Path, first: &RgbImage, playback: &Playback) -> Result<GifStream, OutputError> {
+        let too_large = || OutputError::Io {
+            path: path.to_owned(),
+            source: io::Error::new(io::ErrorKind::InvalidInput, "a GIF is at most 65535 pixels wide and high"),
+        };
+        let width = u16::try_from(first.width()).map_err(|_| too_large())?;
+        let height = u16::try_from(first.height()).map_err(|_| too_large())?;
+        let palette = learn_palette(first);
+        let (pending, writer) = PendingFile::create(path)?;
+        let gif_error = |e| gif_encode_error(path, e);
+        let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
+        // Without the looping extension a GIF plays once; with it, the count is of repeats after the first play.
+        match playback.loops.unwrap_or(Loops::Forever) {
+            Loops::Forever => encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?,
+            Loops::Times(1) => {}
+            Loops::Times(times) => {
+                let repeats = u16::try_from(times - 1).unwrap_or(u16::MAX);
+                encoder.set_repeat(gif::Repeat::Finite(repeats)).map_err(gif_error)?;
+            }
+        }
+        // The fastest rate, 100 fps, gives a delay of 1; the slowest, 0.01 fps, 10000.
+        let delay = (100.0 / playback.fps()).round() as u16;
+        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true })
+    }
+
+    /// Maps `image` to the palette (a new one if it does not fit, unless
+    /// the palette was `learnt_from_it`) and encodes it.
+    pub(super) fn add(&mut self, image: &RgbImage, learnt_from_it: bool) -> Result<(), OutputError> {
+        let (mut indices, misfits) = map_to_palette(image, &self.palette);
+        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > indices.len() {
+            self.palette = learn_palette(image);
+            self.global = false;
+            indices = map_to_palette(image, &self.palette).0;
+        }
+        let mut frame = gif::Frame::from_indexed_pixels(self.width, self.height, indices, None);
+        frame.delay = self.delay;
+        if !self.global {
+            frame.palette = Some(self.palette.color_map_rgb());
+        }
+        self.encoder.write_frame(&frame).map_err(|e| gif_encode_error(&self.pending.path, e))
+    }
+
+    /// Ends the GIF and puts it in place.
+    pub(super) fn finish(self) -> Result<(), OutputError> {
+        let path = &self.pending.path;
+        let mut writer = self.encoder.into_inner().map_err(|e| gif_encode_error(path, e))?;
+        writer.flush().map_err(|e| io_error(path, e))?;
+        drop(writer);
+        self.pending.commit()
+    }
+}
+
+/// About how many pixels a GIF palette is learnt from, taken evenly from
+/// the frame (all of an 800x600 frame).
+const GIF_PALETTE_SAMPLE: usize = 480_000;
+
+/// A 256-colour palette for `image`.
+fn learn_palette(image: &RgbImage) -> color_quant::NeuQuant {
+    let stride = (image.len() / 3).div_ceil(GIF_PALETTE_SAMPLE).max(1);
+    let rgba: Vec<u8> = image.pixels().step_by(stride).flat_map(|p| [p[0], p[1], p[2], 0xFF]).collect();
+    // NeuQuant learns from one pixel in `speed`: all of them in small frames.
+    let speed = (rgba.len() / 4 / GIF_LEARNT_PIXELS).clamp(1, GIF_QUANTISATION_SPEED);
+    color_quant::NeuQuant::new(speed as i32, 256, &rgba)
+}
+
+/// Each pixel of `image` as its index in `palette` (in parallel), and how
+/// many pixels are more than [`GIF_MISFIT_LEVELS`] off.
+fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>, usize) {
+    let mapped: Vec<(u8, bool)> = image
+        .as_raw()
+        .par_chunks_exact(3)
+        .with_min_len(4096)
+        .map(|p| {
+            let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
+            let colour = palette.lookup(index).unwrap_or_default();
+            let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
+            (index as u8, misfit)
+        })
+        .collect();
+    let misfits = mapped.iter().filter(|(_, misfit)| *misfit).count();
+    (mapped.into_iter().map(|(index, _)| index).collect(), misfits)
+}
+
+fn gif_encode_error(path: &Path, source: gif::EncodingError) -> OutputError {
+    match source {
+        gif::EncodingError::Io(source) => io_error(path, source),
+        other => {
+            let hint = image::error::ImageFormatHint::Exact(image::ImageFormat::Gif);
+            let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, other));
+            OutputError::Encode { path: path.to_owned(), source }
+        }
+    }
+}
