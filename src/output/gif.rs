@@ -25,6 +25,19 @@ pub(super) struct GifStream {
     palette: color_quant::NeuQuant,
     /// Whether `palette` is the GIF's global one (the first frame's).
     global: bool,
+    /// The last frame and its pixels mapped to `palette`: most pixels of
+    /// an animation's frame are those of the frame before, and keep their
+    /// index.
+    last: Option<Mapped>,
+}
+
+/// A frame mapped to a palette.
+struct Mapped {
+    /// The frame's bytes.
+    pixels: Vec<u8>,
+    /// Each pixel's index, and whether it is more than
+    /// [`GIF_MISFIT_LEVELS`] off.
+    indices: Vec<(u8, bool)>,
 }
 
 /// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
@@ -72,18 +85,21 @@ impl GifStream {
         }
         // The fastest rate, 100 fps, gives a delay of 1; the slowest, 0.01 fps, 10000.
         let delay = (100.0 / playback.fps()).round() as u16;
-        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true })
+        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true, last: None })
     }
 
     /// Maps `image` to the palette (a new one if it does not fit, unless
     /// the palette was `learnt_from_it`) and encodes it.
     pub(super) fn add(&mut self, image: &RgbImage, learnt_from_it: bool) -> Result<(), OutputError> {
-        let (mut indices, misfits) = map_to_palette(image, &self.palette);
-        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > indices.len() {
+        let mut mapped = map_to_palette(image, &self.palette, self.last.as_ref());
+        let misfits = mapped.indices.iter().filter(|(_, misfit)| *misfit).count();
+        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > mapped.indices.len() {
             self.palette = learn_palette(image);
             self.global = false;
-            indices = map_to_palette(image, &self.palette).0;
+            mapped = map_to_palette(image, &self.palette, None);
         }
+        let indices: Vec<u8> = mapped.indices.iter().map(|(index, _)| *index).collect();
+        self.last = Some(mapped);
         let mut frame = gif::Frame::from_indexed_pixels(self.width, self.height, indices, None);
         frame.delay = self.delay;
         if !self.global {
@@ -115,22 +131,26 @@ fn learn_palette(image: &RgbImage) -> color_quant::NeuQuant {
     color_quant::NeuQuant::new(speed as i32, 256, &rgba)
 }
 
-/// Each pixel of `image` as its index in `palette` (in parallel), and how
-/// many pixels are more than [`GIF_MISFIT_LEVELS`] off.
-fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>, usize) {
-    let mapped: Vec<(u8, bool)> = image
-        .as_raw()
-        .par_chunks_exact(3)
-        .with_min_len(4096)
-        .map(|p| {
-            let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
-            let colour = palette.lookup(index).unwrap_or_default();
-            let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
-            (index as u8, misfit)
-        })
-        .collect();
-    let misfits = mapped.iter().filter(|(_, misfit)| *misfit).count();
-    (mapped.into_iter().map(|(index, _)| index).collect(), misfits)
+/// Each pixel of `image` as its index in `palette` (in parallel): the
+/// index it had in `last`, mapped to the same palette, where it is the
+/// same colour there, or else the nearest.
+fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant, last: Option<&Mapped>) -> Mapped {
+    let nearest = |p: &[u8]| {
+        let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
+        let colour = palette.lookup(index).unwrap_or_default();
+        let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
+        (index as u8, misfit)
+    };
+    let pixels = image.as_raw().par_chunks_exact(3).with_min_len(4096);
+    let indices = match last.filter(|last| last.pixels.len() == image.as_raw().len()) {
+        Some(last) => pixels
+            .zip(last.pixels.par_chunks_exact(3))
+            .zip(last.indices.par_iter())
+            .map(|((p, q), mapped)| if p == q { *mapped } else { nearest(p) })
+            .collect(),
+        None => pixels.map(nearest).collect(),
+    };
+    Mapped { pixels: image.as_raw().clone(), indices }
 }
 
 fn gif_encode_error(path: &Path, source: gif::EncodingError) -> OutputError {
