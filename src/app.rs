@@ -21,6 +21,7 @@ use crate::lang::eval::PrintLog;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::output::{self, Content, FrameSink, ImageFormat};
+use crate::pov;
 use crate::progress::Progress;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
 use crate::repl::{self, SessionOptions};
@@ -116,7 +117,9 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
     let parsed = ParsedScene::parse(sources, id, cli)?;
-    let result = if cli.check {
+    let result = if let Some(pov) = &cli.export_pov {
+        export_pov(cli, &parsed, id, pov, path)
+    } else if cli.check {
         parsed.evaluate(cli.settings().time, false).map(|scene| {
             println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
         })
@@ -282,6 +285,27 @@ fn render_options(cli: &Cli) -> RenderOptions {
         };
     }
     cli.settings().render_options()
+}
+
+/// Writes the scene evaluated at `--time` as a POV-Ray scene to `pov`.
+fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_path: &Path) -> Result<(), BatchError> {
+    let start = Instant::now();
+    if output::same_file(pov, scene_path) {
+        return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", pov.display()).into());
+    }
+    let scene = parsed.evaluate(cli.settings().time, false)?;
+    let export = pov::Export {
+        source: &parsed.sources.get(id).name,
+        time: cli.settings().time,
+        depth: cli.depth,
+        width: cli.width,
+        height: cli.height,
+    };
+    output::write_text(pov, &pov::to_pov(&scene, &export)).map_err(|e| format!("rayrepl: {e}"))?;
+    if !cli.quiet {
+        eprintln!("wrote {}: {}, {:.2} s", pov.display(), summary(&scene), start.elapsed().as_secs_f64());
+    }
+    Ok(())
 }
 
 /// Renders one image at `--time`.

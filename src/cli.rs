@@ -109,6 +109,10 @@ pub struct Cli {
     #[arg(long)]
     pub apng: bool,
 
+    /// Write the scene evaluated at --time as a POV-Ray 3.7 scene file instead of rendering it.
+    #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats"])]
+    pub export_pov: Option<PathBuf>,
+
     /// Deepest chain of procedure calls allowed.
     #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_call_depth, value_name = "N")]
     pub max_calls: usize,
@@ -218,6 +222,7 @@ impl Cli {
             (self.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),
             (animation_flag.is_some(), animation_flag.unwrap_or_default(), ""),
             (self.check, "--check", "; there, `:scene` tells what the scene holds"),
+            (self.export_pov.is_some(), "--export-pov", ""),
             (self.stats, "--stats", ""),
             (self.reference, "--reference", ""),
             (self.quiet, "--quiet", ""),
@@ -290,6 +295,8 @@ Examples:
   rayrepl scenarios/solar.ray --anim 100 --frames 1..50 -o out.png
                                                        frames 1-50 as out0001.png...
   rayrepl --check scenarios/menger.ray                 parse and evaluate only
+  rayrepl scenarios/solar.ray --time 10 --export-pov solar.pov
+                                                       the scene for POV-Ray 3.7
   rayrepl scene.ray --watch -o scene.png               render again at every save
   rayrepl                                              the interactive session
   cat script.ray | rayrepl                             run a script

@@ -13,6 +13,7 @@ pub mod lang;
 pub mod lint;
 pub mod output;
 pub mod playback;
+mod pov;
 mod progress;
 pub mod render;
 pub mod repl;
