@@ -268,10 +268,11 @@ fn animation_format(cli: &Cli, output: &Path) -> Result<ImageFormat, BatchError>
     let format =
         output::check_animation_output(output, &cli.animation_options()).map_err(|e| format!("rayrepl: {e}"))?;
     if format.holds_every_frame() && cli.frames.is_some() {
-        return Err(BatchError::Other(format!(
-            "rayrepl: --frames writes numbered images; use a .png or .ppm name with it \
-             (and put the frames together afterwards: see `--help`)"
-        )));
+        return Err(BatchError::Other(
+            "rayrepl: --frames writes numbered images: use a .png or .ppm name with it, and put the \
+             frames together afterwards with ffmpeg (the README's \"Many machines\" shows how)"
+                .into(),
+        ));
     }
     Ok(format)
 }

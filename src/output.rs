@@ -533,6 +533,17 @@ fn io_error(path: &Path, source: io::Error) -> OutputError {
     OutputError::Io { path: path.to_owned(), source }
 }
 
+/// An encoder's own error (not an I/O one) while writing `path` in `format`.
+fn format_error(
+    path: &Path,
+    format: image::ImageFormat,
+    source: impl std::error::Error + Send + Sync + 'static,
+) -> OutputError {
+    let hint = image::error::ImageFormatHint::Exact(format);
+    let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, source));
+    OutputError::Encode { path: path.to_owned(), source }
+}
+
 fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
     match source {
         image::ImageError::IoError(source) => io_error(path, source),

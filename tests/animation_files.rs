@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
 use assert_cmd::Command;
-use image::{AnimationDecoder, RgbImage};
+use image::RgbImage;
 use predicates::str::contains;
 
 /// Flat colours (ambient light only, kd 1): a sphere at x = time - 2 of

@@ -2,7 +2,7 @@
 //! installed, the export is rendered and must show every object where
 //! rayrepl shows it (the same object masks); skipped, saying so, otherwise.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use predicates::str::contains;
@@ -28,6 +28,14 @@ fn rayrepl() -> assert_cmd::Command {
     command
 }
 
+/// A temporary folder holding `layout.ray` with [`LAYOUT`].
+fn layout_scene() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let scene = dir.path().join("layout.ray");
+    std::fs::write(&scene, LAYOUT).expect("scene written");
+    (dir, scene)
+}
+
 /// The object each pixel shows, by its colour's index in `colours` (none: black).
 fn mask(image: &image::RgbImage, colours: &[[u8; 3]]) -> Vec<Option<usize>> {
     image.pixels().map(|p| colours.iter().position(|c| (0..3).all(|k| c[k].abs_diff(p[k]) <= 2))).collect()
@@ -35,9 +43,7 @@ fn mask(image: &image::RgbImage, colours: &[[u8; 3]]) -> Vec<Option<usize>> {
 
 #[test]
 fn the_export_renders_in_povray_with_the_same_layout() {
-    let dir = tempfile::tempdir().expect("temporary folder");
-    let scene = dir.path().join("layout.ray");
-    std::fs::write(&scene, LAYOUT).expect("scene written");
+    let (dir, scene) = layout_scene();
     let pov = dir.path().join("layout.pov");
     rayrepl()
         .arg(&scene)
@@ -79,9 +85,7 @@ fn the_export_renders_in_povray_with_the_same_layout() {
 
 #[test]
 fn export_pov_is_refused_with_flags_it_would_ignore() {
-    let dir = tempfile::tempdir().expect("temporary folder");
-    let scene = dir.path().join("layout.ray");
-    std::fs::write(&scene, LAYOUT).expect("scene written");
+    let (dir, scene) = layout_scene();
     let pov = dir.path().join("a.pov");
     for flags in [&["--anim", "3"][..], &["-o", "x.png"], &["--check"]] {
         rayrepl().arg(&scene).arg("--export-pov").arg(&pov).args(flags).assert().code(2);

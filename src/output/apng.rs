@@ -7,7 +7,7 @@ use std::path::Path;
 
 use image::RgbImage;
 
-use super::{OutputError, PendingFile, io_error};
+use super::{OutputError, PendingFile, format_error, io_error};
 use crate::playback::{Loops, Playback};
 
 /// An animated PNG being written.
@@ -67,10 +67,6 @@ impl ApngStream {
 fn png_encode_error(path: &Path, source: png::EncodingError) -> OutputError {
     match source {
         png::EncodingError::IoError(source) => io_error(path, source),
-        other => {
-            let hint = image::error::ImageFormatHint::Exact(image::ImageFormat::Png);
-            let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, other));
-            OutputError::Encode { path: path.to_owned(), source }
-        }
+        other => format_error(path, image::ImageFormat::Png, other),
     }
 }

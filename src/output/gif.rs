@@ -7,7 +7,7 @@ use std::path::Path;
 use image::RgbImage;
 use rayon::prelude::*;
 
-use super::{OutputError, PendingFile, io_error};
+use super::{OutputError, PendingFile, format_error, io_error};
 use crate::playback::{Loops, Playback};
 
 /// An animated GIF being written.
@@ -156,10 +156,6 @@ fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant, last: Optio
 fn gif_encode_error(path: &Path, source: gif::EncodingError) -> OutputError {
     match source {
         gif::EncodingError::Io(source) => io_error(path, source),
-        other => {
-            let hint = image::error::ImageFormatHint::Exact(image::ImageFormat::Gif);
-            let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, other));
-            OutputError::Encode { path: path.to_owned(), source }
-        }
+        other => format_error(path, image::ImageFormat::Gif, other),
     }
 }
