@@ -1,5 +1,6 @@
 //! Animated GIF, encoded frame by frame as the frames arrive.
 
+use std::borrow::Cow;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -25,19 +26,21 @@ pub(super) struct GifStream {
     palette: color_quant::NeuQuant,
     /// Whether `palette` is the GIF's global one (the first frame's).
     global: bool,
-    /// The last frame and its pixels mapped to `palette`: most pixels of
-    /// an animation's frame are those of the frame before, and keep their
-    /// index.
-    last: Option<Mapped>,
+    /// The last frame, mapped to `palette`.
+    mapped: Mapped,
 }
 
-/// A frame mapped to a palette.
+/// A frame mapped to a palette, updated in place from one frame to the
+/// next: most pixels of an animation's frame are those of the frame
+/// before, and keep their index without a search of the palette.
 struct Mapped {
     /// The frame's bytes.
     pixels: Vec<u8>,
-    /// Each pixel's index, and whether it is more than
-    /// [`GIF_MISFIT_LEVELS`] off.
-    indices: Vec<(u8, bool)>,
+    /// Each pixel's index in the palette.
+    indices: Vec<u8>,
+    /// Whether each pixel is more than [`GIF_MISFIT_LEVELS`] off its
+    /// palette colour.
+    misfits: Vec<bool>,
 }
 
 /// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
@@ -85,23 +88,29 @@ impl GifStream {
         }
         // The fastest rate, 100 fps, gives a delay of 1; the slowest, 0.01 fps, 10000.
         let delay = (100.0 / playback.fps()).round() as u16;
-        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true, last: None })
+        let pixels = first.width() as usize * first.height() as usize;
+        let mapped = Mapped { pixels: vec![0; pixels * 3], indices: vec![0; pixels], misfits: vec![false; pixels] };
+        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true, mapped })
     }
 
     /// Maps `image` to the palette (a new one if it does not fit, unless
     /// the palette was `learnt_from_it`) and encodes it.
     pub(super) fn add(&mut self, image: &RgbImage, learnt_from_it: bool) -> Result<(), OutputError> {
-        let mut mapped = map_to_palette(image, &self.palette, self.last.as_ref());
-        let misfits = mapped.indices.iter().filter(|(_, misfit)| *misfit).count();
-        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > mapped.indices.len() {
+        self.mapped.update(image, &self.palette, learnt_from_it);
+        let misfits = self.mapped.misfits.iter().filter(|misfit| **misfit).count();
+        let fits = misfits <= GIF_MISFIT_PIXELS || misfits * GIF_MISFIT_SHARE <= self.mapped.indices.len();
+        if !learnt_from_it && !fits {
             self.palette = learn_palette(image);
             self.global = false;
-            mapped = map_to_palette(image, &self.palette, None);
+            self.mapped.update(image, &self.palette, true);
         }
-        let indices: Vec<u8> = mapped.indices.iter().map(|(index, _)| *index).collect();
-        self.last = Some(mapped);
-        let mut frame = gif::Frame::from_indexed_pixels(self.width, self.height, indices, None);
-        frame.delay = self.delay;
+        let mut frame = gif::Frame {
+            width: self.width,
+            height: self.height,
+            delay: self.delay,
+            buffer: Cow::Borrowed(&self.mapped.indices),
+            ..gif::Frame::default()
+        };
         if !self.global {
             frame.palette = Some(self.palette.color_map_rgb());
         }
@@ -131,26 +140,30 @@ fn learn_palette(image: &RgbImage) -> color_quant::NeuQuant {
     color_quant::NeuQuant::new(speed as i32, 256, &rgba)
 }
 
-/// Each pixel of `image` as its index in `palette` (in parallel): the
-/// index it had in `last`, mapped to the same palette, where it is the
-/// same colour there, or else the nearest.
-fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant, last: Option<&Mapped>) -> Mapped {
-    let nearest = |p: &[u8]| {
-        let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
-        let colour = palette.lookup(index).unwrap_or_default();
-        let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
-        (index as u8, misfit)
-    };
-    let pixels = image.as_raw().par_chunks_exact(3).with_min_len(4096);
-    let indices = match last.filter(|last| last.pixels.len() == image.as_raw().len()) {
-        Some(last) => pixels
-            .zip(last.pixels.par_chunks_exact(3))
-            .zip(last.indices.par_iter())
-            .map(|((p, q), mapped)| if p == q { *mapped } else { nearest(p) })
-            .collect(),
-        None => pixels.map(nearest).collect(),
-    };
-    Mapped { pixels: image.as_raw().clone(), indices }
+impl Mapped {
+    /// Maps the pixels of `image` that differ from the last frame's (all of
+    /// them if `palette` is `new`) to their nearest colour in `palette`, in
+    /// parallel.
+    fn update(&mut self, image: &RgbImage, palette: &color_quant::NeuQuant, new: bool) {
+        let nearest = |p: &[u8]| {
+            let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
+            let colour = palette.lookup(index).unwrap_or_default();
+            let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
+            (index as u8, misfit)
+        };
+        self.pixels
+            .par_chunks_exact_mut(3)
+            .zip(self.indices.par_iter_mut())
+            .zip(self.misfits.par_iter_mut())
+            .zip(image.as_raw().par_chunks_exact(3))
+            .with_min_len(4096)
+            .for_each(|(((last, index), misfit), pixel)| {
+                if new || last != pixel {
+                    last.copy_from_slice(pixel);
+                    (*index, *misfit) = nearest(pixel);
+                }
+            });
+    }
 }
 
 fn gif_encode_error(path: &Path, source: gif::EncodingError) -> OutputError {
