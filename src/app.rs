@@ -288,7 +288,8 @@ fn render_options(cli: &Cli) -> RenderOptions {
     cli.settings().render_options()
 }
 
-/// Writes the scene evaluated at `--time` as a POV-Ray scene to `pov`.
+/// Writes the scene evaluated at `--time` as a POV-Ray scene to `pov`
+/// (`-`: standard output).
 fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_path: &Path) -> Result<(), BatchError> {
     let start = Instant::now();
     if output::same_file(pov, scene_path) {
@@ -302,9 +303,19 @@ fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_p
         width: cli.width,
         height: cli.height,
     };
-    output::write_text(pov, &pov::to_pov(&scene, &export)).map_err(|e| format!("rayrepl: {e}"))?;
+    let text = pov::to_pov(&scene, &export);
+    let name = if pov == Path::new("-") {
+        let mut stdout = std::io::stdout().lock();
+        stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()).map_err(|e| {
+            format!("rayrepl: cannot write the POV-Ray scene to standard output: {}", output::io_reason(&e))
+        })?;
+        "standard output".to_string()
+    } else {
+        output::write_text(pov, &text).map_err(|e| format!("rayrepl: {e}"))?;
+        pov.display().to_string()
+    };
     if !cli.quiet {
-        eprintln!("wrote {}: {}, {:.2} s", pov.display(), summary(&scene), start.elapsed().as_secs_f64());
+        eprintln!("wrote {name}: {}, {:.2} s", summary(&scene), start.elapsed().as_secs_f64());
     }
     Ok(())
 }

@@ -109,7 +109,7 @@ pub struct Cli {
     #[arg(long)]
     pub apng: bool,
 
-    /// Write the scene evaluated at --time as a POV-Ray 3.7 scene file instead of rendering it.
+    /// Write the scene evaluated at --time as a POV-Ray 3.7 scene file instead of rendering it (`-`: to stdout).
     #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats"])]
     pub export_pov: Option<PathBuf>,
 

@@ -91,4 +91,5 @@ fn export_pov_is_refused_with_flags_it_would_ignore() {
         rayrepl().arg(&scene).arg("--export-pov").arg(&pov).args(flags).assert().code(2);
     }
     assert!(!Path::new(&pov).exists());
+    rayrepl().arg(&scene).args(["--export-pov", "-"]).assert().success().stdout(contains("#version 3.7;"));
 }
