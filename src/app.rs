@@ -21,6 +21,7 @@ use crate::lang::eval::PrintLog;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_file};
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::output::{self, Content, FrameSink, ImageFormat};
+use crate::pov;
 use crate::progress::Progress;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
 use crate::repl::{self, SessionOptions};
@@ -116,13 +117,17 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
     let parsed = ParsedScene::parse(sources, id, cli)?;
-    let result = if cli.check {
+    let result = if let Some(pov) = &cli.export_pov {
+        export_pov(cli, &parsed, id, pov, path)
+    } else if cli.check {
         parsed.evaluate(cli.settings().time, false).map(|scene| {
             println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
         })
     } else {
         output_path(cli, path).map_err(BatchError::from).and_then(|output| match cli.anim {
-            Some(count) => animate(cli, &parsed, count, &output),
+            Some(count) => {
+                animation_format(cli, &output).and_then(|format| animate(cli, &parsed, count, &output, format))
+            }
             None => still(cli, &parsed, &output),
         })
     };
@@ -252,12 +257,24 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
     if output::same_file(&path, scene) {
         return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", path.display()));
     }
-    let content = if cli.anim.is_some() { Content::Animation } else { Content::Still };
-    let format = output::check_output(&path, content).map_err(|e| format!("rayrepl: {e}"))?;
-    if format == ImageFormat::Gif && cli.frames.is_some() {
-        return Err("rayrepl: --frames writes numbered images; use a .png or .ppm name with it".into());
+    if cli.anim.is_none() {
+        output::check_output(&path, Content::Still).map_err(|e| format!("rayrepl: {e}"))?;
     }
     Ok(path)
+}
+
+/// The format of the animation's `output`, checked before any work.
+fn animation_format(cli: &Cli, output: &Path) -> Result<ImageFormat, BatchError> {
+    let format =
+        output::check_animation_output(output, &cli.animation_options()).map_err(|e| format!("rayrepl: {e}"))?;
+    if format.holds_every_frame() && cli.frames.is_some() {
+        return Err(BatchError::Other(
+            "rayrepl: --frames writes numbered images: use a .png or .ppm name with it, and put the \
+             frames together afterwards with ffmpeg (the README's \"Many machines\" shows how)"
+                .into(),
+        ));
+    }
+    Ok(format)
 }
 
 /// The renderer's settings from the command line.
@@ -269,6 +286,38 @@ fn render_options(cli: &Cli) -> RenderOptions {
         };
     }
     cli.settings().render_options()
+}
+
+/// Writes the scene evaluated at `--time` as a POV-Ray scene to `pov`
+/// (`-`: standard output).
+fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_path: &Path) -> Result<(), BatchError> {
+    let start = Instant::now();
+    if output::same_file(pov, scene_path) {
+        return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", pov.display()).into());
+    }
+    let scene = parsed.evaluate(cli.settings().time, false)?;
+    let export = pov::Export {
+        source: &parsed.sources.get(id).name,
+        time: cli.settings().time,
+        depth: cli.depth,
+        width: cli.width,
+        height: cli.height,
+    };
+    let text = pov::to_pov(&scene, &export);
+    let name = if pov == Path::new("-") {
+        let mut stdout = std::io::stdout().lock();
+        stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()).map_err(|e| {
+            format!("rayrepl: cannot write the POV-Ray scene to standard output: {}", output::io_reason(&e))
+        })?;
+        "standard output".to_string()
+    } else {
+        output::write_text(pov, &text, &output::NEVER_CANCELLED).map_err(|e| format!("rayrepl: {e}"))?;
+        pov.display().to_string()
+    };
+    if !cli.quiet {
+        eprintln!("wrote {name}: {}, {:.2} s", summary(&scene), start.elapsed().as_secs_f64());
+    }
+    Ok(())
 }
 
 /// Renders one image at `--time`.
@@ -407,9 +456,10 @@ fn render_frame(
 }
 
 /// Renders frames `--frames` (default all) of an animation of `count`
-/// frames, frame k with `time = k`, to numbered images or one GIF (see
-/// [`animation`] for what is computed once and what per frame).
-fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result<(), BatchError> {
+/// frames, frame k at the time `--time-start` and `--time-step` give it,
+/// to numbered images or one file in `format` (see [`animation`] for what
+/// is computed once and what per frame).
+fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path, format: ImageFormat) -> Result<(), BatchError> {
     let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
@@ -424,8 +474,9 @@ fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path) -> Result
     let progress = Progress::new(per_frame * u64::from(frames.end() - frames.start() + 1), "animating");
     let tick = |pixels: u64| progress.advance(pixels);
     let control = RenderControl { progress: Some(&tick), cancel: None };
-    let mut frames_out = FrameSink::new(output, count as usize);
-    let evaluate = |k: u32, skip_static: bool| parsed.evaluate(f64::from(k), skip_static);
+    let animation = cli.animation_options();
+    let mut frames_out = FrameSink::new(output, format, count as usize, animation.playback);
+    let evaluate = |k: u32, skip_static: bool| parsed.evaluate(animation.timeline.time_of(k), skip_static);
     let sink = |k: u32, image: RgbImage| {
         frames_out.add(k as usize, image).map_err(|e| BatchError::Other(format!("rayrepl: {e}")))
     };

@@ -8,6 +8,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Parser, ValueEnum};
 
 use crate::lint::{Allowed, Check};
+use crate::playback::{self, AnimationOptions, Loops, Playback, Timeline};
 use crate::render::Screen;
 use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, RenderSettings, SAMPLES, THREADS, WIDTH};
 
@@ -22,7 +23,7 @@ pub struct Cli {
     /// The scene to render or check; `-` reads it from standard input.
     pub scene: Option<PathBuf>,
 
-    /// Where to write the image: .png, .ppm or (with --anim) .gif; `-` writes PPM to stdout.
+    /// Where to write the image: .png, .ppm or (with --anim) .gif, .apng, .mp4, .webm; `-` writes PPM to stdout.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
 
@@ -80,13 +81,37 @@ pub struct Cli {
     #[arg(long)]
     pub stats: bool,
 
-    /// Render an animation of N frames (1 to 1000000), frame k with `time = k`.
+    /// Render an animation of N frames (1 to 1000000), frame k with `time = k` (see --time-start, --time-step).
     #[arg(long, value_name = "N", value_parser = |text: &str| FRAMES.parse(text))]
     pub anim: Option<u32>,
 
     /// With --anim, render only frames A to B (for spreading frames over machines).
     #[arg(long, value_name = "A..B", value_parser = parse_frames)]
     pub frames: Option<RangeInclusive<u32>>,
+
+    /// With --anim, the time of frame 1 [default: 1].
+    #[arg(long, value_name = "A", allow_negative_numbers = true, value_parser = |text: &str| playback::parse_time_number(text))]
+    pub time_start: Option<f64>,
+
+    /// With --anim, how much the time grows from a frame to the next: frame k has time = A + (k - 1) * S [default: 1].
+    #[arg(long, value_name = "S", allow_negative_numbers = true, value_parser = |text: &str| playback::parse_time_number(text))]
+    pub time_step: Option<f64>,
+
+    /// With --anim, frames a second of a GIF, APNG or video, 0.01 to 100 [default: 25].
+    #[arg(long, value_name = "F", value_parser = |text: &str| playback::parse_fps(text))]
+    pub fps: Option<f64>,
+
+    /// With --anim, how many times a GIF, APNG or video plays: a count, or `forever` [default: forever; 1 for a video].
+    #[arg(long = "loop", value_name = "N|forever", value_parser = |text: &str| playback::parse_loops(text))]
+    pub loops: Option<Loops>,
+
+    /// With --anim, write one animated PNG to a .png name rather than numbered images.
+    #[arg(long)]
+    pub apng: bool,
+
+    /// Write the scene evaluated at --time as a POV-Ray 3.7 scene file instead of rendering it (`-`: to stdout).
+    #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats"])]
+    pub export_pov: Option<PathBuf>,
 
     /// Deepest chain of procedure calls allowed.
     #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_call_depth, value_name = "N")]
@@ -115,7 +140,7 @@ pub struct Cli {
 }
 
 /// The flags that only matter when an image is rendered, which `--check` does not do.
-const RENDER_ONLY: [&str; 13] = [
+const RENDER_ONLY: [&str; 18] = [
     "output",
     "watch",
     "quiet",
@@ -129,7 +154,15 @@ const RENDER_ONLY: [&str; 13] = [
     "stats",
     "anim",
     "frames",
+    "time_start",
+    "time_step",
+    "fps",
+    "loops",
+    "apng",
 ];
+
+/// The flags that shape an animation, as they are spelt.
+const ANIMATION_ONLY: [&str; 6] = ["--frames", "--time-start", "--time-step", "--fps", "--loop", "--apng"];
 
 impl Cli {
     /// The render settings the command line asks for.
@@ -145,6 +178,31 @@ impl Cli {
         }
     }
 
+    /// The animation's times and playing (`--time-start`, `--fps`, ...).
+    pub(crate) fn animation_options(&self) -> AnimationOptions {
+        AnimationOptions {
+            timeline: Timeline {
+                start: self.time_start.unwrap_or(Timeline::DEFAULT.start),
+                step: self.time_step.unwrap_or(Timeline::DEFAULT.step),
+            },
+            playback: Playback { fps: self.fps, loops: self.loops },
+            apng: self.apng,
+        }
+    }
+
+    /// Which animation flags are given, as spelt.
+    fn animation_flags(&self) -> impl Iterator<Item = &'static str> {
+        let given = [
+            self.frames.is_some(),
+            self.time_start.is_some(),
+            self.time_step.is_some(),
+            self.fps.is_some(),
+            self.loops.is_some(),
+            self.apng,
+        ];
+        ANIMATION_ONLY.into_iter().zip(given).filter(|(_, given)| *given).map(|(flag, _)| flag)
+    }
+
     /// The checks of the scene turned off (`--allow`).
     pub(crate) fn allowed(&self) -> Allowed {
         self.allow.iter().fold(Allowed::default(), |all, allowed| all.and(*allowed))
@@ -158,11 +216,13 @@ impl Cli {
     /// A flag that would do nothing with the others given, said in words,
     /// or a setting out of its limits.
     pub(crate) fn misuse(&self) -> Option<String> {
+        let animation_flag = self.animation_flags().next();
         let session_flags = [
             (self.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),
             (self.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),
-            (self.frames.is_some(), "--frames", ""),
+            (animation_flag.is_some(), animation_flag.unwrap_or_default(), ""),
             (self.check, "--check", "; there, `:scene` tells what the scene holds"),
+            (self.export_pov.is_some(), "--export-pov", ""),
             (self.stats, "--stats", ""),
             (self.reference, "--reference", ""),
             (self.quiet, "--quiet", ""),
@@ -174,14 +234,18 @@ impl Cli {
                 if self.interactive { "-i starts a session" } else { "without a scene file, rayrepl starts a session" };
             return Some(format!("{flag} does nothing in a session ({why}){instead}"));
         }
-        if self.frames.is_some() && self.anim.is_none() {
-            return Some("--frames picks frames of an animation: give --anim N too".into());
+        if let Some(flag) = animation_flag.filter(|_| self.anim.is_none()) {
+            return Some(format!("{flag} is for an animation: give --anim N too"));
         }
         if self.adaptive && self.samples <= 1 {
             return Some("--adaptive gives more samples to some pixels: give --samples N too, with N > 1".into());
         }
         if self.time.is_some() && self.anim.is_some() {
-            return Some("--time sets the time of one image; frame k of an animation has time = k".into());
+            return Some(
+                "--time sets the time of one image; frame k of an animation has time = k, \
+                 or A + (k - 1) * S with --time-start A --time-step S"
+                    .into(),
+            );
         }
         if self.watch && self.scene.as_deref() == Some(std::path::Path::new("-")) {
             return Some("--watch follows a file as it is saved: give its name, not `-`".into());
@@ -224,9 +288,15 @@ const AFTER_HELP: &str = "\
 Examples:
   rayrepl scenarios/solar.ray -o solar.png             render one image
   rayrepl scenarios/solar.ray --anim 100 -o solar.gif  an animated GIF
+  rayrepl scenarios/solar.ray --anim 100 --fps 30 --loop 1 -o solar.apng
+                                                       an animated PNG at 30 fps, played once
+  rayrepl scenarios/solar.ray --anim 400 --time-start 1 --time-step 0.25 -o solar.mp4
+                                                       a video (with ffmpeg), time = 1, 1.25, ...
   rayrepl scenarios/solar.ray --anim 100 --frames 1..50 -o out.png
                                                        frames 1-50 as out0001.png...
   rayrepl --check scenarios/menger.ray                 parse and evaluate only
+  rayrepl scenarios/solar.ray --time 10 --export-pov solar.pov
+                                                       the scene for POV-Ray 3.7
   rayrepl scene.ray --watch -o scene.png               render again at every save
   rayrepl                                              the interactive session
   cat script.ray | rayrepl                             run a script

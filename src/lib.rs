@@ -12,6 +12,8 @@ pub mod cli;
 pub mod lang;
 pub mod lint;
 pub mod output;
+pub mod playback;
+mod pov;
 mod progress;
 pub mod render;
 pub mod repl;

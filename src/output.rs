@@ -1,10 +1,15 @@
-//! Writing images and animations: PNG, PPM, GIF, and the names of frames.
+//! Writing images and animations: PNG, PPM, animated GIF and PNG, video,
+//! and the names of frames.
 //!
 //! Files are written atomically: into a temporary file in the target's
 //! directory, then renamed over the target, so a failed or interrupted
 //! write never leaves a partial image behind, and a replaced file keeps its
-//! permissions. An animated GIF is encoded frame by frame as the frames
+//! permissions. An animation is encoded frame by frame as the frames
 //! arrive, so its memory does not grow with the number of frames.
+
+mod apng;
+mod gif;
+mod video;
 
 use std::fmt;
 use std::fs::File;
@@ -15,7 +20,11 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ImageEncoder, RgbImage};
-use rayon::prelude::*;
+
+use crate::playback::{AnimationOptions, Loops, Playback};
+use apng::ApngStream;
+use gif::GifStream;
+use video::VideoStream;
 
 /// An image format rayrepl writes, named by a file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,6 +35,12 @@ pub(crate) enum ImageFormat {
     Ppm,
     /// Animated GIF, for animations only.
     Gif,
+    /// Animated PNG, for animations only.
+    Apng,
+    /// H.264 video in MP4, made by ffmpeg, for animations only.
+    Mp4,
+    /// VP9 video in WebM, made by ffmpeg, for animations only.
+    Webm,
 }
 
 impl ImageFormat {
@@ -36,7 +51,33 @@ impl ImageFormat {
             "png" => Some(ImageFormat::Png),
             "ppm" => Some(ImageFormat::Ppm),
             "gif" => Some(ImageFormat::Gif),
+            "apng" => Some(ImageFormat::Apng),
+            "mp4" => Some(ImageFormat::Mp4),
+            "webm" => Some(ImageFormat::Webm),
             _ => None,
+        }
+    }
+
+    /// Whether the format holds one image (an animation in it is numbered
+    /// files).
+    fn is_still(self) -> bool {
+        matches!(self, ImageFormat::Png | ImageFormat::Ppm)
+    }
+
+    /// Whether one file of the format holds all the frames of an animation.
+    pub fn holds_every_frame(self) -> bool {
+        !self.is_still()
+    }
+
+    /// The format's name in messages.
+    fn name(self) -> &'static str {
+        match self {
+            ImageFormat::Png => "PNG",
+            ImageFormat::Ppm => "PPM",
+            ImageFormat::Gif => "GIF",
+            ImageFormat::Apng => "APNG",
+            ImageFormat::Mp4 => "MP4",
+            ImageFormat::Webm => "WebM",
         }
     }
 }
@@ -46,7 +87,7 @@ impl ImageFormat {
 pub enum Content {
     /// One image.
     Still,
-    /// The frames of an animation: one GIF, or numbered images.
+    /// The frames of an animation: one GIF, APNG or video, or numbered images.
     Animation,
 }
 
@@ -62,12 +103,36 @@ pub(crate) fn check_output(path: &Path, content: Content) -> Result<ImageFormat,
         return Err(OutputError::NoFolder { path: path.to_owned(), folder: folder.to_owned() });
     }
     let format = match (ImageFormat::from_path(path), content) {
-        (Some(ImageFormat::Gif), Content::Still) => Err(OutputError::GifIsForAnimations { path: path.to_owned() }),
+        (Some(format), Content::Still) if !format.is_still() => {
+            Err(OutputError::OnlyForAnimations { path: path.to_owned(), format: format.name() })
+        }
         (Some(format), _) => Ok(format),
         (None, _) => Err(OutputError::UnknownFormat { path: path.to_owned(), content }),
     }?;
     // The write goes through a temporary file in the folder: make one now.
     temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
+    Ok(format)
+}
+
+/// Checks, before any work, that `path` can receive an animation made as
+/// `options` say: [`check_output`], a `.png` or `.apng` name for `--apng`,
+/// a speed and looping only for a format that plays, and `ffmpeg` for a
+/// video. Returns the format.
+pub(crate) fn check_animation_output(path: &Path, options: &AnimationOptions) -> Result<ImageFormat, OutputError> {
+    let format = match (check_output(path, Content::Animation)?, options.apng) {
+        (ImageFormat::Png | ImageFormat::Apng, true) => ImageFormat::Apng,
+        (_, true) => return Err(OutputError::ApngName { path: path.to_owned() }),
+        (format, false) => format,
+    };
+    if format.is_still() && options.playback.is_given() {
+        return Err(OutputError::NumberedFramesDoNotPlay { path: path.to_owned() });
+    }
+    if matches!(format, ImageFormat::Mp4 | ImageFormat::Webm) {
+        if options.playback.loops == Some(Loops::Forever) {
+            return Err(OutputError::VideoLoopsForever { path: path.to_owned() });
+        }
+        video::check_ffmpeg(path)?;
+    }
     Ok(format)
 }
 
@@ -87,10 +152,39 @@ pub enum OutputError {
         /// What was to be written.
         content: Content,
     },
-    /// A GIF was asked for one image.
-    GifIsForAnimations {
+    /// An animation format was asked for one image.
+    OnlyForAnimations {
         /// The path given.
         path: PathBuf,
+        /// The format's name.
+        format: &'static str,
+    },
+    /// `--apng` with a name that is not `.png` or `.apng`.
+    ApngName {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// A frame rate or looping for numbered images, which do not play.
+    NumberedFramesDoNotPlay {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// A video asked to loop forever, which no video file can say.
+    VideoLoopsForever {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// A video was asked for and `ffmpeg` cannot be run.
+    NoFfmpeg {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// ffmpeg failed to make a video.
+    Ffmpeg {
+        /// The video's path.
+        path: PathBuf,
+        /// What ffmpeg said.
+        message: String,
     },
     /// The path names a folder, not a file.
     Folder {
@@ -136,16 +230,41 @@ impl fmt::Display for OutputError {
             OutputError::UnknownFormat { path, content } => {
                 let formats = match content {
                     Content::Still => ".png or .ppm",
-                    Content::Animation => ".gif, .png or .ppm",
+                    Content::Animation => ".gif, .apng, .mp4, .webm, .png or .ppm",
                 };
                 write!(f, "cannot tell the image format of `{}`: end the name in {formats}", path.display())
             }
-            OutputError::GifIsForAnimations { path } => write!(
+            OutputError::OnlyForAnimations { path, format } => write!(
                 f,
-                "cannot write `{}`: GIF is for animations (--anim N, or :anim in a session); \
+                "cannot write `{}`: {format} is for animations (--anim N, or :anim in a session); \
                  write one image as .png or .ppm",
                 path.display()
             ),
+            OutputError::ApngName { path } => {
+                write!(f, "cannot write `{}` with --apng: an animated PNG's name ends in .png or .apng", path.display())
+            }
+            OutputError::NumberedFramesDoNotPlay { path } => write!(
+                f,
+                "cannot give `{}` a frame rate or looping: numbered images do not play; \
+                 write a .gif, .apng, .mp4 or .webm (or add --apng for one animated .png)",
+                path.display()
+            ),
+            OutputError::VideoLoopsForever { path } => write!(
+                f,
+                "cannot write `{}` looping forever: a video file cannot say so (players loop it on request); \
+                 give --loop N to hold N plays",
+                path.display()
+            ),
+            OutputError::NoFfmpeg { path } => write!(
+                f,
+                "cannot write `{}`: videos are made by the `ffmpeg` program, which is not installed \
+                 (install the package `ffmpeg`: `apt install ffmpeg`, `brew install ffmpeg`); \
+                 or write a .gif or .apng",
+                path.display()
+            ),
+            OutputError::Ffmpeg { path, message } => {
+                write!(f, "cannot write `{}`: ffmpeg failed: {message}", path.display())
+            }
             OutputError::Folder { path } => write!(
                 f,
                 "cannot write `{}`: it is a folder; give a file name in it, such as `{}`",
@@ -233,44 +352,76 @@ fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()>
     encoder.write_image(image.as_raw(), image.width(), image.height(), image::ExtendedColorType::Rgb8)
 }
 
-/// How long each frame of an animated GIF is shown: 25 frames a second.
-const GIF_FRAME_DELAY_MS: u32 = 40;
-
 /// Where the frames of an animation go as they are rendered, in order:
-/// encoded at once into one animated GIF if the file name ends in `.gif`,
-/// otherwise written at once as numbered images (`spin.png` gives
-/// `spin0001.png`, ...). Nothing is kept but the GIF's palette, so a long
-/// animation takes no more memory than a short one.
+/// encoded at once into one file (GIF, APNG, video) in `format`, or written
+/// at once as numbered images (`spin.png` gives `spin0001.png`, ...).
+/// Nothing is kept but a GIF's palette, so a long animation takes no more
+/// memory than a short one.
 pub(crate) struct FrameSink {
     path: PathBuf,
+    format: ImageFormat,
+    /// The number of frames of the whole animation.
     count: usize,
-    gif: Option<Option<GifStream>>,
+    playback: Playback,
+    /// The one file being encoded, from the first frame on.
+    stream: Option<Stream>,
     written: Vec<PathBuf>,
 }
 
+/// A file that holds every frame.
+enum Stream {
+    Gif(GifStream),
+    Apng(ApngStream),
+    Video(VideoStream),
+}
+
+impl Stream {
+    /// Starts the file at `path` in `format` for `count` frames the size of
+    /// `first`.
+    fn start(
+        path: &Path,
+        format: ImageFormat,
+        count: usize,
+        playback: &Playback,
+        first: &RgbImage,
+    ) -> Result<Stream, OutputError> {
+        Ok(match format {
+            ImageFormat::Gif => Stream::Gif(GifStream::start(path, first, playback)?),
+            ImageFormat::Apng => {
+                let frames = u32::try_from(count).unwrap_or(u32::MAX);
+                Stream::Apng(ApngStream::start(path, first, frames, playback)?)
+            }
+            _ => Stream::Video(VideoStream::start(path, format, first, playback)?),
+        })
+    }
+}
+
 impl FrameSink {
-    /// A sink for `count` frames named after `path`.
-    pub fn new(path: &Path, count: usize) -> FrameSink {
-        let gif = ImageFormat::from_path(path) == Some(ImageFormat::Gif);
-        FrameSink { path: path.to_path_buf(), count, gif: gif.then_some(None), written: Vec::new() }
+    /// A sink for the `count` frames of an animation, in `format` (from
+    /// [`check_animation_output`]), named after `path` and played as
+    /// `playback` says.
+    pub fn new(path: &Path, format: ImageFormat, count: usize, playback: Playback) -> FrameSink {
+        FrameSink { path: path.to_path_buf(), format, count, playback, stream: None, written: Vec::new() }
     }
 
     /// Takes frame number `frame` (from 1).
     pub fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), OutputError> {
-        match &mut self.gif {
-            Some(Some(stream)) => stream.add(&image, false),
-            Some(stream) => {
-                let mut started = GifStream::start(&self.path, &image, GIF_FRAME_DELAY_MS)?;
-                started.add(&image, true)?;
-                *stream = Some(started);
-                Ok(())
-            }
-            None => {
-                let path = frame_path(&self.path, frame, self.count);
-                write_image(&path, &image)?;
-                self.written.push(path);
-                Ok(())
-            }
+        if self.format.is_still() {
+            let path = frame_path(&self.path, frame, self.count);
+            write_image(&path, &image)?;
+            self.written.push(path);
+            return Ok(());
+        }
+        let first = self.stream.is_none();
+        let stream = match &mut self.stream {
+            Some(stream) => stream,
+            None => self.stream.insert(Stream::start(&self.path, self.format, self.count, &self.playback, &image)?),
+        };
+        match stream {
+            // A GIF's first palette is learnt from the first frame: it fits.
+            Stream::Gif(gif) => gif.add(&image, first),
+            Stream::Apng(apng) => apng.add(&image),
+            Stream::Video(video) => video.add(&image),
         }
     }
 
@@ -279,132 +430,18 @@ impl FrameSink {
         &self.written
     }
 
-    /// Finishes the GIF, if any; returns the files written.
+    /// Finishes the one file, if any; returns the files written.
     pub fn finish(mut self) -> Result<Vec<PathBuf>, OutputError> {
-        match self.gif.take() {
-            Some(Some(stream)) => {
-                stream.finish()?;
-                self.written.push(self.path);
-            }
-            Some(None) => return Err(OutputError::NoFrames { path: self.path }),
-            None => {}
+        match self.stream.take() {
+            Some(Stream::Gif(stream)) => stream.finish()?,
+            Some(Stream::Apng(stream)) => stream.finish()?,
+            Some(Stream::Video(stream)) => stream.finish()?,
+            None if self.format.is_still() => return Ok(self.written),
+            None => return Err(OutputError::NoFrames { path: self.path }),
         }
+        self.written.push(self.path);
         Ok(self.written)
     }
-}
-
-/// An animated GIF being written, looping forever.
-///
-/// Its palette of 256 colours is learnt (NeuQuant) from the first frame; a
-/// later frame that the palette no longer fits (new colours came into view)
-/// gets a palette of its own, which the frames after it keep while it fits.
-struct GifStream {
-    pending: PendingFile,
-    encoder: gif::Encoder<BufWriter<CancellableFile>>,
-    width: u16,
-    height: u16,
-    delay: u16,
-    /// The palette frames are mapped to.
-    palette: color_quant::NeuQuant,
-    /// Whether `palette` is the GIF's global one (the first frame's).
-    global: bool,
-}
-
-/// The NeuQuant sampling factor for the GIF palette, 1 (best) to 30
-/// (fastest).
-const GIF_QUANTISATION_SPEED: usize = 10;
-
-/// How many pixels NeuQuant should learn from at least, where the frame has them.
-const GIF_LEARNT_PIXELS: usize = 48_000;
-
-/// A pixel whose palette colour is off by more than this many levels in a
-/// channel is badly mapped.
-const GIF_MISFIT_LEVELS: u8 = 24;
-
-/// A frame with more badly mapped pixels than one in this many, and more
-/// than [`GIF_MISFIT_PIXELS`], gets a palette of its own.
-const GIF_MISFIT_SHARE: usize = 1000;
-
-/// Fewer badly mapped pixels than this never call for a new palette: in a
-/// small frame a few such pixels are the palette's usual error, and
-/// learning a palette for every frame would take most of the time.
-const GIF_MISFIT_PIXELS: usize = 32;
-
-impl GifStream {
-    /// Starts a GIF at `path` of frames the size of `first`, each shown for
-    /// `delay_ms` milliseconds (in steps of 10 ms, GIF's unit).
-    fn start(path: &Path, first: &RgbImage, delay_ms: u32) -> Result<GifStream, OutputError> {
-        let too_large = || OutputError::Io {
-            path: path.to_owned(),
-            source: io::Error::new(io::ErrorKind::InvalidInput, "a GIF is at most 65535 pixels wide and high"),
-        };
-        let width = u16::try_from(first.width()).map_err(|_| too_large())?;
-        let height = u16::try_from(first.height()).map_err(|_| too_large())?;
-        let palette = learn_palette(first);
-        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
-        let gif_error = |e| gif_encode_error(path, e);
-        let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
-        encoder.set_repeat(gif::Repeat::Infinite).map_err(gif_error)?;
-        let delay = u16::try_from(delay_ms / 10).unwrap_or(u16::MAX);
-        Ok(GifStream { pending, encoder, width, height, delay, palette, global: true })
-    }
-
-    /// Maps `image` to the palette (a new one if it does not fit, unless
-    /// the palette was `learnt_from_it`) and encodes it.
-    fn add(&mut self, image: &RgbImage, learnt_from_it: bool) -> Result<(), OutputError> {
-        let (mut indices, misfits) = map_to_palette(image, &self.palette);
-        if !learnt_from_it && misfits > GIF_MISFIT_PIXELS && misfits * GIF_MISFIT_SHARE > indices.len() {
-            self.palette = learn_palette(image);
-            self.global = false;
-            indices = map_to_palette(image, &self.palette).0;
-        }
-        let mut frame = gif::Frame::from_indexed_pixels(self.width, self.height, indices, None);
-        frame.delay = self.delay;
-        if !self.global {
-            frame.palette = Some(self.palette.color_map_rgb());
-        }
-        self.encoder.write_frame(&frame).map_err(|e| gif_encode_error(&self.pending.path, e))
-    }
-
-    /// Ends the GIF and puts it in place.
-    fn finish(self) -> Result<(), OutputError> {
-        let path = &self.pending.path;
-        let mut writer = self.encoder.into_inner().map_err(|e| gif_encode_error(path, e))?;
-        writer.flush().map_err(|e| io_error(path, e))?;
-        drop(writer);
-        self.pending.commit()
-    }
-}
-
-/// About how many pixels a GIF palette is learnt from, taken evenly from
-/// the frame (all of an 800x600 frame).
-const GIF_PALETTE_SAMPLE: usize = 480_000;
-
-/// A 256-colour palette for `image`.
-fn learn_palette(image: &RgbImage) -> color_quant::NeuQuant {
-    let stride = (image.len() / 3).div_ceil(GIF_PALETTE_SAMPLE).max(1);
-    let rgba: Vec<u8> = image.pixels().step_by(stride).flat_map(|p| [p[0], p[1], p[2], 0xFF]).collect();
-    // NeuQuant learns from one pixel in `speed`: all of them in small frames.
-    let speed = (rgba.len() / 4 / GIF_LEARNT_PIXELS).clamp(1, GIF_QUANTISATION_SPEED);
-    color_quant::NeuQuant::new(speed as i32, 256, &rgba)
-}
-
-/// Each pixel of `image` as its index in `palette` (in parallel), and how
-/// many pixels are more than [`GIF_MISFIT_LEVELS`] off.
-fn map_to_palette(image: &RgbImage, palette: &color_quant::NeuQuant) -> (Vec<u8>, usize) {
-    let mapped: Vec<(u8, bool)> = image
-        .as_raw()
-        .par_chunks_exact(3)
-        .with_min_len(4096)
-        .map(|p| {
-            let index = palette.index_of(&[p[0], p[1], p[2], 0xFF]);
-            let colour = palette.lookup(index).unwrap_or_default();
-            let misfit = (0..3).any(|c| p[c].abs_diff(colour[c]) > GIF_MISFIT_LEVELS);
-            (index as u8, misfit)
-        })
-        .collect();
-    let misfits = mapped.iter().filter(|(_, misfit)| *misfit).count();
-    (mapped.into_iter().map(|(index, _)| index).collect(), misfits)
 }
 
 /// The files an animation wrote, in words: `a.gif`, or `a0001.png ... a0100.png`.
@@ -562,15 +599,15 @@ fn io_error(path: &Path, source: io::Error) -> OutputError {
     OutputError::Io { path: path.to_owned(), source }
 }
 
-fn gif_encode_error(path: &Path, source: gif::EncodingError) -> OutputError {
-    match source {
-        gif::EncodingError::Io(source) => io_error(path, source),
-        other => {
-            let hint = image::error::ImageFormatHint::Exact(image::ImageFormat::Gif);
-            let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, other));
-            OutputError::Encode { path: path.to_owned(), source }
-        }
-    }
+/// An encoder's own error (not an I/O one) while writing `path` in `format`.
+fn format_error(
+    path: &Path,
+    format: image::ImageFormat,
+    source: impl std::error::Error + Send + Sync + 'static,
+) -> OutputError {
+    let hint = image::error::ImageFormatHint::Exact(format);
+    let source = image::ImageError::Encoding(image::error::EncodingError::new(hint, source));
+    OutputError::Encode { path: path.to_owned(), source }
 }
 
 fn encode_error(path: &Path, source: image::ImageError) -> OutputError {
@@ -705,7 +742,7 @@ mod tests {
 
     /// Writes `frames` to a GIF at `path` through a [`FrameSink`].
     fn write_gif(path: &Path, frames: &[RgbImage]) -> Result<Vec<PathBuf>, OutputError> {
-        let mut sink = FrameSink::new(path, frames.len());
+        let mut sink = FrameSink::new(path, ImageFormat::Gif, frames.len(), Playback::default());
         for (k, frame) in frames.iter().enumerate() {
             sink.add(k + 1, frame.clone())?;
         }

@@ -433,7 +433,7 @@ fn every_entry_point_shares_the_depth_limit() {
 fn flags_that_would_do_nothing_are_refused() {
     let (_dir, path) = scene(SPHERE);
     let cases: [(&[&str], &str); 7] = [
-        (&["--frames", "1..2"], "--frames picks frames of an animation: give --anim N too"),
+        (&["--frames", "1..2"], "--frames is for an animation: give --anim N too"),
         (&["--adaptive"], "--adaptive gives more samples to some pixels: give --samples N too"),
         (&["--adaptive", "--samples", "1"], "give --samples N too, with N > 1"),
         (&["--anim", "3", "--time", "2"], "frame k of an animation has time = k"),

@@ -305,7 +305,7 @@ fn bad_arguments_get_usage_messages() {
         (":render 10", "give both a width and a height, or neither"),
         (":save", "give the name of the file to write"),
         (":save x.jpg", "cannot tell the image format of `x.jpg`: end the name in .png or .ppm"),
-        (":anim 2 x.jpg", "end the name in .gif, .png or .ppm"),
+        (":anim 2 x.jpg", "end the name in .gif, .apng, .mp4, .webm, .png or .ppm"),
         (":save x.png 10", "usage: :save FILE [WIDTH HEIGHT]"),
         (":anim 0 x.gif", "the number of frames must be a whole number from 1 to 1000000"),
         (":anim 3", "usage: :anim FRAMES FILE"),

@@ -12,7 +12,7 @@ use crate::output::{self, Content, FrameSink, OutputError};
 use crate::progress::Progress;
 use crate::render::{RenderControl, SceneGeometry};
 use crate::scene::Scene;
-use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, SettingError, WIDTH, check_size, parse_time};
+use crate::settings::{DEPTH, FRAMES, HEIGHT, Limit, SAMPLES, WIDTH, check_size, parse_time};
 
 use super::cancel::cancel_flag;
 use super::console::Console;
@@ -29,6 +29,7 @@ use super::session::{Session, Undone};
 use super::write_back;
 use super::{show_printed, show_scene_warnings};
 use crate::animation::{AnimationError, render_animation};
+use crate::playback::{AnimationOptions, Timeline};
 
 /// A command: its name, its usage line and the function that runs it.
 pub(crate) struct CommandSpec {
@@ -45,7 +46,11 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":lesson", usage: ":lesson [NUMBER|stop]", run: lessons::lesson },
     CommandSpec { name: ":render", usage: ":render [WIDTH HEIGHT]", run: render },
     CommandSpec { name: ":save", usage: ":save FILE [WIDTH HEIGHT]", run: save },
-    CommandSpec { name: ":anim", usage: ":anim FRAMES FILE", run: anim },
+    CommandSpec {
+        name: ":anim",
+        usage: ":anim FRAMES FILE [--fps F] [--loop N|forever] [--time-start A] [--time-step S] [--apng]",
+        run: anim,
+    },
     CommandSpec { name: ":play", usage: ":play [FRAMES [FPS]]", run: play::play },
     CommandSpec { name: ":time", usage: ":time [NUMBER]", run: time },
     CommandSpec { name: ":size", usage: ":size [WIDTH HEIGHT]", run: size },
@@ -168,7 +173,7 @@ fn parse_size(width: &str, height: &str) -> Result<Size, CommandError> {
     Ok(size)
 }
 
-fn usage(error: SettingError) -> CommandError {
+fn usage(error: impl std::fmt::Display) -> CommandError {
     CommandError::Usage(error.to_string())
 }
 
@@ -266,18 +271,19 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
 }
 
 fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
-    let [frames, file] = arguments else {
+    let [frames, file, options @ ..] = arguments else {
         return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
     };
     let frames = parse_count(frames, &FRAMES)?;
+    let animation = AnimationOptions::parse_words(options).map_err(usage)?;
     let path = PathBuf::from(file);
-    check_output(&path, Content::Animation)?;
+    let format = output::check_animation_output(&path, &animation).map_err(|e| CommandError::Failed(e.to_string()))?;
     explain_defaults(session, console);
     let size = Size { width: session.settings().width, height: session.settings().height };
     show_scene_warnings(session, console, size, true);
     let started = Instant::now();
-    let mut sink = FrameSink::new(&path, frames as usize);
-    let rendered = render_frames(session, frames, size, console, &mut |frame, image| {
+    let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback);
+    let rendered = render_frames(session, frames, animation.timeline, size, console, &mut |frame, image| {
         sink.add(frame, image).map_err(write_failure)
     });
     if let Err(error) = rendered {
@@ -561,12 +567,13 @@ fn render_scene(
     Ok((image, started.elapsed()))
 }
 
-/// Renders frames 1..=`frames` of the animation, frame k with `time` = k,
-/// and hands each to `sink` with its number (see [`render_animation`] for
-/// what is computed once and what per frame).
+/// Renders frames 1..=`frames` of the animation, frame k at the time
+/// `timeline` gives it, and hands each to `sink` with its number (see
+/// [`render_animation`] for what is computed once and what per frame).
 pub(crate) fn render_frames(
     session: &Session,
     frames: u32,
+    timeline: Timeline,
     size: Size,
     console: &Console,
     sink: &mut dyn FnMut(usize, RgbImage) -> Result<(), CommandError>,
@@ -582,8 +589,9 @@ pub(crate) fn render_frames(
             // Nothing reads `time`: the session's scene is every frame.
             return Ok(session.scene().clone());
         }
-        let replayed = session.replay_at(f64::from(frame), skip_static);
-        replayed.map(|interpreter| interpreter.into_scene()).map_err(|d| frame_failure(d, frame))
+        let time = timeline.time_of(frame);
+        let replayed = session.replay_at(time, skip_static);
+        replayed.map(|interpreter| interpreter.into_scene()).map_err(|d| frame_failure(d, frame, time))
     };
     let options = render_options(size, session.settings());
     let sink = |frame: u32, image: RgbImage| sink(frame as usize, image);
@@ -594,8 +602,8 @@ pub(crate) fn render_frames(
     }
 }
 
-fn frame_failure(diagnostic: Diagnostic, frame: u32) -> CommandError {
-    let note = format!("while computing frame {frame}, with time = {frame}");
+fn frame_failure(diagnostic: Diagnostic, frame: u32, time: f64) -> CommandError {
+    let note = format!("while computing frame {frame}, with time = {}", number(time));
     CommandError::Program(Box::new(diagnostic.with_note(note)))
 }
 

@@ -330,7 +330,8 @@ Example:
 time
   A number given to you: 0 for a single image; frame k of an animation is
   computed with time = k. Change it in the session with `:time N`; `:anim`
-  goes through 1, 2, 3...
+  goes through 1, 2, 3... (or A, A + S, A + 2S... with --time-start A
+  --time-step S).
 Example (a ball that rises in an animation):
   put sphere center 0, time / 2, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 255 end
   :anim 10 rise.gif",
@@ -440,12 +441,20 @@ Example:
         aliases: &["anim", "animation"],
         summary: "write an animation, with time = 1, 2, ... N",
         text: "\
-:anim N FILE
-  Computes the scene N times with time = 1, 2, ..., N and writes the frames:
-  one animated GIF if FILE ends in .gif, otherwise numbered images
+:anim N FILE [OPTIONS]
+  Computes the scene N times with time = 1, 2, ..., N and writes the frames.
+  FILE's ending picks the format: .gif (256 colours), .apng (exact), .mp4
+  or .webm (video, made by the ffmpeg program), otherwise numbered images
   (spin.png gives spin0001.png, spin0002.png, ...).
-Example:
-  :anim 24 spin.gif",
+Options, as on the command line:
+  --fps F              frames a second, 0.01 to 100 (default 25)
+  --loop N|forever     plays in all (default: forever; a video once)
+  --time-start A       the time of frame 1 (default 1)
+  --time-step S        frame k has time = A + (k - 1) * S (default 1)
+  --apng               one animated PNG for a .png name
+Examples:
+  :anim 24 spin.gif
+  :anim 48 spin.apng --fps 24 --time-start 0 --time-step 0.5",
     },
     Topic {
         name: ":play",

@@ -10,6 +10,7 @@ use crossterm::event::{self, Event};
 use crossterm::{cursor, terminal};
 use image::RgbImage;
 
+use crate::playback::Timeline;
 use crate::settings::Limit;
 
 use super::commands::{explain_defaults, parse_count, render_frames, shown};
@@ -63,7 +64,7 @@ pub(crate) fn play(session: &mut Session, arguments: &[String], console: &mut Co
         console.note("nothing in the scene depends on `time`: every frame is the same (see `:help time`)");
     }
     let mut images = Vec::with_capacity(frames as usize);
-    render_frames(session, frames, size, console, &mut |_, image| {
+    render_frames(session, frames, Timeline::default(), size, console, &mut |_, image| {
         images.push(image);
         Ok(())
     })?;

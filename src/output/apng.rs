@@ -1,0 +1,71 @@
+//! Animated PNG (APNG), encoded frame by frame as the frames arrive: every
+//! pixel exact, unlike a GIF's 256 colours.
+
+use std::io::BufWriter;
+use std::path::Path;
+
+use image::RgbImage;
+
+use super::{CancellableFile, NEVER_CANCELLED, OutputError, PendingFile, format_error, io_error};
+use crate::playback::{Loops, Playback};
+
+/// An animated PNG being written.
+pub(super) struct ApngStream {
+    pending: PendingFile,
+    writer: png::Writer<BufWriter<CancellableFile>>,
+}
+
+/// The denominator of APNG frame delays: a delay of 1/fps seconds is
+/// written as `100 / round(100 * fps)`, exact to a hundredth of a frame a
+/// second.
+const DELAY_NUMERATOR: u16 = 100;
+
+impl ApngStream {
+    /// Starts an APNG at `path` of `frames` frames the size of `first`, played
+    /// as `playback` says.
+    pub(super) fn start(
+        path: &Path,
+        first: &RgbImage,
+        frames: u32,
+        playback: &Playback,
+    ) -> Result<ApngStream, OutputError> {
+        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
+        let png_error = |e| png_encode_error(path, e);
+        let mut encoder = png::Encoder::new(writer, first.width(), first.height());
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        // The same trade as single PNGs: fast compression, so that encoding never outweighs tracing.
+        encoder.set_compression(png::Compression::Fast);
+        encoder.set_filter(png::Filter::Adaptive);
+        // APNG counts plays in all; 0 is forever.
+        let plays = match playback.loops.unwrap_or(Loops::Forever) {
+            Loops::Forever => 0,
+            Loops::Times(times) => times,
+        };
+        encoder.set_animated(frames, plays).map_err(png_error)?;
+        // fps is at most 100, so the denominator is at most 10000.
+        let denominator = (playback.fps() * f64::from(DELAY_NUMERATOR)).round() as u16;
+        encoder.set_frame_delay(DELAY_NUMERATOR, denominator).map_err(png_error)?;
+        let writer = encoder.write_header().map_err(png_error)?;
+        Ok(ApngStream { pending, writer })
+    }
+
+    /// Encodes the next frame.
+    pub(super) fn add(&mut self, image: &RgbImage) -> Result<(), OutputError> {
+        self.writer.write_image_data(image.as_raw()).map_err(|e| png_encode_error(&self.pending.path, e))
+    }
+
+    /// Ends the APNG and puts it in place.
+    pub(super) fn finish(self) -> Result<(), OutputError> {
+        // Writes the end chunk, checks every frame came and flushes the file.
+        self.writer.finish().map_err(|e| png_encode_error(&self.pending.path, e))?;
+        self.pending.commit()
+    }
+}
+
+fn png_encode_error(path: &Path, source: png::EncodingError) -> OutputError {
+    match source {
+        png::EncodingError::IoError(source) => io_error(path, source),
+        other => format_error(path, image::ImageFormat::Png, other),
+    }
+}

@@ -1,0 +1,194 @@
+//! Video (MP4 with H.264, WebM with VP9), made by the `ffmpeg` program: the
+//! frames are streamed to it raw as they arrive, so nothing is kept here.
+//! Hand-rolled around `std::process` rather than bound to libav: ffmpeg's
+//! command line is stable and everywhere, and its libraries would make
+//! every build need their development packages.
+
+use std::io::{self, Read, Write};
+use std::path::Path;
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::thread::JoinHandle;
+
+use image::RgbImage;
+
+use super::{ImageFormat, NEVER_CANCELLED, OutputError, PendingFile, io_error};
+use crate::playback::{Loops, Playback};
+
+/// The program that encodes videos.
+const FFMPEG: &str = "ffmpeg";
+
+/// Checks that `ffmpeg` can be run, before any work on a video for `path`.
+pub(super) fn check_ffmpeg(path: &Path) -> Result<(), OutputError> {
+    let ran =
+        Command::new(FFMPEG).arg("-version").stdin(Stdio::null()).stdout(Stdio::null()).stderr(Stdio::null()).status();
+    match ran {
+        Ok(status) if status.success() => Ok(()),
+        _ => Err(OutputError::NoFfmpeg { path: path.to_owned() }),
+    }
+}
+
+/// A video being encoded by an `ffmpeg` process.
+pub(super) struct VideoStream {
+    /// The file ffmpeg writes: one play of the frames.
+    pending: PendingFile,
+    format: ImageFormat,
+    ffmpeg: Ffmpeg,
+    /// How many plays the final file holds.
+    plays: u32,
+    width: u32,
+    height: u32,
+}
+
+impl VideoStream {
+    /// Starts ffmpeg on a video at `path` in `format` (MP4 or WebM) of frames
+    /// the size of `first`, played as `playback` says (a count of plays is
+    /// written out in full; a video cannot loop forever, which
+    /// [`super::check_playback`] refuses before).
+    pub(super) fn start(
+        path: &Path,
+        format: ImageFormat,
+        first: &RgbImage,
+        playback: &Playback,
+    ) -> Result<VideoStream, OutputError> {
+        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
+        // ffmpeg opens the file by name; the writer is not needed.
+        drop(writer);
+        let (width, height) = first.dimensions();
+        let mut command = ffmpeg_command();
+        command
+            .args(["-f", "rawvideo", "-pix_fmt", "rgb24", "-video_size", &format!("{width}x{height}")])
+            .args(["-framerate", &playback.fps().to_string(), "-i", "pipe:0"])
+            // 4:2:0 video needs even sides: pad with one black column or row.
+            .args(["-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p"])
+            .args(encoder_arguments(format))
+            .arg(&pending.temp_path)
+            .stdin(Stdio::piped());
+        let mut child = command.spawn().map_err(|_| OutputError::NoFfmpeg { path: path.to_owned() })?;
+        let stdin = child.stdin.take();
+        let messages = child.stderr.take().map(read_all_in_background);
+        let plays = match playback.loops {
+            Some(Loops::Times(times)) => times,
+            _ => 1,
+        };
+        let ffmpeg = Ffmpeg { child, stdin, messages };
+        Ok(VideoStream { pending, format, ffmpeg, plays, width, height })
+    }
+
+    /// Sends the next frame to ffmpeg.
+    pub(super) fn add(&mut self, image: &RgbImage) -> Result<(), OutputError> {
+        if image.dimensions() != (self.width, self.height) {
+            let different = io::Error::new(io::ErrorKind::InvalidInput, "the frames of a video must all be one size");
+            return Err(io_error(&self.pending.path, different));
+        }
+        let stdin = self.ffmpeg.stdin.as_mut().expect("frames come before finish");
+        match stdin.write_all(image.as_raw()) {
+            Ok(()) => Ok(()),
+            // ffmpeg stopped: what it said is the reason.
+            Err(_) => Err(self.ffmpeg.failure(&self.pending.path)),
+        }
+    }
+
+    /// Lets ffmpeg end the video and puts it in place, repeated `plays`
+    /// times.
+    pub(super) fn finish(mut self) -> Result<(), OutputError> {
+        drop(self.ffmpeg.stdin.take());
+        let status = self.ffmpeg.child.wait().map_err(|e| io_error(&self.pending.path, e))?;
+        if !status.success() {
+            return Err(self.ffmpeg.failure(&self.pending.path));
+        }
+        if self.plays == 1 {
+            return self.pending.commit();
+        }
+        let (repeated, writer) = PendingFile::create(&self.pending.path, &NEVER_CANCELLED)?;
+        drop(writer);
+        let mut command = ffmpeg_command();
+        command
+            .args(["-stream_loop", &(self.plays - 1).to_string(), "-i"])
+            .arg(&self.pending.temp_path)
+            .args(["-c", "copy", "-f", container(self.format)])
+            .arg(&repeated.temp_path)
+            .stdin(Stdio::null());
+        let output = command.output().map_err(|e| io_error(&self.pending.path, e))?;
+        if !output.status.success() {
+            let message = String::from_utf8_lossy(&output.stderr).trim().to_string();
+            return Err(OutputError::Ffmpeg { path: self.pending.path.clone(), message });
+        }
+        repeated.commit()
+    }
+}
+
+/// The running ffmpeg of a video: frames go to its standard input.
+struct Ffmpeg {
+    child: Child,
+    /// Closed when the frames end.
+    stdin: Option<ChildStdin>,
+    /// What ffmpeg says on stderr, read as it comes so that it never blocks.
+    messages: Option<JoinHandle<String>>,
+}
+
+impl Ffmpeg {
+    /// Why ffmpeg failed on the video at `path`, in its own words, once it
+    /// has ended.
+    fn failure(&mut self, path: &Path) -> OutputError {
+        drop(self.stdin.take());
+        let _ = self.child.wait();
+        let said = self.messages.take().and_then(|reading| reading.join().ok()).unwrap_or_default();
+        let said = said.trim();
+        let message = if said.is_empty() { "it stopped without saying why" } else { said };
+        OutputError::Ffmpeg { path: path.to_owned(), message: message.to_string() }
+    }
+}
+
+impl Drop for Ffmpeg {
+    /// An unfinished video (cancelled, failed): ffmpeg is stopped before its
+    /// pending file is removed.
+    fn drop(&mut self) {
+        if self.stdin.is_some() {
+            let _ = self.child.kill();
+            let _ = self.child.wait();
+        }
+    }
+}
+
+/// ffmpeg, quiet but for errors, overwriting the temporary file made for
+/// it, and in a process group of its own: Ctrl-C in a session cancels the
+/// animation, which then stops ffmpeg itself.
+fn ffmpeg_command() -> Command {
+    let mut command = Command::new(FFMPEG);
+    command.args(["-hide_banner", "-loglevel", "error", "-y"]).stdout(Stdio::null()).stderr(Stdio::piped());
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::CommandExt;
+        command.process_group(0);
+    }
+    command
+}
+
+/// ffmpeg's container name for `format`.
+fn container(format: ImageFormat) -> &'static str {
+    match format {
+        ImageFormat::Webm => "webm",
+        _ => "mp4",
+    }
+}
+
+/// The encoder and container for `format`: H.264 in MP4 (played everywhere,
+/// the index at the front for the web), or VP9 in WebM (open, for the web).
+fn encoder_arguments(format: ImageFormat) -> Vec<&'static str> {
+    let codec: &[&str] = match format {
+        ImageFormat::Webm => {
+            &["-c:v", "libvpx-vp9", "-crf", "32", "-b:v", "0", "-deadline", "realtime", "-cpu-used", "8"]
+        }
+        _ => &["-c:v", "libx264", "-preset", "fast", "-crf", "18", "-movflags", "+faststart"],
+    };
+    codec.iter().copied().chain(["-f", container(format)]).collect()
+}
+
+/// Reads all of `stream` on a thread of its own.
+fn read_all_in_background(mut stream: impl Read + Send + 'static) -> JoinHandle<String> {
+    std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = stream.read_to_string(&mut text);
+        text
+    })
+}
