@@ -157,7 +157,7 @@ impl Interpreter {
             let mut timed = mem::take(&mut self.scene.timed_primitives);
             let result = self.emit_obj(obj, &mut timed);
             self.scene.timed_primitives = timed;
-            self.origins.timed_primitives.record(timed_start..self.scene.timed_primitives.len(), span);
+            self.origins.record_put(true, timed_start..self.scene.timed_primitives.len(), span);
             return result.map(|_| ());
         }
         let mut primitives = mem::take(&mut self.scene.primitives);
@@ -166,10 +166,10 @@ impl Interpreter {
         match result {
             Ok(true) => {
                 self.scene.timed_primitives.extend(primitives.drain(start..));
-                self.origins.timed_primitives.record(timed_start..self.scene.timed_primitives.len(), span);
+                self.origins.record_put(true, timed_start..self.scene.timed_primitives.len(), span);
             }
             Ok(false) if self.skip_static => primitives.truncate(start),
-            Ok(false) => self.origins.primitives.record(start..primitives.len(), span),
+            Ok(false) => self.origins.record_put(false, start..primitives.len(), span),
             Err(_) => {}
         }
         self.scene.primitives = primitives;
@@ -197,15 +197,26 @@ impl Interpreter {
             );
         }
         let caller = self.env.prepare_call();
+        let recording = self.origins.calls.is_some();
+        let mut arguments = Vec::new();
         for (param, arg) in proc.params.iter().zip(args) {
             let n = self.eval_expr(arg)?;
+            if recording {
+                arguments.push((param.name.clone(), n.value));
+            }
             self.env.push_argument(&param.name, Value::number(n.value, n.tainted | self.context_tainted));
+        }
+        if let Some(calls) = &mut self.origins.calls {
+            calls.enter(name.name.clone(), arguments, span);
         }
         self.env.enter(caller);
         self.depth += 1;
         let result = grow(|| self.exec_block(&proc.body));
         self.depth -= 1;
         self.env.leave(caller);
+        if let Some(calls) = &mut self.origins.calls {
+            calls.leave();
+        }
         result.map_err(|error| in_call(error, &name.name, span))
     }
 
