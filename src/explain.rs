@@ -215,7 +215,8 @@ impl std::fmt::Display for Explanation<'_> {
             }
         }
         let [r, g, b] = self.paths.rgb;
-        let mean = if samples.len() > 1 { format!("the average of {} samples, ", samples.len()) } else { String::new() };
+        let mean =
+            if samples.len() > 1 { format!("the average of {} samples, ", samples.len()) } else { String::new() };
         writeln!(f, "rgb ({r}, {g}, {b}) = round(255 × {mean}{})", colour(self.average()))
     }
 }

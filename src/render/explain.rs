@@ -171,7 +171,7 @@ impl PathObserver for PathRecorder<'_> {
         let part = match term {
             LightTerm::FacingAway => LightPart::FacingAway,
             LightTerm::Shadowed(ray) => {
-                LightPart::Shadowed(self.geometry.closest_hit(ray).map(|hit| self.geometry.primitive_index(&hit)))
+                LightPart::Shadowed(self.geometry.closest_hit(&ray).map(|hit| self.geometry.primitive_index(&hit)))
             }
             LightTerm::Lit { diffuse, specular } => LightPart::Lit { diffuse, specular },
         };

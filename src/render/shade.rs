@@ -55,11 +55,11 @@ pub(crate) trait PathObserver {
 
 /// What one light adds at a hit (SPEC 6).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum LightTerm<'a> {
+pub(crate) enum LightTerm {
     /// `N·L <= 0`: the light is behind the surface; nothing.
     FacingAway,
     /// Something blocks the shadow ray: nothing.
-    Shadowed(&'a Ray),
+    Shadowed(Ray),
     /// The diffuse part `kd*(N·L)*I*C` and the specular part
     /// `ks*max(0, N·H)^n*I*C`.
     Lit {
@@ -154,11 +154,11 @@ impl<'a> Tracer<'a> {
             weight *= ks;
             ray = reflected(&ray, &hit, origin);
         }
-        let mut colour = DVec3::ZERO;
-        for (depth, level) in levels.iter().enumerate().rev() {
-            colour = clamp_unit(level.local + colour * level.ks);
+        let colour = levels.iter().enumerate().rev().fold(DVec3::ZERO, |next, (depth, level)| {
+            let colour = clamp_unit(level.local + next * level.ks);
             observer.level_colour(depth, colour);
-        }
+            colour
+        });
         self.levels = levels;
         colour
     }
@@ -182,14 +182,13 @@ impl<'a> Tracer<'a> {
                 observer.light(LightTerm::FacingAway);
                 continue;
             }
-            let shadow_ray = Ray::new(origin, l);
-            let visible = self.visible(&shadow_ray, planes, observer);
-            if n_dot_l <= 0.0 {
-                observer.light(LightTerm::FacingAway);
-                continue;
-            }
-            if !visible {
-                observer.light(LightTerm::Shadowed(&shadow_ray));
+            let lit = self.visible(&Ray::new(origin, l), planes, observer) && n_dot_l > 0.0;
+            if !lit {
+                // Built only for an observer that reads it: the unit
+                // observer's render does not pay for it.
+                let term =
+                    if n_dot_l <= 0.0 { LightTerm::FacingAway } else { LightTerm::Shadowed(Ray::new(origin, l)) };
+                observer.light(term);
                 continue;
             }
             // kd * (N·L) * I * C
@@ -197,14 +196,16 @@ impl<'a> Tracer<'a> {
             c += diffuse;
             // ks * max(0, N·H)^n * I * C: exactly +0 when ks = 0 (the power
             // is finite, in [0, 1]), and when N·H <= 0 (n > 0, SPEC 3).
+            if skips.zero_ks && ks == 0.0 {
+                observer.light(LightTerm::Lit { diffuse, specular: DVec3::ZERO });
+                continue;
+            }
+            let h = (l - ray.dir).normalize_or_zero();
+            let n_dot_h = n.dot(h);
             let mut specular = DVec3::ZERO;
-            if !(skips.zero_ks && ks == 0.0) {
-                let h = (l - ray.dir).normalize_or_zero();
-                let n_dot_h = n.dot(h);
-                if n_dot_h > 0.0 || phong <= 0.0 {
-                    specular = color * (ks * phong_power(n_dot_h.max(0.0), phong) * light.intensity);
-                    c += specular;
-                }
+            if n_dot_h > 0.0 || phong <= 0.0 {
+                specular = color * (ks * phong_power(n_dot_h.max(0.0), phong) * light.intensity);
+                c += specular;
             }
             observer.light(LightTerm::Lit { diffuse, specular });
         }

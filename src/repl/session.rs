@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 
+use image::RgbImage;
+
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::PrintLog;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
@@ -107,6 +109,8 @@ pub struct Session {
     /// What `print` wrote and was not yet shown (also by the frames of an
     /// animation, which only read the session).
     printed: RefCell<PrintLog>,
+    /// The last picture rendered or saved, whose pixels `:pick` explains.
+    last_picture: Option<RgbImage>,
 }
 
 impl Session {
@@ -127,6 +131,7 @@ impl Session {
             printed: RefCell::default(),
             counts: Counts::default(),
             interrupt: None,
+            last_picture: None,
         }
     }
 
@@ -347,6 +352,26 @@ impl Session {
         let mut interpreter = self.replay(interpreter, &self.history)?;
         self.printed.borrow_mut().absorb(interpreter.take_printed());
         Ok(interpreter)
+    }
+
+    /// A fresh interpreter that ran the history at the current time
+    /// recording the calls that led to each `put`, to explain a pixel.
+    /// What it prints was shown when the inputs ran.
+    pub(crate) fn replay_recording_calls(&self) -> Result<Interpreter, Diagnostic> {
+        let interpreter = self.new_interpreter(self.settings.time).recording_calls();
+        let mut interpreter = self.replay(interpreter, &self.history)?;
+        interpreter.take_printed();
+        Ok(interpreter)
+    }
+
+    /// Keeps `image`, just rendered or saved, for `:pick`.
+    pub(crate) fn remember_picture(&mut self, image: &RgbImage) {
+        self.last_picture = Some(image.clone());
+    }
+
+    /// The last picture rendered or saved.
+    pub(crate) fn last_picture(&self) -> Option<&RgbImage> {
+        self.last_picture.as_ref()
     }
 
     /// Replaces the interpreter by one that ran `history` at the current
