@@ -249,3 +249,47 @@ fn a_pixel_outside_the_image_or_misspelt_is_refused() {
     rayrepl().arg(&path).args(["--json"]).assert().code(2).stderr(contains("--explain"));
     rayrepl().arg(&path).args(["--explain", "1,1", "-o", "x.png"]).assert().code(2);
 }
+
+#[test]
+fn pick_explains_a_pixel_of_the_last_picture_in_the_session() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let png = dir.path().join("saved.png");
+    let script = format!(
+        "camera distance 10 angle 1 end
+light vector 0.5, 0, 0.5 intensity 0.8 end
+proc ball(x, r)
+  put sphere center x, 0, 0 radius r kd 0.7 ks 0.3 phong 20 color 255, 80, 40 end
+end
+ball(0, 2)
+:save {} 40 30
+:pick 20 15
+",
+        png.display()
+    );
+    let out = rayrepl().write_stdin(script).assert().success().get_output().stdout.clone();
+    let out = String::from_utf8_lossy(&out);
+    assert!(out.contains("pixel (20, 15)\nthe camera ray met a sphere put at <stdin>:4:3"), "{out}");
+    assert!(out.contains("    in ball(x = 0, r = 2) called at <stdin>:6:1"), "{out}");
+    let [r, g, b] = image::open(&png).expect("an image").to_rgb8().get_pixel(20, 15).0;
+    assert!(out.contains(&format!("rgb ({r}, {g}, {b}) = round(255 × (")), "{out}");
+    assert!(!out.contains("changed since"), "{out}");
+}
+
+#[test]
+fn pick_needs_a_picture_and_a_pixel_in_it() {
+    let script = "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end
+:pick 1 1
+:render 40 30
+:pick 40 2
+:pick 3
+put sphere center 0, 0, 0 radius 3 kd 1 ks 0 phong 1 color 0, 255, 0 end
+:pick 20 15
+";
+    let assert = rayrepl().arg("--keep-going").write_stdin(script).assert().code(1);
+    let output = assert.get_output();
+    let (out, err) = (String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+    assert!(err.contains("no picture yet: `:render` first, then pick one of its pixels"), "{err}");
+    assert!(err.contains("`40`: X is a whole number from 0 to 39 in the last picture (40×30)"), "{err}");
+    assert!(err.contains("give the pixel's X (from the left) and Y (from the top)\nusage: :pick X Y"), "{err}");
+    assert!(out.contains("the scene or the settings changed since that picture"), "{out}");
+}

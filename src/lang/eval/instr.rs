@@ -197,19 +197,14 @@ impl Interpreter {
             );
         }
         let caller = self.env.prepare_call();
-        let recording = self.origins.calls.is_some();
-        let mut arguments = Vec::new();
         for (param, arg) in proc.params.iter().zip(args) {
             let n = self.eval_expr(arg)?;
-            if recording {
-                arguments.push((param.name.clone(), n.value));
-            }
             self.env.push_argument(&param.name, Value::number(n.value, n.tainted | self.context_tainted));
         }
-        if let Some(calls) = &mut self.origins.calls {
-            calls.enter(name.name.clone(), arguments, span);
-        }
         self.env.enter(caller);
+        if self.origins.calls.is_some() {
+            self.record_call(name, &proc.params, span);
+        }
         self.depth += 1;
         let result = grow(|| self.exec_block(&proc.body));
         self.depth -= 1;
@@ -218,6 +213,25 @@ impl Interpreter {
             calls.leave();
         }
         result.map_err(|error| in_call(error, &name.name, span))
+    }
+
+    /// Records the call of `name` at `span` that just started, with the
+    /// values its parameters `params` were given (to explain a pixel).
+    #[inline(never)]
+    fn record_call(&mut self, name: &Ident, params: &[Ident], span: Span) {
+        let arguments = params
+            .iter()
+            .map(|param| {
+                let value = match self.env.lookup(&param.name).map(|value| &value.kind) {
+                    Some(Kind::Number(value)) => *value,
+                    _ => f64::NAN,
+                };
+                (param.name.clone(), value)
+            })
+            .collect();
+        if let Some(calls) = &mut self.origins.calls {
+            calls.enter(name.name.clone(), arguments, span);
+        }
     }
 
     /// The procedure a call names, looked up at the time of the call.

@@ -45,7 +45,9 @@ impl Origins {
     /// (or, with `timed`, the timed) primitives, come from the `put` at `span`.
     #[inline]
     pub(crate) fn record_put(&mut self, timed: bool, range: Range<usize>, span: Span) {
-        if let Some(calls) = self.calls.as_mut().filter(|_| !range.is_empty()) {
+        if let Some(calls) = &mut self.calls
+            && !range.is_empty()
+        {
             calls.record(timed, range.start);
         }
         let puts = if timed { &mut self.timed_primitives } else { &mut self.primitives };
