@@ -218,11 +218,9 @@ fn explain(cli: &Cli, parsed: &ParsedScene, x: u32, y: u32) -> Result<(), BatchE
     let interpreter = parsed.run(interpreter, true)?;
     let scene = ExplainedScene::new(&interpreter, &parsed.sources, &render_options(cli));
     let explanation = scene.explain(x, y);
-    if cli.json {
-        println!("{}", explanation.to_json());
-    } else {
-        print!("{explanation}");
-    }
+    let text = if cli.json { format!("{}\n", explanation.to_json()) } else { explanation.to_string() };
+    // A reader that stopped early (`| head`) is no failure.
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
     Ok(())
 }
 

@@ -247,9 +247,7 @@ impl Explanation<'_> {
                     format!("lit: diffuse {}, specular {}", colour(*diffuse), colour(*specular))
                 }
                 LightPart::FacingAway => "facing away from the surface: nothing".to_string(),
-                LightPart::Shadowed(Some(blocker)) => {
-                    format!("in the shadow of {}", self.object_text(*blocker, &more).trim_end())
-                }
+                LightPart::Shadowed(Some(blocker)) => format!("in the shadow of {}", self.object_place(*blocker)),
                 LightPart::Shadowed(None) => "in shadow: nothing".to_string(),
             };
             let _ = writeln!(text, "{more}{light}: {state}");
@@ -265,13 +263,22 @@ impl Explanation<'_> {
         format!("colour = clamp(ambient + lights{reflected}) = {}", colour(level.colour))
     }
 
-    /// "a sphere put at scene.ray:4:1 `put sphere ...`", then the calls
-    /// that led to that `put`, one a line under `indent`.
-    fn object_text(&self, primitive: usize, indent: &str) -> String {
+    /// "a sphere put at scene.ray:4:1".
+    fn object_place(&self, primitive: usize) -> String {
         let kind = self.kind(primitive);
         let article = if kind == "object" { "an" } else { "a" };
-        let Some(put) = self.put(primitive) else { return format!("{article} {kind}") };
-        let mut text = format!("{article} {kind} put at {}  `{}`", self.place_text(put), self.source_line(put));
+        match self.put(primitive) {
+            Some(put) => format!("{article} {kind} put at {}", self.place_text(put)),
+            None => format!("{article} {kind}"),
+        }
+    }
+
+    /// "a sphere put at scene.ray:4:1  `put sphere ...`", then the calls
+    /// that led to that `put`, one a line under `indent`.
+    fn object_text(&self, primitive: usize, indent: &str) -> String {
+        let mut text = self.object_place(primitive);
+        let Some(put) = self.put(primitive) else { return text };
+        let _ = write!(text, "  `{}`", self.source_line(put));
         let calls = self.calls(primitive);
         for call in calls.iter().take(CALLS_SHOWN) {
             let arguments: Vec<String> =
