@@ -50,7 +50,11 @@ impl<'a> ExplainedScene<'a> {
         ExplainedScene { explainer: Explainer::new(scene, options), scene, origins: interpreter.origins(), sources }
     }
 
-    /// Explains pixel `(x, y)`, which must lie in the image.
+    /// Explains pixel `(x, y)` (from the left and from the top).
+    ///
+    /// # Panics
+    ///
+    /// If the pixel is outside the image.
     pub fn explain(&self, x: u32, y: u32) -> Explanation<'a> {
         Explanation {
             paths: self.explainer.explain(x, y),

@@ -9,7 +9,7 @@ use assert_cmd::Command;
 use predicates::str::contains;
 use rayrepl::explain::ExplainedScene;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
-use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, Screen, render};
+use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, Screen, Skips, render};
 use serde_json::Value;
 
 /// A program evaluated with its calls recorded, and its source text.
@@ -117,6 +117,33 @@ fn every_pixel_of_the_hand_made_scene_is_explained_as_rendered() {
     }
     let deep = RenderOptions { depth: 0, screen: Screen::Bottom, ..small(1, false) };
     check_scene("hand.ray", HAND_MADE, 0.0, &deep);
+    // No shortcut: shadow rays towards lights behind the surface, mirrors of ks 0.
+    let literal = RenderOptions { skips: Skips::none(), depth: 8, ..small(4, false) };
+    check_scene("hand.ray", HAND_MADE, 2.0, &literal);
+}
+
+#[test]
+fn a_deep_chain_of_calls_is_cut_short_in_words_and_whole_in_json() {
+    let text = "camera distance 10 angle 1 end
+ambient 0.2
+proc nest(n)
+  if n = 0 then
+    put sphere center 0, 0, 0 radius 2 kd 1 ks 0 phong 1 color 255, 255, 255 end
+  else
+    nest(n - 1)
+  end
+end
+nest(20)
+";
+    let options = RenderOptions { width: 3, height: 3, ..RenderOptions::default() };
+    let evaluated = evaluated("nest.ray", text, 0.0);
+    let explanation = ExplainedScene::new(&evaluated.interpreter, &evaluated.sources, &options).explain(1, 1);
+    let words = explanation.to_string();
+    assert!(words.contains("    in nest(n = 0) called at nest.ray:7:5\n"), "{words}");
+    assert!(words.contains("    ... and 13 calls more\n"), "{words}");
+    let calls = &explanation.to_json()["path"][0]["object"]["calls"];
+    assert_eq!(calls.as_array().map(Vec::len), Some(21));
+    assert_eq!((&calls[20]["args"]["n"], &calls[20]["line"]), (&20.0.into(), &10.into()));
 }
 
 #[test]

@@ -112,8 +112,11 @@ impl<'a> Explainer<'a> {
         Explainer { scene, geometry, options: *options, refined }
     }
 
-    /// The paths traced for pixel `(x, y)` (from the left and from the top),
-    /// which must lie in the image.
+    /// The paths traced for pixel `(x, y)` (from the left and from the top).
+    ///
+    /// # Panics
+    ///
+    /// If the pixel is outside the image.
     pub fn explain(&self, x: u32, y: u32) -> PixelPaths {
         let index = y as usize * self.options.width as usize + x as usize;
         let samples = match &self.refined {
