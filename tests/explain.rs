@@ -320,3 +320,43 @@ put sphere center 0, 0, 0 radius 3 kd 1 ks 0 phong 1 color 0, 255, 0 end
     assert!(err.contains("give the pixel's X (from the left) and Y (from the top)\nusage: :pick X Y"), "{err}");
     assert!(out.contains("the scene or the settings changed since that picture"), "{out}");
 }
+
+/// On a terminal, `:pick` shows the last picture with the pixel marked,
+/// then the explanation.
+#[test]
+fn pick_on_a_terminal_shows_the_marked_picture() {
+    use expectrl::{Any, ControlCode, Eof, Expect, Session};
+    let home = tempfile::tempdir().expect("temporary directory");
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl"));
+    command.env("XDG_DATA_HOME", home.path()).env("TERM", "xterm-256color").env("NO_COLOR", "1");
+    let mut session = Session::spawn(command).expect("the binary starts");
+    session.set_expect_timeout(Some(std::time::Duration::from_secs(30)));
+    session.expect("ray> ").expect("a first prompt");
+    session.send_line("put sphere center 0, 0, 0 radius 2 kd 1 ks 0 phong 1 color 255, 0, 0 end").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":render 40 30").unwrap();
+    // The first preview asks the terminal what it can show (kitty images,
+    // then sixels, each query followed by a device attributes request):
+    // answer as a terminal with neither, until the picture is shown.
+    loop {
+        let found = session.expect(Any::boxed(vec![Box::new("\x1b[c"), Box::new("40×30 in")])).unwrap();
+        if found.get(0) != Some(b"\x1b[c".as_slice()) {
+            break;
+        }
+        session.send("\x1b[?62;22c").unwrap();
+    }
+    session.expect("ray> ").unwrap();
+    session.send_line(":pick 20 15").unwrap();
+    let shown = session.expect("rgb (").expect("an explanation");
+    let before = String::from_utf8_lossy(shown.before());
+    let picture = before.find('▀').or_else(|| before.find('▄')).expect("the picture, in half blocks");
+    let text = before.find("pixel (20, 15)").expect("the words");
+    assert!(before.contains("the camera ray met a sphere put at <input 1>:1:1"), "{before}");
+    assert!(picture < text, "the picture comes first: {before}");
+    session.expect("ray> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect("not written to a file").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
+}
