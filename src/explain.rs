@@ -215,7 +215,8 @@ impl std::fmt::Display for Explanation<'_> {
                 writeln!(f, "sample {} of {}: colour {}", k + 1, samples.len(), colour(path.colour()))?;
             }
             for (depth, level) in path.levels.iter().enumerate() {
-                f.write_str(&self.level_text(depth, level))?;
+                let last = depth + 1 == path.levels.len();
+                f.write_str(&self.level_text(depth, level, last))?;
             }
         }
         let [r, g, b] = self.paths.rgb;
@@ -226,8 +227,9 @@ impl std::fmt::Display for Explanation<'_> {
 }
 
 impl Explanation<'_> {
-    /// One level of a path in words, indented by its depth.
-    fn level_text(&self, depth: usize, level: &Level) -> String {
+    /// One level of a path in words, indented by its depth; `last` when no
+    /// ray was followed from it.
+    fn level_text(&self, depth: usize, level: &Level, last: bool) -> String {
         let indent = "  ".repeat(depth);
         let ray = if depth == 0 {
             "the camera ray".to_string()
@@ -256,15 +258,20 @@ impl Explanation<'_> {
             };
             let _ = writeln!(text, "{more}{light}: {state}");
         }
-        let _ = writeln!(text, "{more}{}", self.sum_text(surface, level));
+        let _ = writeln!(text, "{more}{}", self.sum_text(surface, level, last));
         text
     }
 
-    /// "colour = clamp(...) = (r, g, b)": how the level's colour is made.
-    fn sum_text(&self, surface: &Surface, level: &Level) -> String {
+    /// "colour = clamp(...) = (r, g, b)": how the level's colour is made;
+    /// `last` when no reflected ray was followed from it.
+    fn sum_text(&self, surface: &Surface, level: &Level, last: bool) -> String {
         let ks = surface.material.ks;
-        let reflected = if ks == 0.0 { String::new() } else { format!(" + {} × reflected", short(ks)) };
-        format!("colour = clamp(ambient + lights{reflected}) = {}", colour(level.colour))
+        let (reflected, dropped) = match (ks == 0.0, last) {
+            (true, _) => (String::new(), ""),
+            (false, false) => (format!(" + {} × reflected", short(ks)), ""),
+            (false, true) => (String::new(), " (the depth is reached: no reflection)"),
+        };
+        format!("colour = clamp(ambient + lights{reflected}) = {}{dropped}", colour(level.colour))
     }
 
     /// "a sphere put at scene.ray:4:1".
