@@ -324,15 +324,15 @@ mod tests {
 
     #[test]
     fn allow_takes_check_names_and_all() {
-        let cli = Cli::parse_from(["rayrepl", "--allow", "degrees,colours", "--allow", "no-light", "a.ray"]);
+        let cli = Cli::parse_from(["rayrepl", "--allow", "camera-inside,colours", "--allow", "no-light", "a.ray"]);
         let allowed = cli.allowed();
         for check in Check::ALL {
-            let expected = matches!(check, Check::Degrees | Check::Colours | Check::NoLight);
+            let expected = matches!(check, Check::CameraInside | Check::Colours | Check::NoLight);
             assert_eq!(allowed.contains(check), expected, "{check:?}");
         }
         let every = Cli::parse_from(["rayrepl", "--allow", "all", "a.ray"]).allowed();
         assert!(Check::ALL.iter().all(|check| every.contains(*check)));
-        assert!(Cli::try_parse_from(["rayrepl", "--allow", "degree", "a.ray"]).is_err());
+        assert!(Cli::try_parse_from(["rayrepl", "--allow", "degrees", "a.ray"]).is_err());
     }
 
     #[test]

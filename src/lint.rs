@@ -1,5 +1,5 @@
 //! Warnings about an evaluated scene: the mistakes that make a valid program
-//! render a black or wrong picture, such as a camera angle in degrees,
+//! render a black or wrong picture, such as a camera that looks away,
 //! colours written from 0 to 1, an object never put, the camera inside an
 //! object, nothing in view, or no light at all.
 //!
@@ -11,8 +11,6 @@
 //! `time`, since other frames may differ. Each check can be turned off by
 //! name (`--allow`, see [`Allowed`]).
 
-use std::f64::consts::PI;
-
 use glam::DVec3;
 
 use crate::lang::eval::{Origins, format_number};
@@ -23,8 +21,6 @@ use crate::scene::{Counts, Primitive, Scene, Shape};
 /// One kind of mistake the checks look for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Check {
-    /// A camera angle of pi or more: degrees where radians are expected.
-    Degrees,
     /// A camera distance of 0 or less.
     CameraDistance,
     /// The eye strictly inside a sphere or a box.
@@ -43,8 +39,7 @@ pub enum Check {
 
 impl Check {
     /// Every check, in the order its warnings are given.
-    pub const ALL: [Check; 8] = [
-        Check::Degrees,
+    pub const ALL: [Check; 7] = [
         Check::CameraDistance,
         Check::CameraInside,
         Check::OutOfView,
@@ -57,7 +52,6 @@ impl Check {
     /// The name `--allow` takes.
     pub fn name(self) -> &'static str {
         match self {
-            Check::Degrees => "degrees",
             Check::CameraDistance => "camera-distance",
             Check::CameraInside => "camera-inside",
             Check::OutOfView => "out-of-view",
@@ -71,7 +65,6 @@ impl Check {
     /// What it warns about, for `--help`.
     pub fn summary(self) -> &'static str {
         match self {
-            Check::Degrees => "a camera angle of pi or more (degrees instead of radians)",
             Check::CameraDistance => "a camera distance of 0 or less",
             Check::CameraInside => "the camera inside a sphere or a box",
             Check::OutOfView => "no object in the camera's field of view",
@@ -151,7 +144,6 @@ pub fn check_scene(scene: &Scene, origins: &Origins, picture: &Picture, allowed:
     let mut warnings = Vec::new();
     for check in Check::ALL.into_iter().filter(|check| !allowed.contains(*check)) {
         let diagnostics = match check {
-            Check::Degrees => subject.degrees().into_iter().collect(),
             Check::CameraDistance => subject.camera_distance().into_iter().collect(),
             Check::CameraInside => subject.camera_inside().into_iter().collect(),
             Check::OutOfView => subject.out_of_view().into_iter().collect(),
@@ -190,11 +182,10 @@ impl Subject<'_> {
         self.picture.animation && self.scene.depends_on_time()
     }
 
-    /// Whether the camera itself has a warning (its angle or distance), which
-    /// then explains whatever it does or does not see.
+    /// Whether the camera itself has a warning (its distance), which then
+    /// explains whatever it does or does not see.
     fn camera_is_wrong(&self) -> bool {
-        let camera = self.scene.camera;
-        camera.angle >= PI || camera.distance <= 0.0
+        self.scene.camera.distance <= 0.0
     }
 
     /// Each primitive, numbered: the static ones, then (unless the picture
@@ -212,35 +203,6 @@ impl Subject<'_> {
     /// The eye (SPEC 5).
     fn eye(&self) -> DVec3 {
         DVec3::new(0.0, 0.0, self.scene.camera.distance)
-    }
-
-    /// A camera angle of pi or more: no picture can be right, and a round
-    /// number under 180 was most likely meant in degrees.
-    fn degrees(&self) -> Option<Diagnostic> {
-        let origin = self.origins.camera?;
-        let angle = self.scene.camera.angle;
-        if angle < PI || self.camera_moves() {
-            return None;
-        }
-        let a = format_number(angle);
-        let diagnostic = if angle < 180.0 {
-            Diagnostic::warning(
-                origin.angle,
-                format!("the camera angle {a} looks like degrees, but angles are in radians"),
-            )
-            .with_label(format!("read as {a} radians, more than half a turn"))
-            .with_help(format!(
-                "for {a} degrees, write `angle {a} * pi / 180` (that is {} radians)",
-                format_number(angle.to_radians())
-            ))
-        } else {
-            Diagnostic::warning(origin.angle, format!("the camera angle {a} is more than pi: no picture can be right"))
-                .with_label("the field of view, in radians")
-                .with_help(
-                    "the angle is in radians, between 0 and pi (3.14): 1 (about 57 degrees) is a usual field of view",
-                )
-        };
-        Some(diagnostic)
     }
 
     /// A camera distance of 0 or less: the eye looks away from the origin.
@@ -505,12 +467,12 @@ mod tests {
 
     #[test]
     fn allowed_checks_are_named_one_by_one_or_all() {
-        let degrees = Allowed::named("degrees").expect("a check");
-        assert!(degrees.contains(Check::Degrees) && !degrees.contains(Check::Colours));
-        let both = degrees.and(Allowed::named("colours").expect("a check"));
+        let distance = Allowed::named("camera-distance").expect("a check");
+        assert!(distance.contains(Check::CameraDistance) && !distance.contains(Check::Colours));
+        let both = distance.and(Allowed::named("colours").expect("a check"));
         assert!(both.contains(Check::Colours));
         assert!(Check::ALL.iter().all(|check| Allowed::named("all").expect("all").contains(*check)));
-        assert_eq!(Allowed::named("degree"), None);
+        assert_eq!(Allowed::named("colour"), None);
         assert!(Check::ALL.iter().all(|check| Allowed::named(check.name()).is_some()));
     }
 

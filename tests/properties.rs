@@ -184,7 +184,7 @@ proptest! {
         let t = object.hit(&ray);
         prop_assert!(t < f64::INFINITY);
         let n = Bounded::normal(&object, &ray, t);
-        let origin = offset_origin(ray.at(t), n);
+        let origin = offset_origin(ray.at(t), n, t);
         let mirror = Ray::new(origin, ray.dir - n * (2.0 * ray.dir.dot(n)));
         prop_assert_eq!(object.hit(&mirror), f64::INFINITY, "the mirror ray hits its own object");
         if n.dot(light) > 1e-6 {

@@ -542,24 +542,28 @@ proptest! {
 /// Checks the BVH over `objects` against testing every object, for the
 /// closest hit (distance and object) and the any-hit answer of each ray;
 /// with `secondary`, also for a ray leaving each hit along its normal, the
-/// way shading starts them.
+/// way shading starts them. Of hits within a billionth of the nearest
+/// distance (coinciding faces), the BVH may answer any: it takes the first
+/// in its order.
 fn bvh_agrees_with_brute_force(objects: &[Bounded], rays: &[Ray], secondary: bool) -> Result<(), TestCaseError> {
     let (bvh, order) = Bvh::build(objects);
     let brute_force = |ray: &Ray| objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
+    let same_distance = |t: f64, nearest: f64| nearest <= t && t <= nearest * (1.0 + 1e-9);
     for ray in rays {
         let brute = brute_force(ray);
         let (t, index) = bvh.closest_hit(ray, f64::INFINITY);
         if brute == f64::INFINITY {
             prop_assert_eq!(index, u32::MAX);
         } else {
-            prop_assert_eq!(t, brute);
+            prop_assert!(same_distance(t, brute), "{} for {}", t, brute);
             let hit = &objects[order[index as usize] as usize];
             prop_assert_eq!(hit.hit(ray), t);
             if secondary {
                 let n = hit.normal(ray, t);
                 let out = Ray::new(ray.at(t) + n * 1e-9, n);
                 let brute_out = brute_force(&out);
-                prop_assert_eq!(bvh.closest_hit(&out, f64::INFINITY).0, brute_out);
+                let t_out = bvh.closest_hit(&out, f64::INFINITY).0;
+                prop_assert!(t_out == brute_out || same_distance(t_out, brute_out), "{} for {}", t_out, brute_out);
                 prop_assert_eq!(bvh.any_hit(&out, f64::INFINITY), brute_out < f64::INFINITY);
             }
         }

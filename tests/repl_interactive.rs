@@ -99,7 +99,7 @@ fn an_error_leaves_the_session_running_and_unchanged() {
 #[test]
 fn a_render_warns_about_the_scene_once_and_print_shows_values() {
     let (mut session, _home) = fresh(false);
-    session.send_line("camera distance 10 angle 45 end").unwrap();
+    session.send_line("camera distance -10 angle 1 end").unwrap();
     session.expect("ray> ").unwrap();
     session.send_line("put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end").unwrap();
     session.expect("ray> ").unwrap();
@@ -107,7 +107,7 @@ fn a_render_warns_about_the_scene_once_and_print_shows_values() {
     session.expect("<input 3>:1: 2 * 3 = 6").unwrap();
     session.expect("ray> ").unwrap();
     session.send_line(":render 8 6").unwrap();
-    session.expect("the camera angle 45 looks like degrees").unwrap();
+    session.expect("the camera distance is -10").unwrap();
     session.expect("rendered 8×6").unwrap();
     session.expect("ray> ").unwrap();
     // The same cause is not warned about again.

@@ -73,7 +73,7 @@ fn render_checked(scene: &Scene, options: &RenderOptions) -> RgbImage {
 /// directions, so they are covered too. Returns the number of hits checked.
 fn assert_sane_paths(scene: &Scene, options: &RenderOptions) -> usize {
     let prepared = SceneGeometry::new(scene);
-    let rays = PrimaryRays::new(&scene.camera, options.width, options.height, options.screen);
+    let rays = prepared.primary_rays(&scene.camera, options.width, options.height, options.screen);
     let mut hits = 0;
     for j in 0..options.height {
         for i in 0..options.width {
@@ -87,7 +87,7 @@ fn assert_sane_paths(scene: &Scene, options: &RenderOptions) -> usize {
                 assert!(hit.point.is_finite(), "bad point at {at}");
                 assert!((hit.normal.length() - 1.0).abs() < 1e-9, "normal not unit at {at}");
                 assert!(hit.normal.dot(ray.dir) <= 1e-12, "normal not facing the ray at {at}");
-                let origin = offset_origin(hit.point, hit.normal);
+                let origin = offset_origin(hit.point, hit.normal, hit.t);
                 assert!(origin.is_finite(), "bad offset origin at {at}");
                 let d = ray.dir;
                 let reflected = d - hit.normal * (2.0 * d.dot(hit.normal));
@@ -168,7 +168,7 @@ fn count_near(image: &RgbImage, expected: [u8; 3], tolerance: u8) -> usize {
 /// normal (within `1e-9`), and the image's bytes there.
 fn face_pixels(scene: &Scene, options: &RenderOptions, image: &RgbImage, normal: DVec3) -> Vec<[u8; 3]> {
     let prepared = SceneGeometry::new(scene);
-    let rays = PrimaryRays::new(&scene.camera, options.width, options.height, Screen::Centered);
+    let rays = prepared.primary_rays(&scene.camera, options.width, options.height, Screen::Centered);
     let mut out = Vec::new();
     for j in 0..options.height {
         for i in 0..options.width {
@@ -213,6 +213,54 @@ fn coordinates_from_1e_minus_4_to_1e7_in_one_scene() {
     let off = face.iter().filter(|&&p| channel_diff(p, expected) > 0).count();
     eprintln!("1e-4..1e7: far face {} pixels, {off} not {expected:?}", face.len());
     assert!(face.len() > 500 && off == 0);
+}
+
+/// Sizes from 1e-300 to 1e300 in one scene: a sphere of radius 1e-300 at
+/// the origin, one of radius 1e300 whose top is a floor 2 below it, a
+/// ball of radius 1, a box a million times longer than thick, and a light
+/// that grazes the floor and the box's top. Nothing here can be drawn
+/// exactly in f64 (the huge sphere's squares overflow), but every path is
+/// finite, the picture does not depend on threads, and the ball is drawn.
+#[test]
+fn sizes_from_1e_minus_300_to_1e300_in_one_scene() {
+    let ball = sphere([2.0, 0.0, 0.0], 1.0, material([0.9, 0.2, 0.2], 0.7, 0.3, 40.0));
+    let lights = vec![light([1.0, 0.0, 0.0], 0.5), light([0.3, 1.0, 0.5], 0.5)];
+    let s = scene(
+        10.0,
+        1.0,
+        0.2,
+        lights,
+        vec![
+            sphere([0.0, 0.0, 0.0], 1e-300, matte([0.2, 0.9, 0.2])),
+            sphere([0.0, -1e300 - 2.0, 0.0], 1e300, matte([0.8, 0.8, 0.8])),
+            ball,
+            cube([-2.0, 1.5, -1.0], [10.0, 1e-5, 10.0], DMat3::from_rotation_x(0.3), matte([0.2, 0.3, 0.9])),
+        ],
+    );
+    let o = options(64, 48, 5);
+    let image = render_checked(&s, &o);
+    // The ball's centre is seen 2 f / 10 = 11.7 pixels right of the middle.
+    let [r, g, b] = image.get_pixel(43, 24).0;
+    assert!(r > 2 * g.max(b), "the ball is red: {:?}", [r, g, b]);
+}
+
+/// The eye on a surface: on a sphere, on a box face and on a plane, with a
+/// light grazing the plane (N·L = 0): finite paths, no panic.
+#[test]
+fn the_camera_on_a_surface() {
+    let m = material([0.8, 0.6, 0.4], 0.5, 0.4, 20.0);
+    let lights = vec![light([1.0, 0.0, 0.0], 0.6), light([0.2, 1.0, 0.4], 0.4)];
+    for (name, wall) in [
+        ("sphere", sphere([0.0, 0.0, 0.0], 5.0, m)),
+        ("box", cube([0.0, 0.0, 0.0], [4.0, 4.0, 10.0], DMat3::IDENTITY, m)),
+        ("plane", plane([0.0, 0.0, 1.0], 5.0, m)),
+    ] {
+        let floor = plane([0.0, 1.0, 0.0], -1.0, m);
+        let s = scene(5.0, 1.2, 0.3, lights.clone(), vec![wall, floor]);
+        let hits = assert_sane_paths(&s, &options(32, 24, 5));
+        eprintln!("the eye on a {name}: {hits} hits");
+        render_checked(&s, &options(32, 24, 5));
+    }
 }
 
 /// A box of aspect 1:10,000 (a sheet 10 wide, 1e-3 thick), slightly tilted,
@@ -544,17 +592,19 @@ fn a_thousand_reflections_inside_a_sphere_stay_on_it() {
     let center = DVec3::new(0.5, -0.3, 0.2);
     let s = scene(3.0, 1.2, 0.3, vec![], vec![sphere(center.into(), 20.0, m)]);
     let prepared = SceneGeometry::new(&s);
-    let rays = PrimaryRays::new(&s.camera, 8, 6, Screen::Centered);
+    let rays = prepared.primary_rays(&s.camera, 8, 6, Screen::Centered);
+    // The geometry's points are in its own unit.
+    let (center, radius) = (center * prepared.scale(), 20.0 * prepared.scale());
     let mut worst: f64 = 0.0;
     for (i, j) in [(0, 0), (3, 2), (7, 5), (1, 4)] {
         let mut ray = rays.ray(i, j, glam::DVec2::splat(0.5));
         for _ in 0..1000 {
             let hit = prepared.closest_hit(&ray).expect("inside a closed sphere every ray hits");
-            worst = worst.max(((hit.point - center).length() - 20.0).abs());
+            worst = worst.max(((hit.point - center).length() - radius).abs() / radius);
             let d = ray.dir;
-            ray = Ray::new(offset_origin(hit.point, hit.normal), d - hit.normal * (2.0 * d.dot(hit.normal)));
+            ray = Ray::new(offset_origin(hit.point, hit.normal, hit.t), d - hit.normal * (2.0 * d.dot(hit.normal)));
         }
     }
-    eprintln!("1000 reflections inside a sphere of radius 20: hit points at most {worst:e} off it");
-    assert!(worst < 1e-9 * 20.0, "{worst:e}");
+    eprintln!("1000 reflections inside a sphere of radius 20: hit points at most {worst:e} radii off it");
+    assert!(worst < 1e-9, "{worst:e}");
 }

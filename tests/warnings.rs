@@ -104,7 +104,7 @@ fn each_case_gets_its_warning_in_a_piped_script_when_it_is_saved() {
 
 #[test]
 fn a_script_that_renders_nothing_is_not_warned() {
-    let (path, _) = cases().into_iter().find(|(_, check)| *check == Check::Degrees).expect("a degrees case");
+    let (path, _) = cases().into_iter().find(|(_, check)| *check == Check::Colours).expect("a colours case");
     let text = std::fs::read_to_string(path).expect("readable case");
     let (mut stdout, mut stderr) = (Vec::new(), Vec::new());
     assert_eq!(run_script(text.as_bytes(), &mut stdout, &mut stderr, &SessionOptions::default()), 0);
@@ -146,10 +146,10 @@ fn an_animation_warns_once_and_leaves_out_what_moves() {
         assert_eq!(output.status.code(), Some(0));
         stderr_of(&output)
     };
-    let degrees = "camera distance 10 angle 45 end\nambient 0.2\nlight vector 0, 0, 0 intensity 1 end\n\
-                   put sphere center time, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end\n";
-    assert_eq!(checks_warned(&run(degrees, Some("4"))), ["degrees"]);
-    assert_eq!(run(degrees, Some("4")).matches("warning:").count(), 1);
+    let behind = "camera distance -10 angle 1 end\nambient 0.2\nlight vector 0, 0, 0 intensity 1 end\n\
+                  put sphere center time, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end\n";
+    assert_eq!(checks_warned(&run(behind, Some("4"))), ["camera-distance"]);
+    assert_eq!(run(behind, Some("4")).matches("warning:").count(), 1);
     // A light that fades in from 0: at time 0 it lights nothing, but an
     // animation means it.
     let fading = "camera distance 10 angle 1 end\nambient 0.2\nlight vector 0, 0, 0 intensity (time - 1) / 3 end\n\

@@ -348,6 +348,7 @@ impl Interpreter {
             Item::Camera(def) => {
                 let distance = self.eval_expr(&def.distance)?;
                 let angle = self.eval_expr(&def.angle)?;
+                errors::check_camera_angle(angle.value, def.angle.span)?;
                 self.scene.camera = Camera { distance: distance.value, angle: angle.value };
                 self.scene.time_use.camera = distance.tainted | angle.tainted;
                 self.origins.camera =

@@ -117,7 +117,7 @@ impl SharedFrame {
             // Far above the rounding of either way of turning a ray into the
             // frame (a few ulps of the coordinates involved), so culling is
             // conservative.
-            let p = 1e-6 * (1.0 + b.min.abs().max(b.max.abs()).max_element());
+            let p = 1e-6 * b.min.abs().max(b.max.abs()).max_element();
             Aabb { min: b.min - p, max: b.max + p }
         };
         let bounds = nodes.iter().map(|n| pad(&n.bounds)).collect();
@@ -150,13 +150,14 @@ impl SharedFrame {
         let best = Cell::new((t_max, u32::MAX));
         walk(
             nodes,
-            |k| self.bounds[k].hit(&local, inv, best.get().0),
+            |k| self.bounds[k].hit(&local, inv, reach_past(best.get().0)),
             |axis| dir_negative[axis as usize],
             |start, count| {
                 for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
                     let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
-                    if t < best.get().0 {
-                        best.set((t, (start + k) as u32));
+                    let k = (start + k) as u32;
+                    if goes_before(t, k, best.get()) {
+                        best.set((t, k));
                     }
                 }
                 false
@@ -350,7 +351,7 @@ fn closest_in(
     let best = Cell::new(best);
     walk(
         nodes,
-        |k| node_hit(&nodes[k], best.get().0),
+        |k| node_hit(&nodes[k], reach_past(best.get().0)),
         |axis| dir_negative[axis as usize],
         |start, count| {
             let mut nearest = best.get();
@@ -406,12 +407,46 @@ fn walk(
 /// hit in `best`.
 #[inline(always)]
 fn test_range(objects: &[Bounded], first: usize, ray: &Ray, best: &mut (f64, u32)) {
+    // [`goes_before`] with its two bounds kept across the objects: a miss
+    // (the usual answer) costs two comparisons.
+    let (mut low, mut high) = (nearer_than(best.0), reach_past(best.0));
     for (k, object) in objects.iter().enumerate() {
         let t = object.hit(ray);
-        if t < best.0 {
-            *best = (t, (first + k) as u32);
+        let k = (first + k) as u32;
+        if t < low || (t <= high && k < best.1 && t < f64::INFINITY) {
+            *best = (t, k);
+            (low, high) = (nearer_than(t), reach_past(t));
         }
     }
+}
+
+/// Hits whose distances differ by less than this fraction of them are at
+/// one distance: faces that coincide (two boxes sharing a face) are then
+/// told apart by the order of the objects, not by the rounding of their
+/// distances, which changes with the scene's units (SPEC 6: the same
+/// pixels at every scale). A billionth, as the offset of secondary rays.
+const SAME_DISTANCE: f64 = 1e-9;
+
+/// The distance up to which a hit may still go before one at `t`
+/// ([`goes_before`]): subtrees are pruned beyond it.
+#[inline(always)]
+pub(crate) fn reach_past(t: f64) -> f64 {
+    t * (1.0 + SAME_DISTANCE)
+}
+
+/// Whether a hit at `t` of object `k` goes before `best` (distance, object;
+/// `u32::MAX` for none yet): nearer by more than [`SAME_DISTANCE`], or at
+/// the same distance and earlier in order.
+#[inline(always)]
+pub(crate) fn goes_before(t: f64, k: u32, best: (f64, u32)) -> bool {
+    t < nearer_than(best.0) || (t <= reach_past(best.0) && k < best.1 && t < f64::INFINITY)
+}
+
+/// The distance under which a hit is nearer than one at `t` by more than
+/// [`SAME_DISTANCE`].
+#[inline(always)]
+pub(crate) fn nearer_than(t: f64) -> f64 {
+    t * (1.0 - SAME_DISTANCE)
 }
 
 /// Builds the subtree over `items` (which start at `offset` in the whole

@@ -24,6 +24,10 @@ pub struct PrimaryRays {
     /// The y coordinate of a pixel's top edge row 0 on the screen.
     top: f64,
     focal: f64,
+    /// 1, or 0 for a field of view so narrow that the focal distance is
+    /// not a finite number: every ray is then the axis, the limit of a
+    /// narrowing view (never a NaN direction and a black picture).
+    spread: f64,
 }
 
 impl PrimaryRays {
@@ -36,12 +40,9 @@ impl PrimaryRays {
             Screen::Centered => h / 2.0,
             Screen::Bottom => h,
         };
-        PrimaryRays {
-            eye: DVec3::new(0.0, 0.0, camera.distance),
-            half_width: w / 2.0,
-            top,
-            focal: w / (2.0 * (camera.angle / 2.0).tan()),
-        }
+        let focal = w / (2.0 * (camera.angle / 2.0).tan());
+        let (focal, spread) = if focal.is_finite() { (focal, 1.0) } else { (1.0, 0.0) };
+        PrimaryRays { eye: DVec3::new(0.0, 0.0, camera.distance), half_width: w / 2.0, top, focal, spread }
     }
 
     /// The directions (not normalised) from the eye through the four corners
@@ -51,12 +52,13 @@ impl PrimaryRays {
     pub fn corner_directions(&self, height: u32) -> [DVec3; 4] {
         let (left, right) = (-self.half_width, self.half_width);
         let (top, bottom) = (self.top, self.top - f64::from(height));
-        [(left, top), (right, top), (right, bottom), (left, bottom)].map(|(x, y)| DVec3::new(x, y, -self.focal))
+        [(left, top), (right, top), (right, bottom), (left, bottom)]
+            .map(|(x, y)| DVec3::new(x * self.spread, y * self.spread, -self.focal))
     }
 
     /// The angle (radians) one pixel spans at the centre of the image.
     pub fn pixel_angle(&self) -> f64 {
-        1.0 / self.focal
+        self.spread / self.focal
     }
 
     /// The ray through the point `(i + u, j + v)` of the image (pixel `(i,
@@ -68,8 +70,8 @@ impl PrimaryRays {
     /// which hits nothing: the pixel is black, never NaN.
     #[inline]
     pub fn ray(&self, i: u32, j: u32, offset: DVec2) -> Ray {
-        let x = f64::from(i) + offset.x - self.half_width;
-        let y = self.top - (f64::from(j) + offset.y);
+        let x = (f64::from(i) + offset.x - self.half_width) * self.spread;
+        let y = (self.top - (f64::from(j) + offset.y)) * self.spread;
         let dir = DVec3::new(x, y, -self.focal).normalize_or_zero();
         Ray::new(self.eye, dir)
     }
@@ -123,6 +125,13 @@ mod tests {
         let r = rays.ray(1, 1, DVec2::splat(0.5));
         assert_eq!(r.origin, DVec3::new(0.0, 0.0, 5.0));
         assert_eq!(r.dir, DVec3::new(0.0, 0.0, -1.0));
+    }
+
+    #[test]
+    fn a_field_of_view_too_narrow_for_a_finite_focal_distance_looks_along_the_axis() {
+        let rays = PrimaryRays::new(&Camera { distance: 5.0, angle: 1e-320 }, 4, 3, Screen::Centered);
+        assert_eq!(rays.ray(0, 0, DVec2::ZERO).dir, DVec3::NEG_Z);
+        assert_eq!(rays.ray(3, 2, DVec2::ONE).dir, DVec3::NEG_Z);
     }
 
     #[test]

@@ -65,7 +65,7 @@ pub struct Level {
 pub struct Surface {
     /// The primitive's place in [`Scene::all_primitives`].
     pub primitive: usize,
-    /// The point hit.
+    /// The point hit, in the scene's coordinates.
     pub point: DVec3,
     /// The unit normal there, facing the ray.
     pub normal: DVec3,
@@ -156,7 +156,8 @@ impl PathObserver for PathRecorder<'_> {
         }
         let surface = hit.map(|hit| Surface {
             primitive: self.geometry.primitive_index(hit),
-            point: hit.point,
+            // The geometry works in its own unit (an exact power of two).
+            point: hit.point / self.geometry.scale(),
             normal: hit.normal,
             material: hit.material,
         });

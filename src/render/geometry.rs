@@ -4,23 +4,32 @@
 //!
 //! An animation keeps the part that does not depend on `time` across frames
 //! ([`SceneGeometry::with_static`]) and rebuilds only the rest.
+//!
+//! Lengths are held in a unit of the scene's own size: every length is
+//! multiplied by a power of two chosen from the scene ([`SceneGeometry::scale`]),
+//! which is exact, so the pixels are those of the scene as given while no
+//! square or product of lengths overflows or underflows, whatever the
+//! scene's units (SPEC 6: the same pixels at every scale).
 
 use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::bvh::Bvh;
+use super::bvh::{self, Bvh};
+use super::camera::{PrimaryRays, Screen};
 use super::intersect::{Aabb, Bounded, PlaneShape, Ray, ShapeClass};
-use crate::scene::{Material, Primitive, Scene};
+use crate::scene::{Camera, Material, Primitive, Scene, Shape};
 
 /// The primitives of one part of a scene, ready for ray queries.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Geometry {
     bvh: Bvh,
     /// Materials of the bounded objects, in tree order.
     bounded_materials: Vec<Material>,
     planes: Vec<PlaneShape>,
     plane_materials: Vec<Material>,
+    /// The power of two every length was multiplied by.
+    scale: f64,
     /// Where each bounded object (in tree order), then each plane, stands
     /// in the list of primitives it was built from: to tell which `put`
     /// made what a ray hit.
@@ -68,9 +77,10 @@ pub struct SurfaceHit {
 }
 
 impl Geometry {
-    /// Prepares `primitives`: builds the BVH over spheres and boxes (in
-    /// parallel with rayon when there are many) and lists the planes.
-    pub fn build(primitives: &[Primitive]) -> Geometry {
+    /// Prepares `primitives` with every length multiplied by `scale` (a
+    /// power of two): builds the BVH over spheres and boxes (in parallel
+    /// with rayon when there are many) and lists the planes.
+    fn build(primitives: &[Primitive], scale: f64) -> Geometry {
         let mut bounded = Vec::new();
         let mut materials = Vec::new();
         let mut planes = Vec::new();
@@ -78,7 +88,7 @@ impl Geometry {
         let (mut bounded_sources, mut plane_sources) = (Vec::new(), Vec::new());
         for (index, primitive) in primitives.iter().enumerate() {
             let index = u32::try_from(index).unwrap_or(u32::MAX);
-            match ShapeClass::from(&primitive.shape) {
+            match ShapeClass::from(&primitive.shape.scaled(scale)) {
                 ShapeClass::Bounded(b) => {
                     bounded.push(b);
                     materials.push(primitive.material);
@@ -94,7 +104,7 @@ impl Geometry {
         let (bvh, order) = Bvh::build(&bounded);
         let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
         let sources = order.iter().map(|&k| bounded_sources[k as usize]).chain(plane_sources).collect();
-        Geometry { bvh, bounded_materials, planes, plane_materials, sources }
+        Geometry { bvh, bounded_materials, planes, plane_materials, scale, sources }
     }
 
     /// The union of two geometries without trees (both small), `a` first:
@@ -115,6 +125,7 @@ impl Geometry {
             bounded_materials: join(&a.bounded_materials, &b.bounded_materials),
             planes: a.planes.iter().chain(&b.planes).copied().collect(),
             plane_materials: join(&a.plane_materials, &b.plane_materials),
+            scale: a.scale,
             sources,
         })
     }
@@ -129,15 +140,19 @@ impl Geometry {
         self.bvh.objects().len() + self.planes.len()
     }
 
-    /// The nearest hit with `0 < t < t_max`, if any.
+    /// The nearest hit with `0 < t < t_max`, if any (up to the BVH's
+    /// tolerance past `t_max`). Of hits at the same distance (see
+    /// [`bvh::goes_before`]), a sphere or a box goes before a plane, and an
+    /// earlier plane before a later one.
     #[inline(always)]
     fn closest_hit(&self, ray: &Ray, t_max: f64) -> Option<GeometryHit> {
         let (mut t, index) = self.bvh.closest_hit(ray, t_max);
         let mut object = (index != u32::MAX).then_some(ObjectId::Bounded(index));
+        let mut before = bvh::nearer_than(t);
         for (k, plane) in self.planes.iter().enumerate() {
             let tp = plane.hit(ray);
-            if tp < t {
-                t = tp;
+            if tp < before {
+                (t, before) = (tp, bvh::nearer_than(tp));
                 object = Some(ObjectId::Plane(k as u32));
             }
         }
@@ -181,6 +196,34 @@ impl Geometry {
     }
 }
 
+/// The power of two `2^-e` that brings the scene's size into `[1, 2)`:
+/// in that unit the intersection formulas' squares stay far from overflow
+/// and underflow. The size is the camera distance, which sets the scale of
+/// what the picture shows (a huge sphere used as a floor does not push the
+/// rest out of range); without one, the largest primitive's reach.
+/// Multiplying by a power of two is exact, and every formula of the
+/// renderer gives lengths proportional to its input lengths (no absolute
+/// epsilon), so the choice changes no pixel.
+fn working_scale(scene: &Scene) -> f64 {
+    let reach = |shape: &Shape| match *shape {
+        Shape::Sphere { center, radius } => center.abs().max_element() + radius,
+        Shape::Box { center, half, .. } => center.abs().max_element() + half.max_element(),
+        Shape::Plane { shift, .. } => shift.abs(),
+    };
+    let distance = scene.camera.distance.abs();
+    let size = if distance > 0.0 && distance.is_finite() {
+        distance
+    } else {
+        scene.primitives.iter().chain(&scene.timed_primitives).map(|p| reach(&p.shape)).fold(0.0, f64::max)
+    };
+    if !(size > 0.0 && size.is_finite()) {
+        return 1.0;
+    }
+    // Within f64's normal range, so the power itself is exact.
+    let exponent = size.log2().floor().clamp(-1000.0, 1000.0) as i32;
+    2f64.powi(-exponent)
+}
+
 /// What blocks a shadow ray ([`SceneGeometry::blocker`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Blocker {
@@ -194,7 +237,7 @@ pub enum Blocker {
 
 /// A scene's geometry split for animations: the static part (built once,
 /// shared across frames) and the part that depends on `time`.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct SceneGeometry {
     static_part: Arc<Geometry>,
     timed: Geometry,
@@ -217,15 +260,34 @@ impl ObjectId {
 impl SceneGeometry {
     /// Prepares both parts of `scene`.
     pub fn new(scene: &Scene) -> SceneGeometry {
-        let (static_part, timed) =
-            rayon::join(|| Geometry::build(&scene.primitives), || Geometry::build(&scene.timed_primitives));
+        let scale = working_scale(scene);
+        let (static_part, timed) = rayon::join(
+            || Geometry::build(&scene.primitives, scale),
+            || Geometry::build(&scene.timed_primitives, scale),
+        );
         SceneGeometry::from_parts(Arc::new(static_part), timed)
     }
 
     /// Reuses an already built static part and prepares only `timed`
-    /// (the next frame of an animation).
+    /// (the next frame of an animation), in the static part's unit.
     pub fn with_static(static_part: Arc<Geometry>, timed: &[Primitive]) -> SceneGeometry {
-        SceneGeometry::from_parts(static_part, Geometry::build(timed))
+        let timed = Geometry::build(timed, static_part.scale);
+        SceneGeometry::from_parts(static_part, timed)
+    }
+
+    /// The power of two every length of the scene was multiplied by: rays
+    /// traced against this geometry, and the points and distances it
+    /// answers, are in that unit.
+    pub fn scale(&self) -> f64 {
+        self.static_part.scale
+    }
+
+    /// The primary rays of a `width` x `height` image seen by `camera`, in
+    /// the geometry's unit ([`SceneGeometry::scale`]): the rays to trace
+    /// against it.
+    pub fn primary_rays(&self, camera: &Camera, width: u32, height: u32, screen: Screen) -> PrimaryRays {
+        let camera = Camera { distance: camera.distance * self.scale(), ..*camera };
+        PrimaryRays::new(&camera, width, height, screen)
     }
 
     fn from_parts(static_part: Arc<Geometry>, timed: Geometry) -> SceneGeometry {

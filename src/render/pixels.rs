@@ -45,7 +45,7 @@ impl<'a> Pass<'a> {
         samples: u32,
     ) -> Pass<'a> {
         Pass {
-            rays: PrimaryRays::new(&scene.camera, options.width, options.height, options.screen),
+            rays: geometry.primary_rays(&scene.camera, options.width, options.height, options.screen),
             offsets: sample_offsets(samples),
             lighting: Lighting::new(scene, geometry, options.depth, options.skips),
             geometry,

@@ -140,7 +140,7 @@ impl<'a> Tracer<'a> {
             observer.hit(&ray, found.as_ref(), weight);
             let Some(hit) = found else { break };
             // Shadow and mirror rays start at P moved off the surface.
-            let origin = offset_origin(hit.point, hit.normal);
+            let origin = offset_origin(hit.point, hit.normal, hit.t);
             let local = self.local_colour(&ray, &hit, origin, observer);
             let ks = hit.material.ks;
             // With ks = 0 the reflection term is `0 * colour = +0`, which
@@ -256,21 +256,24 @@ fn reflected(ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> Ray {
 
 /// Relative size of the offset that moves secondary rays off a surface.
 ///
-/// A hit point computed in f64 is off the true surface by a few units in
-/// the last place of its largest coordinate (about `2.2e-16 * |P|`, times
-/// the small error growth of the intersection formulas, which are written
-/// to avoid cancellation). `1e-9 * max(1, max |P_i|)` is about a million
-/// times that, so a surface never shadows or reflects itself, even at
-/// coordinates of 50,000 (offset 5e-5); and it is far below anything
-/// visible: a shadow or reflection goes wrong only where two surfaces are
-/// closer than the offset (a billionth of the scene's size).
+/// A hit point `P = S + t V` computed in f64 is off the true surface by a
+/// few units in the last place of the larger of `|S|` and `t` (about
+/// `2.2e-16` times it, times the small error growth of the intersection
+/// formulas, which are written to avoid cancellation). The offset is
+/// `1e-9 * max(max |P_i|, t)`: `|S| <= |P| + t`, so that is a million times
+/// the error and a surface never shadows or reflects itself; and it is far
+/// below anything visible: a shadow or reflection goes wrong only where two
+/// surfaces are closer than a billionth of their distance from the origin
+/// or from the ray's start. It has no absolute floor, so a scene with every
+/// length multiplied by `2^k` gets offsets multiplied by exactly `2^k`.
 pub const OFFSET_SCALE: f64 = 1e-9;
 
-/// SPEC 6: the start of secondary rays, P moved along N by an offset that
-/// scales with the magnitude of P's coordinates (see [`OFFSET_SCALE`]).
+/// SPEC 6: the start of secondary rays, P (at distance `t` along the ray
+/// that found it) moved along N by an offset that scales with the
+/// magnitude of P's coordinates and with `t` (see [`OFFSET_SCALE`]).
 #[inline]
-pub fn offset_origin(point: DVec3, normal: DVec3) -> DVec3 {
-    let scale = point.abs().max_element().max(1.0);
+pub fn offset_origin(point: DVec3, normal: DVec3, t: f64) -> DVec3 {
+    let scale = point.abs().max_element().max(t);
     point + normal * (OFFSET_SCALE * scale)
 }
 
@@ -279,10 +282,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn offset_scales_with_coordinates() {
-        assert_eq!(offset_origin(DVec3::ZERO, DVec3::Y), DVec3::new(0.0, 1e-9, 0.0));
-        let far = offset_origin(DVec3::new(50_000.0, 0.0, 0.0), DVec3::Y);
+    fn offset_scales_with_coordinates_and_distance() {
+        assert_eq!(offset_origin(DVec3::ZERO, DVec3::Y, 2.0), DVec3::new(0.0, 2e-9, 0.0));
+        let far = offset_origin(DVec3::new(50_000.0, 0.0, 0.0), DVec3::Y, 2.0);
         assert!((far.y - 5e-5).abs() < 1e-15);
+        let tiny = offset_origin(DVec3::new(0.0, 3e-200, 0.0), DVec3::Y, 1e-200);
+        assert_eq!(tiny.y, 3e-200 + 3e-209);
     }
 
     #[test]

@@ -30,6 +30,33 @@ pub(crate) fn fail<T>(diagnostic: Diagnostic) -> EvalResult<T> {
     Err(diagnostic.into())
 }
 
+/// SPEC 6: a camera `angle` (the horizontal field of view, in radians)
+/// outside (0, pi) cannot make a picture.
+pub(crate) fn check_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
+    if angle > 0.0 && angle < std::f64::consts::PI { Ok(()) } else { bad_camera_angle(angle, span) }
+}
+
+/// The error of [`check_camera_angle`]: a round number from pi to 180 was
+/// most likely meant in degrees.
+#[cold]
+#[inline(never)]
+fn bad_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
+    let a = super::print::format_number(angle);
+    let diagnostic = if (std::f64::consts::PI..180.0).contains(&angle) {
+        Diagnostic::error(span, format!("the camera angle {a} looks like degrees, but angles are in radians"))
+            .with_label(format!("read as {a} radians, more than half a turn"))
+            .with_help(format!(
+                "for {a} degrees, write `angle {a} * pi / 180` (that is {} radians)",
+                super::print::format_number(angle.to_radians())
+            ))
+    } else {
+        Diagnostic::error(span, format!("the camera angle must be between 0 and pi, but it is {a}"))
+            .with_label("the field of view, in radians: no picture has this one")
+            .with_help("1 (about 57 degrees) is a usual field of view; a smaller angle zooms in")
+    };
+    fail(diagnostic)
+}
+
 /// Adds "did you mean `x`?" when a candidate is close to `name`.
 pub(crate) fn with_suggestion<'a>(
     diagnostic: Diagnostic,
