@@ -81,10 +81,10 @@ fn main() {
         let (mut all_off, mut all_differ) = (0.0, 0.0);
         for ((_, scene), original) in scenes.iter().zip(&originals) {
             let (off, differ) = differences(original, &image(&scaled(scene, factor), &options));
-            print!(" {:.2}% ({:.2}%) |", 100.0 * off, 100.0 * differ);
+            print!(" {:.3}% ({:.3}%) |", 100.0 * off, 100.0 * differ);
             all_off += off / scenes.len() as f64;
             all_differ += differ / scenes.len() as f64;
         }
-        println!(" {:.2}% ({:.2}%) |", 100.0 * all_off, 100.0 * all_differ);
+        println!(" {:.3}% ({:.3}%) |", 100.0 * all_off, 100.0 * all_differ);
     }
 }

@@ -17,7 +17,7 @@ use glam::{DMat3, DVec3};
 use image::RgbImage;
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_items};
 use rayrepl::render::shade::offset_origin;
-use rayrepl::render::{PrimaryRays, Ray, RenderControl, RenderOptions, SceneGeometry, Screen, Skips, render};
+use rayrepl::render::{Ray, RenderControl, RenderOptions, SceneGeometry, Screen, Skips, render};
 use rayrepl::scene::{Material, Scene, Shape};
 
 mod common;
