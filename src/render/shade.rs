@@ -130,6 +130,7 @@ impl<'a> Tracer<'a> {
     /// colour(reflected ray))` folds them, clamping at every level. Below
     /// the last level the colour is black: the ray met nothing, or the
     /// reflection term is dropped. (A loop, not recursion: measured faster.)
+    #[inline(always)]
     pub fn trace<O: PathObserver>(&mut self, primary: &Ray, observer: &mut O) -> DVec3 {
         self.counts.primary += 1;
         let mut levels = std::mem::take(&mut self.levels);
