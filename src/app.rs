@@ -15,6 +15,7 @@ use image::RgbImage;
 
 use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
+use crate::explain::ExplainedScene;
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
 use crate::lang::eval::PrintLog;
@@ -123,6 +124,8 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
         parsed.evaluate(cli.settings().time, false).map(|scene| {
             println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
         })
+    } else if let Some((x, y)) = cli.explain {
+        explain(cli, &parsed, x, y)
     } else {
         output_path(cli, path).map_err(BatchError::from).and_then(|output| match cli.anim {
             Some(count) => {
@@ -183,7 +186,13 @@ impl ParsedScene {
     /// What `print` writes comes first; the whole scene (not `skip_static`)
     /// is also checked for the mistakes that spoil a picture.
     fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, BatchError> {
-        let mut interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
+        let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
+        self.run(interpreter, !skip_static).map(Interpreter::into_scene)
+    }
+
+    /// Runs the program on `interpreter`, printing warnings on stderr (and,
+    /// with `check`, checking the scene), as [`ParsedScene::evaluate`] says.
+    fn run(&self, mut interpreter: Interpreter, check: bool) -> Result<Interpreter, BatchError> {
         let result = interpreter.run(&self.program);
         let mut printed = self.printed.borrow_mut();
         printed.absorb(interpreter.take_printed());
@@ -191,7 +200,7 @@ impl ParsedScene {
             eprintln!("{}", line.render(&self.sources));
         }
         let mut warnings = interpreter.take_warnings();
-        if result.is_ok() && !skip_static {
+        if result.is_ok() && check {
             let checked = check_scene(interpreter.scene(), interpreter.origins(), &self.picture, self.allowed);
             warnings.extend(checked.into_iter().map(|warning| warning.diagnostic));
         }
@@ -201,10 +210,23 @@ impl ParsedScene {
             }
         }
         match result {
-            Ok(()) => Ok(interpreter.into_scene()),
+            Ok(()) => Ok(interpreter),
             Err(diagnostic) => Err(BatchError::Scene(Box::new(diagnostic), self.sources.clone())),
         }
     }
+}
+
+/// Explains pixel `(x, y)` of the image the command line describes, in
+/// words or (`--json`) as one JSON object, on standard output.
+fn explain(cli: &Cli, parsed: &ParsedScene, x: u32, y: u32) -> Result<(), BatchError> {
+    let interpreter = Interpreter::new(cli.settings().time, parsed.limits).recording_calls();
+    let interpreter = parsed.run(interpreter, true)?;
+    let scene = ExplainedScene::new(&interpreter, &parsed.sources, &render_options(cli));
+    let explanation = scene.explain(x, y);
+    let text = if cli.json { format!("{}\n", explanation.to_json()) } else { explanation.to_string() };
+    // A reader that stopped early (`| head`) is no failure.
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+    Ok(())
 }
 
 /// Reads a scene file (or standard input for `-`) into `sources`.

@@ -134,13 +134,22 @@ pub struct Cli {
     #[arg(long)]
     pub keep_going: bool,
 
+    /// Explain the colour of pixel X,Y (from the left and from the top) instead of writing an image: what the
+    /// camera ray met and which `put` and calls placed it, each light's part, the reflections, and the bytes.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["output", "anim", "frames", "watch"])]
+    pub explain: Option<(u32, u32)>,
+
+    /// With --explain: print the explanation as one JSON object.
+    #[arg(long, requires = "explain")]
+    pub json: bool,
+
     /// Turn off warnings about the scene, by name, comma separated (`all`: every one).
     #[arg(long, value_name = "CHECKS", value_delimiter = ',', value_parser = allow_parser())]
     pub allow: Vec<Allowed>,
 }
 
 /// The flags that only matter when an image is rendered, which `--check` does not do.
-const RENDER_ONLY: [&str; 18] = [
+const RENDER_ONLY: [&str; 19] = [
     "output",
     "watch",
     "quiet",
@@ -159,6 +168,7 @@ const RENDER_ONLY: [&str; 18] = [
     "fps",
     "loops",
     "apng",
+    "explain",
 ];
 
 /// The flags that shape an animation, as they are spelt.
@@ -227,6 +237,7 @@ impl Cli {
             (self.reference, "--reference", ""),
             (self.quiet, "--quiet", ""),
             (self.watch, "--watch", "; there, `:watch FILE` follows a file"),
+            (self.explain.is_some(), "--explain", "; there, `:pick X Y` explains a pixel of the last picture"),
         ];
         if self.starts_session() {
             let (_, flag, instead) = session_flags.into_iter().find(|(given, _, _)| *given)?;
@@ -260,6 +271,17 @@ impl Cli {
         }
         if self.keep_going {
             return Some("--keep-going is for a script on standard input (`rayrepl --keep-going < script`)".into());
+        }
+        if let Some((x, y)) = self.explain
+            && (x >= self.width || y >= self.height)
+        {
+            return Some(format!(
+                "--explain {x},{y} is outside the {}x{} image: x goes from 0 to {}, y from 0 to {}",
+                self.width,
+                self.height,
+                self.width - 1,
+                self.height - 1
+            ));
         }
         self.settings().validate().err().map(|error| error.to_string())
     }
@@ -297,6 +319,7 @@ Examples:
   rayrepl --check scenarios/menger.ray                 parse and evaluate only
   rayrepl scenarios/solar.ray --time 10 --export-pov solar.pov
                                                        the scene for POV-Ray 3.7
+  rayrepl scenarios/solar.ray --explain 400,300        why that pixel has its colour
   rayrepl scene.ray --watch -o scene.png               render again at every save
   rayrepl                                              the interactive session
   cat script.ray | rayrepl                             run a script
@@ -310,6 +333,14 @@ fn allow_parser() -> impl TypedValueParser<Value = Allowed> {
     let every = PossibleValue::new(Allowed::EVERY_NAME).help("every warning about the scene");
     PossibleValuesParser::new(checks.into_iter().chain([every]))
         .map(|name| Allowed::named(&name).expect("clap accepts only the names listed"))
+}
+
+/// Parses a pixel `X,Y`.
+fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let wrong = || format!("`{text}` is not a pixel like 120,45 (X from the left, Y from the top, from 0)");
+    let (x, y) = text.split_once(',').ok_or_else(wrong)?;
+    let number = |s: &str| s.trim().parse::<u32>().map_err(|_| wrong());
+    Ok((number(x)?, number(y)?))
 }
 
 /// Parses `A..B` (or `A-B`, or a single `A`) into a frame range.

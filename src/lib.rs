@@ -4,11 +4,13 @@
 //! ([`lang::parser`]) → evaluation ([`lang::eval`]) → a scene of flat
 //! primitives ([`scene`]), checked for the mistakes that spoil a picture
 //! ([`lint`]) → BVH ([`render::bvh`]) → rays and shading ([`render`]) →
-//! image file ([`output`]) or terminal preview ([`repl`]).
+//! image file ([`output`]) or terminal preview ([`repl`]). [`explain`] tells
+//! why a pixel has its colour.
 
 pub mod animation;
 pub mod app;
 pub mod cli;
+pub mod explain;
 pub mod lang;
 pub mod lint;
 pub mod output;

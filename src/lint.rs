@@ -197,10 +197,7 @@ impl Subject<'_> {
 
     /// The `put` that made primitive `index` of [`Subject::primitives`].
     fn put_of(&self, index: usize) -> Option<Span> {
-        match index.checked_sub(self.scene.primitives.len()) {
-            None => self.origins.primitives.span_of(index),
-            Some(timed) => self.origins.timed_primitives.span_of(timed),
-        }
+        self.origins.put_of(index, self.scene.primitives.len())
     }
 
     /// The eye (SPEC 5).

@@ -36,7 +36,7 @@ use env::{Env, NameMap};
 use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
 
-pub use origins::{CameraOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutSpans};
+pub use origins::{Call, CameraOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans};
 pub use print::{PRINT_LIMIT, PrintLine, PrintLog, format_number};
 
 use super::ast::{Item, ProcDef, Program};
@@ -222,6 +222,14 @@ impl Interpreter {
         self
     }
 
+    /// Records the procedure calls, with their arguments, that led to each
+    /// `put` ([`Origins::calls`]), to explain a pixel. A plain evaluation
+    /// does not: it costs a record per call.
+    pub fn recording_calls(mut self) -> Interpreter {
+        self.origins.calls = Some(PutCalls::default());
+        self
+    }
+
     /// Makes the evaluation stop with an error at the next procedure call
     /// once `flag` is raised (the session's Ctrl-C): a runaway program can
     /// be stopped without losing what came before it.
@@ -238,6 +246,9 @@ impl Interpreter {
         self.created = self.live_primitives();
         let result = program.items.iter().try_for_each(|item| self.run_item(item));
         self.env.reset_locals();
+        if let Some(calls) = &mut self.origins.calls {
+            calls.end_run();
+        }
         self.depth = 0;
         self.context_tainted = false;
         result.map_err(|error| {
@@ -423,8 +434,7 @@ impl Interpreter {
         self.origins.camera = snapshot.camera_origin;
         self.origins.ambient = snapshot.ambient_origin;
         self.origins.lights.truncate(snapshot.lights);
-        self.origins.primitives.truncate(snapshot.primitives);
-        self.origins.timed_primitives.truncate(snapshot.timed_primitives);
+        self.origins.truncate_primitives(snapshot.primitives, snapshot.timed_primitives);
         self.origins.objects.rollback();
         self.origins.branched_on_time = snapshot.branched_on_time;
         for warning in self.warnings.drain(snapshot.warnings..) {

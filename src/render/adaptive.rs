@@ -16,7 +16,7 @@ use super::geometry::{SceneGeometry, SurfaceHit};
 use super::intersect::Ray;
 use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
 use super::pixels::Pass;
-use super::shade::PathObserver;
+use super::shade::{LightTerm, PathObserver};
 use crate::scene::Scene;
 
 /// What adaptive anti-aliasing learns from a pixel's centre ray besides
@@ -82,8 +82,8 @@ impl PathObserver for Glimpse {
     }
 
     #[inline(always)]
-    fn light(&mut self, lit: bool) {
-        self.signature = mix(self.signature, u64::from(lit));
+    fn light(&mut self, term: LightTerm) {
+        self.signature = mix(self.signature, u64::from(matches!(term, LightTerm::Lit { .. })));
     }
 }
 

@@ -30,6 +30,10 @@ pub struct Geometry {
     plane_materials: Vec<Material>,
     /// The power of two every length was multiplied by.
     scale: f64,
+    /// Where each bounded object (in tree order), then each plane, stands
+    /// in the list of primitives it was built from: to tell which `put`
+    /// made what a ray hit.
+    sources: Vec<u32>,
 }
 
 /// Which object of a [`Geometry`] a ray hit.
@@ -81,21 +85,26 @@ impl Geometry {
         let mut materials = Vec::new();
         let mut planes = Vec::new();
         let mut plane_materials = Vec::new();
-        for primitive in primitives {
+        let (mut bounded_sources, mut plane_sources) = (Vec::new(), Vec::new());
+        for (index, primitive) in primitives.iter().enumerate() {
+            let index = u32::try_from(index).unwrap_or(u32::MAX);
             match ShapeClass::from(&primitive.shape.scaled(scale)) {
                 ShapeClass::Bounded(b) => {
                     bounded.push(b);
                     materials.push(primitive.material);
+                    bounded_sources.push(index);
                 }
                 ShapeClass::Plane(p) => {
                     planes.push(p);
                     plane_materials.push(primitive.material);
+                    plane_sources.push(index);
                 }
             }
         }
         let (bvh, order) = Bvh::build(&bounded);
         let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
-        Geometry { bvh, bounded_materials, planes, plane_materials, scale }
+        let sources = order.iter().map(|&k| bounded_sources[k as usize]).chain(plane_sources).collect();
+        Geometry { bvh, bounded_materials, planes, plane_materials, scale, sources }
     }
 
     /// The union of two geometries without trees (both small), `a` first:
@@ -103,12 +112,21 @@ impl Geometry {
     fn concat_flat(a: &Geometry, b: &Geometry) -> Option<Geometry> {
         let bvh = Bvh::concat_flat(&a.bvh, &b.bvh)?;
         let join = |x: &[Material], y: &[Material]| x.iter().chain(y).copied().collect();
+        let (a_bounded, b_bounded) = (a.bvh.objects().len(), b.bvh.objects().len());
+        let sources = a.sources[..a_bounded]
+            .iter()
+            .chain(&b.sources[..b_bounded])
+            .chain(&a.sources[a_bounded..])
+            .chain(&b.sources[b_bounded..])
+            .copied()
+            .collect();
         Some(Geometry {
             bvh,
             bounded_materials: join(&a.bounded_materials, &b.bounded_materials),
             planes: a.planes.iter().chain(&b.planes).copied().collect(),
             plane_materials: join(&a.plane_materials, &b.plane_materials),
             scale: a.scale,
+            sources,
         })
     }
 
@@ -360,6 +378,20 @@ impl SceneGeometry {
     /// handles bounded moving objects only).
     pub fn has_timed_planes(&self) -> bool {
         !self.timed.planes.is_empty()
+    }
+
+    /// Where the primitive `hit` is on stands among
+    /// [`Scene::all_primitives`] (static ones first).
+    pub fn primitive_index(&self, hit: &SurfaceHit) -> usize {
+        let part = match (&self.merged, hit.timed) {
+            (Some(merged), _) => merged,
+            (None, true) => &self.timed,
+            (None, false) => &*self.static_part,
+        };
+        let key = (hit.surface >> 2) as usize;
+        let position = if hit.surface & 1 == 1 { part.bvh.objects().len() + key } else { key };
+        let source = part.sources[position] as usize;
+        if hit.timed { self.static_part.len() + source } else { source }
     }
 
     /// The bounding boxes of the timed part's bounded objects.

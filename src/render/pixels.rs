@@ -136,6 +136,12 @@ impl<'a> Pass<'a> {
         Ok(tracer.counts)
     }
 
+    /// The bytes of pixel `(i, j)` alone, its paths watched by `observer`
+    /// (to explain that pixel).
+    pub fn one_pixel<O: PathObserver>(&self, i: u32, j: u32, observer: &mut O) -> [u8; 3] {
+        self.pixel(&mut Tracer::new(self.geometry, &self.lighting), i, j, observer)
+    }
+
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
     /// samples' colours (SPEC 6).
     #[inline]

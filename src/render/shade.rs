@@ -8,9 +8,9 @@
 //!
 //! [`Tracer`]'s `trace` computes it level by level down a path of mirror
 //! reflections and folds the levels back up.
-//! What frame reuse and adaptive anti-aliasing learn about a path reaches
-//! them through a [`PathObserver`]; the unit observer `()` does nothing and
-//! compiles away.
+//! What frame reuse, adaptive anti-aliasing and the explanation of a pixel
+//! learn about a path reaches them through a [`PathObserver`]; the unit
+//! observer `()` does nothing and compiles away.
 
 use glam::DVec3;
 
@@ -32,15 +32,42 @@ pub(crate) trait PathObserver {
     #[inline(always)]
     fn hit(&mut self, _ray: &Ray, _hit: Option<&SurfaceHit>, _weight: f64) {}
 
-    /// At the current hit, the next light does (`lit`) or does not add its
-    /// diffuse and specular parts; called for every light, in order.
+    /// The ambient part `kd*Ia*C` of the current hit's colour.
     #[inline(always)]
-    fn light(&mut self, _lit: bool) {}
+    fn ambient(&mut self, _part: DVec3) {}
+
+    /// What the next light adds at the current hit; called for every
+    /// light, in order.
+    #[inline(always)]
+    fn light(&mut self, _term: LightTerm) {}
 
     /// What blocks the shadow ray `ray` (only with
     /// [`PathObserver::WANTS_BLOCKER`]).
     #[inline(always)]
     fn shadow(&mut self, _ray: &Ray, _blocker: Blocker) {}
+
+    /// The colour of level `level` of the path (0: the camera ray's hit),
+    /// clamped; called from the deepest level up, the last call giving the
+    /// path's colour.
+    #[inline(always)]
+    fn level_colour(&mut self, _level: usize, _colour: DVec3) {}
+}
+
+/// What one light adds at a hit (SPEC 6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum LightTerm {
+    /// `N·L <= 0`: the light is behind the surface; nothing.
+    FacingAway,
+    /// Something blocks the shadow ray: nothing.
+    Shadowed(Ray),
+    /// The diffuse part `kd*(N·L)*I*C` and the specular part
+    /// `ks*max(0, N·H)^n*I*C`.
+    Lit {
+        /// The diffuse part.
+        diffuse: DVec3,
+        /// The specular part.
+        specular: DVec3,
+    },
 }
 
 impl PathObserver for () {}
@@ -103,6 +130,7 @@ impl<'a> Tracer<'a> {
     /// colour(reflected ray))` folds them, clamping at every level. Below
     /// the last level the colour is black: the ray met nothing, or the
     /// reflection term is dropped. (A loop, not recursion: measured faster.)
+    #[inline(always)]
     pub fn trace<O: PathObserver>(&mut self, primary: &Ray, observer: &mut O) -> DVec3 {
         self.counts.primary += 1;
         let mut levels = std::mem::take(&mut self.levels);
@@ -127,7 +155,11 @@ impl<'a> Tracer<'a> {
             weight *= ks;
             ray = reflected(&ray, &hit, origin);
         }
-        let colour = levels.iter().rev().fold(DVec3::ZERO, |next, level| clamp_unit(level.local + next * level.ks));
+        let colour = levels.iter().enumerate().rev().fold(DVec3::ZERO, |next, (depth, level)| {
+            let colour = clamp_unit(level.local + next * level.ks);
+            observer.level_colour(depth, colour);
+            colour
+        });
         self.levels = levels;
         colour
     }
@@ -141,32 +173,42 @@ impl<'a> Tracer<'a> {
         let (n, skips) = (hit.normal, self.lighting.skips);
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
+        observer.ambient(c);
         for (light, planes) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes) {
             let l = light.direction;
             let n_dot_l = n.dot(l);
             // Only lights with N·L > 0 count: for the others the shadow ray
             // cannot matter, and the skip avoids it.
             if skips.back_facing_light && n_dot_l <= 0.0 {
-                observer.light(false);
+                observer.light(LightTerm::FacingAway);
                 continue;
             }
             let lit = self.visible(&Ray::new(origin, l), planes, observer) && n_dot_l > 0.0;
-            observer.light(lit);
             if !lit {
+                // Built only for an observer that reads it: the unit
+                // observer's render does not pay for it.
+                let term =
+                    if n_dot_l <= 0.0 { LightTerm::FacingAway } else { LightTerm::Shadowed(Ray::new(origin, l)) };
+                observer.light(term);
                 continue;
             }
             // kd * (N·L) * I * C
-            c += color * (kd * n_dot_l * light.intensity);
+            let diffuse = color * (kd * n_dot_l * light.intensity);
+            c += diffuse;
             // ks * max(0, N·H)^n * I * C: exactly +0 when ks = 0 (the power
             // is finite, in [0, 1]), and when N·H <= 0 (n > 0, SPEC 3).
             if skips.zero_ks && ks == 0.0 {
+                observer.light(LightTerm::Lit { diffuse, specular: DVec3::ZERO });
                 continue;
             }
             let h = (l - ray.dir).normalize_or_zero();
             let n_dot_h = n.dot(h);
+            let mut specular = DVec3::ZERO;
             if n_dot_h > 0.0 || phong <= 0.0 {
-                c += color * (ks * phong_power(n_dot_h.max(0.0), phong) * light.intensity);
+                specular = color * (ks * phong_power(n_dot_h.max(0.0), phong) * light.intensity);
+                c += specular;
             }
+            observer.light(LightTerm::Lit { diffuse, specular });
         }
         c
     }

@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 
 use image::RgbImage;
 
+use crate::explain::ExplainedScene;
 use crate::lang::Diagnostic;
 use crate::lang::suggest::closest;
 use crate::output::{self, Content, FrameSink, OutputError};
@@ -21,7 +22,7 @@ use super::inspect;
 use super::lessons;
 pub(crate) use super::outcome::{CommandError, CommandResult, Flow};
 use super::play;
-use super::preview::{Preview, PreviewSize};
+use super::preview::{Preview, PreviewSize, mark_pixel};
 use super::reload;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::{self, counted, number};
@@ -57,6 +58,7 @@ pub(crate) const COMMANDS: &[CommandSpec] = &[
     CommandSpec { name: ":depth", usage: ":depth [REFLECTIONS]", run: depth },
     CommandSpec { name: ":samples", usage: ":samples [RAYS PER PIXEL]", run: samples },
     CommandSpec { name: ":preview", usage: ":preview [fit|small|off]", run: preview },
+    CommandSpec { name: ":pick", usage: ":pick X Y", run: pick },
     CommandSpec { name: ":limits", usage: ":limits [calls N] [primitives N]", run: limits },
     CommandSpec { name: ":load", usage: ":load FILE", run: load },
     CommandSpec { name: ":reload", usage: ":reload", run: reload::reload },
@@ -215,6 +217,7 @@ fn render(session: &mut Session, arguments: &[String], console: &mut Console) ->
     explain_defaults(session, console);
     show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
+    session.remember_picture(&image);
     match shown(console) {
         Some(preview) => {
             preview.show(&image).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
@@ -249,6 +252,40 @@ fn preview(_session: &mut Session, arguments: &[String], console: &mut Console) 
     Ok(Flow::Continue)
 }
 
+/// `:pick X Y`: why pixel (X, Y) of the last picture has its colour, the
+/// pixel marked on the picture.
+fn pick(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    let [x, y] = arguments else {
+        return Err(CommandError::Usage("give the pixel's X (from the left) and Y (from the top)".to_string()));
+    };
+    let Some(picture) = session.last_picture() else {
+        return Err(CommandError::Failed("no picture yet: `:render` first, then pick one of its pixels".to_string()));
+    };
+    let size = Size { width: picture.width(), height: picture.height() };
+    let coordinate = |text: &str, limit: u32, axis: &str| match text.parse::<u32>() {
+        Ok(value) if value < limit => Ok(value),
+        _ => Err(CommandError::Usage(format!(
+            "`{text}`: {axis} is a whole number from 0 to {} in the last picture ({size})",
+            limit - 1
+        ))),
+    };
+    let (x, y) = (coordinate(x, size.width, "X")?, coordinate(y, size.height, "Y")?);
+    let interpreter = session.replay_recording_calls().map_err(|d| CommandError::Program(Box::new(d)))?;
+    let options = render_options(size, session.settings());
+    let explanation = ExplainedScene::new(&interpreter, session.sources(), &options).explain(x, y);
+    let picture = session.last_picture().expect("checked above");
+    if let Some(preview) = shown(console) {
+        let marked = mark_pixel(picture, x, y);
+        preview.show(&marked).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
+    }
+    let changed = explanation.paths.rgb != picture.get_pixel(x, y).0;
+    console.say(explanation.to_string().trim_end());
+    if changed {
+        console.note("the scene or the settings changed since that picture: this is the pixel as it is now");
+    }
+    Ok(Flow::Continue)
+}
+
 fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
     let (file, size) = match arguments {
         [file] => (file, Size { width: session.settings().width, height: session.settings().height }),
@@ -265,6 +302,7 @@ fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     explain_defaults(session, console);
     show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
+    session.remember_picture(&image);
     output::write_image_cancellable(&path, &image, cancel_flag(console.cancel)).map_err(write_failure)?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)

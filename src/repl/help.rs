@@ -47,7 +47,7 @@ const GROUPS: &[(&str, &[&str])] = &[
     ("Moving shapes", &["translate", "rotate", "scale", "group", "by", "rotation"]),
     ("Building the scene", &["put", "object", "let", "proc", "if", "conditions", "end"]),
     ("Numbers", &["numbers", "time", "functions", "pi", "comments", "print"]),
-    ("Pictures", &[":render", ":save", ":anim", ":play", ":time", ":size", ":depth", ":samples", ":preview"]),
+    ("Pictures", &[":render", ":save", ":anim", ":play", ":time", ":size", ":depth", ":samples", ":preview", ":pick"]),
     ("Files", &[":load", ":reload", ":watch", ":write"]),
     ("Looking inside", &[":env", ":scene", ":show", ":list", ":history"]),
     ("The session", &[":help", ":undo", ":reset", ":limits", ":quit"]),
@@ -423,6 +423,24 @@ Example:
   A render taking more than half a second shows its progress; Ctrl-C stops it.
 Example:
   :render 320 240",
+    },
+    Topic {
+        name: ":pick",
+        aliases: &["pick", "why"],
+        summary: "why a pixel of the last picture has its colour",
+        text: "\
+:pick X Y    explains pixel X, Y of the last picture (:render or :save),
+             X from the left and Y from the top, both from 0
+  Marks the pixel on the picture and tells what the camera ray met: the
+  object's kind, the `put` that placed it and the procedure calls (with
+  their values) that led there; then the ambient part, each light (lit with
+  its diffuse and specular parts, facing away, or in the shadow of which
+  object), the reflected ray and what it met, down to the bytes of the pixel.
+  With :samples N, each of the pixel's N rays, then their average.
+  From the command line: rayrepl scene.ray --explain X,Y [--json]
+Example:
+  :render 80 60
+  :pick 40 30",
     },
     Topic {
         name: ":save",

@@ -139,6 +139,27 @@ impl Preview {
     }
 }
 
+/// `image` with pixel `(x, y)` marked by a cross around it, in the colour
+/// opposite to the pixel's, its arms long enough to see once the image is
+/// fitted to the terminal; the pixel itself keeps its colour.
+pub(crate) fn mark_pixel(image: &RgbImage, x: u32, y: u32) -> RgbImage {
+    let mut marked = image.clone();
+    let [r, g, b] = image.get_pixel(x, y).0;
+    let opposite = image::Rgb([255 - r, 255 - g, 255 - b]);
+    // A cell of a fitted preview covers about 1/80 of the width.
+    let step = (image.width().max(image.height()) / 80).max(1) as i64;
+    let (x, y) = (i64::from(x), i64::from(y));
+    for distance in step..=4 * step {
+        for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+            let (px, py) = (x + dx * distance, y + dy * distance);
+            if (0..i64::from(image.width())).contains(&px) && (0..i64::from(image.height())).contains(&py) {
+                marked.put_pixel(px as u32, py as u32, opposite);
+            }
+        }
+    }
+    marked
+}
+
 /// Whether the terminal shows 24-bit colours, from its environment
 /// (`env` reads a variable). viuer (like most crates) trusts `COLORTERM`
 /// only, which tmux, ssh and sudo often drop; the terminals that set other
@@ -215,6 +236,19 @@ mod tests {
             (both[(1, 2)], both[(2, 0)], both[(3, 1)], both[(3, 2)]),
             (image::Rgb([255, 0, 0]), image::Rgb([0, 0, 0]), image::Rgb([0, 0, 255]), image::Rgb([0, 0, 0]))
         );
+    }
+
+    #[test]
+    fn a_marked_pixel_keeps_its_colour_inside_a_cross() {
+        let image = RgbImage::from_pixel(20, 10, image::Rgb([10, 200, 30]));
+        let marked = mark_pixel(&image, 2, 5);
+        let opposite = image::Rgb([245, 55, 225]);
+        assert_eq!(*marked.get_pixel(2, 5), image::Rgb([10, 200, 30]));
+        for (x, y) in [(3, 5), (6, 5), (0, 5), (2, 9), (2, 1)] {
+            assert_eq!(*marked.get_pixel(x, y), opposite, "({x}, {y})");
+        }
+        assert_eq!(*marked.get_pixel(7, 5), image::Rgb([10, 200, 30]), "the arms end");
+        assert_eq!(*marked.get_pixel(3, 6), image::Rgb([10, 200, 30]), "the diagonals stay");
     }
 
     #[test]

@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 
+use image::RgbImage;
+
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
@@ -110,6 +112,8 @@ pub struct Session {
     printed: RefCell<PrintLog>,
     /// The lesson being followed, if any (`:lesson`).
     pub(crate) tutor: Tutor,
+    /// The last picture rendered or saved, whose pixels `:pick` explains.
+    last_picture: Option<RgbImage>,
 }
 
 impl Session {
@@ -131,6 +135,7 @@ impl Session {
             counts: Counts::default(),
             interrupt: None,
             tutor: Tutor::default(),
+            last_picture: None,
         }
     }
 
@@ -351,6 +356,26 @@ impl Session {
         let mut interpreter = self.replay(interpreter, &self.history)?;
         self.printed.borrow_mut().absorb(interpreter.take_printed());
         Ok(interpreter)
+    }
+
+    /// A fresh interpreter that ran the history at the current time
+    /// recording the calls that led to each `put`, to explain a pixel.
+    /// What it prints was shown when the inputs ran.
+    pub(crate) fn replay_recording_calls(&self) -> Result<Interpreter, Diagnostic> {
+        let interpreter = self.new_interpreter(self.settings.time).recording_calls();
+        let mut interpreter = self.replay(interpreter, &self.history)?;
+        interpreter.take_printed();
+        Ok(interpreter)
+    }
+
+    /// Keeps `image`, just rendered or saved, for `:pick`.
+    pub(crate) fn remember_picture(&mut self, image: &RgbImage) {
+        self.last_picture = Some(image.clone());
+    }
+
+    /// The last picture rendered or saved.
+    pub(crate) fn last_picture(&self) -> Option<&RgbImage> {
+        self.last_picture.as_ref()
     }
 
     /// Replaces the interpreter by one that ran `history` at the current

@@ -157,7 +157,7 @@ impl Interpreter {
             let mut timed = mem::take(&mut self.scene.timed_primitives);
             let result = self.emit_obj(obj, &mut timed);
             self.scene.timed_primitives = timed;
-            self.origins.timed_primitives.record(timed_start..self.scene.timed_primitives.len(), span);
+            self.origins.record_put(true, timed_start..self.scene.timed_primitives.len(), span);
             return result.map(|_| ());
         }
         let mut primitives = mem::take(&mut self.scene.primitives);
@@ -166,10 +166,10 @@ impl Interpreter {
         match result {
             Ok(true) => {
                 self.scene.timed_primitives.extend(primitives.drain(start..));
-                self.origins.timed_primitives.record(timed_start..self.scene.timed_primitives.len(), span);
+                self.origins.record_put(true, timed_start..self.scene.timed_primitives.len(), span);
             }
             Ok(false) if self.skip_static => primitives.truncate(start),
-            Ok(false) => self.origins.primitives.record(start..primitives.len(), span),
+            Ok(false) => self.origins.record_put(false, start..primitives.len(), span),
             Err(_) => {}
         }
         self.scene.primitives = primitives;
@@ -202,11 +202,36 @@ impl Interpreter {
             self.env.push_argument(&param.name, Value::number(n.value, n.tainted | self.context_tainted));
         }
         self.env.enter(caller);
+        if self.origins.calls.is_some() {
+            self.record_call(name, &proc.params, span);
+        }
         self.depth += 1;
         let result = grow(|| self.exec_block(&proc.body));
         self.depth -= 1;
         self.env.leave(caller);
+        if let Some(calls) = &mut self.origins.calls {
+            calls.leave();
+        }
         result.map_err(|error| in_call(error, &name.name, span))
+    }
+
+    /// Records the call of `name` at `span` that just started, with the
+    /// values its parameters `params` were given (to explain a pixel).
+    #[inline(never)]
+    fn record_call(&mut self, name: &Ident, params: &[Ident], span: Span) {
+        let arguments = params
+            .iter()
+            .map(|param| {
+                let value = match self.env.lookup(&param.name).map(|value| &value.kind) {
+                    Some(Kind::Number(value)) => *value,
+                    _ => f64::NAN,
+                };
+                (param.name.clone(), value)
+            })
+            .collect();
+        if let Some(calls) = &mut self.origins.calls {
+            calls.enter(name.name.clone(), arguments, span);
+        }
     }
 
     /// The procedure a call names, looked up at the time of the call.

@@ -5,7 +5,8 @@
 //! the same evaluation, for the warnings about the scene (`crate::lint`):
 //! the camera, the ambient light and each light by their expressions, each
 //! primitive by the `put` that made it, each `object` definition by its name
-//! and whether it was ever used.
+//! and whether it was ever used. When asked (to explain a pixel), it also
+//! records the procedure calls that led to each `put` ([`PutCalls`]).
 
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
@@ -34,6 +35,129 @@ pub struct Origins {
     /// Whether an `if` chose its branch by `time` (directly or through a
     /// procedure's argument): at another time other objects may be put.
     pub branched_on_time: bool,
+    /// The calls that led to each primitive's `put`, when recorded
+    /// ([`crate::lang::Interpreter::recording_calls`]).
+    pub calls: Option<PutCalls>,
+}
+
+impl Origins {
+    /// Records that the primitives `range`, appended last to the static
+    /// (or, with `timed`, the timed) primitives, come from the `put` at `span`.
+    #[inline]
+    pub(crate) fn record_put(&mut self, timed: bool, range: Range<usize>, span: Span) {
+        if let Some(calls) = &mut self.calls
+            && !range.is_empty()
+        {
+            calls.record(timed, range.start);
+        }
+        let puts = if timed { &mut self.timed_primitives } else { &mut self.primitives };
+        puts.record(range, span);
+    }
+
+    /// Forgets the primitives from index `primitives` (static) and `timed`
+    /// (timed) on: a failed run took them back.
+    pub(crate) fn truncate_primitives(&mut self, primitives: usize, timed: usize) {
+        self.primitives.truncate(primitives);
+        self.timed_primitives.truncate(timed);
+        if let Some(calls) = &mut self.calls {
+            calls.truncate(primitives, timed);
+        }
+    }
+
+    /// The `put` that made primitive `index` of
+    /// [`crate::scene::Scene::all_primitives`], of which the first
+    /// `static_count` are static.
+    pub fn put_of(&self, index: usize, static_count: usize) -> Option<Span> {
+        match index.checked_sub(static_count) {
+            None => self.primitives.span_of(index),
+            Some(timed) => self.timed_primitives.span_of(timed),
+        }
+    }
+
+    /// The calls that led to the `put` of primitive `index` of
+    /// [`crate::scene::Scene::all_primitives`] (the first `static_count`
+    /// static), innermost first; empty when not recorded.
+    pub fn calls_of(&self, index: usize, static_count: usize) -> Vec<&Call> {
+        let Some(calls) = &self.calls else { return Vec::new() };
+        let innermost = match index.checked_sub(static_count) {
+            None => PutCalls::call_at(&calls.primitives, index),
+            Some(timed) => PutCalls::call_at(&calls.timed_primitives, timed),
+        };
+        std::iter::successors(innermost.map(|call| &calls.calls[call as usize]), |call| {
+            call.caller.map(|caller| &calls.calls[caller as usize])
+        })
+        .collect()
+    }
+}
+
+/// One procedure call that ran.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Call {
+    /// The procedure called.
+    pub procedure: Rc<str>,
+    /// Its parameters, each with the value it was given.
+    pub arguments: Vec<(Rc<str>, f64)>,
+    /// The call instruction.
+    pub span: Span,
+    /// The call whose body made this call (index in [`PutCalls`]'s
+    /// calls), if any.
+    pub caller: Option<u32>,
+}
+
+/// The calls that led to each `put`: every call that ran, and for each
+/// primitive (in runs, as in [`PutSpans`]) the innermost call active at
+/// its `put`. A frame per call: recorded only when asked.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PutCalls {
+    calls: Vec<Call>,
+    /// The innermost active call.
+    current: Option<u32>,
+    /// (first primitive, innermost call), by first primitive.
+    primitives: Vec<(usize, Option<u32>)>,
+    /// The same for the timed primitives.
+    timed_primitives: Vec<(usize, Option<u32>)>,
+}
+
+impl PutCalls {
+    /// A call of `procedure` at `span` with `arguments` starts.
+    pub(crate) fn enter(&mut self, procedure: Rc<str>, arguments: Vec<(Rc<str>, f64)>, span: Span) {
+        let caller = self.current;
+        self.current = Some(saturating_u32(self.calls.len()));
+        self.calls.push(Call { procedure, arguments, span, caller });
+    }
+
+    /// The innermost call returns.
+    pub(crate) fn leave(&mut self) {
+        self.current = self.current.and_then(|call| self.calls[call as usize].caller);
+    }
+
+    /// No call is active (a run ended, maybe by an error inside calls).
+    pub(crate) fn end_run(&mut self) {
+        self.current = None;
+    }
+
+    /// The primitives appended from index `start` on (to the timed ones
+    /// with `timed`) come from a `put` inside the current call.
+    fn record(&mut self, timed: bool, start: usize) {
+        let runs = if timed { &mut self.timed_primitives } else { &mut self.primitives };
+        if runs.last().is_none_or(|&(_, call)| call != self.current) {
+            runs.push((start, self.current));
+        }
+    }
+
+    /// Forgets the primitives from index `primitives` (static) and `timed` on.
+    fn truncate(&mut self, primitives: usize, timed: usize) {
+        for (runs, len) in [(&mut self.primitives, primitives), (&mut self.timed_primitives, timed)] {
+            let kept = runs.partition_point(|&(start, _)| start < len);
+            runs.truncate(kept);
+        }
+    }
+
+    /// The innermost call at the `put` of primitive `index` of `runs`.
+    fn call_at(runs: &[(usize, Option<u32>)], index: usize) -> Option<u32> {
+        let run = runs.partition_point(|&(start, _)| start <= index).checked_sub(1)?;
+        runs[run].1
+    }
 }
 
 /// The expressions of a `camera` item.
