@@ -1,8 +1,7 @@
 //! The interactive session: prompts, the line editor, history on disk,
 //! Ctrl-C and Ctrl-D.
 
-use std::collections::VecDeque;
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -11,7 +10,6 @@ use anstream::{AutoStream, ColorChoice};
 use rustyline::Editor;
 use rustyline::config::{ColorMode, CompletionType, Config};
 use rustyline::error::ReadlineError;
-use rustyline::highlight::Highlighter;
 use rustyline::history::FileHistory;
 
 use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
@@ -20,7 +18,6 @@ use super::cancel::CancelSwitch;
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::editor::RayHelper;
-use super::paste::{Arrival, erase_prompt, wait_at_prompt};
 use super::preview::Preview;
 use super::report::counted;
 use super::session::Session;
@@ -80,8 +77,7 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")
     ));
-    let terminal = Terminal { editor, history, pasted: VecDeque::new(), unfinished: String::new() };
-    run_entries(terminal, &mut console, options)
+    run_entries(Terminal { editor, history }, &mut console, options)
 }
 
 /// Runs the interactive session's entry loop on `lines` as if each was
@@ -128,10 +124,6 @@ trait Lines {
 struct Terminal {
     editor: Editor<RayHelper, FileHistory>,
     history: Option<PathBuf>,
-    /// The lines of a paste not run yet.
-    pasted: VecDeque<String>,
-    /// The end of a paste after its last line end, for the editor to take.
-    unfinished: String,
 }
 
 /// A line read, and whether a person typed it.
@@ -141,41 +133,14 @@ struct Line {
 }
 
 impl Lines for Terminal {
-    /// A line of the last paste if some are left (shown after their prompt,
-    /// as a terminal would show them typed); otherwise, at a prompt with
-    /// nothing to fix, a paste read at once ([`wait_at_prompt`]), or keys
-    /// for the line editor.
     fn read(&mut self, prompt: &str, initial: &str, pending: &str, session: &Session) -> Result<Line, ReadlineError> {
         let vocabulary = session.vocabulary();
-        let helper = self.editor.helper_mut().expect("the session's editor has its helper");
-        helper.set_pending(pending);
-        helper.set_names(&vocabulary);
-        let shown_prompt = helper.highlight_prompt(prompt, true).into_owned();
-        let started = Instant::now();
-        let mut initial = initial.to_string();
-        if initial.is_empty() && self.pasted.is_empty() && self.unfinished.is_empty() {
-            if let Ok(Arrival::Paste(text)) = wait_at_prompt(&shown_prompt) {
-                let mut lines: Vec<&str> = text.split('\n').collect();
-                self.unfinished = lines.pop().unwrap_or_default().to_string();
-                self.pasted.extend(lines.into_iter().map(String::from));
-                // One line after a wait counts as typed: a broken entry comes back to fix.
-                let typed = started.elapsed() >= TYPING && self.pasted.len() == 1 && self.unfinished.is_empty();
-                if let Some(text) = self.pasted.pop_front() {
-                    self.echo("", &text)?;
-                    return Ok(Line { text, typed });
-                }
-                // Only an unfinished line: the editor takes it, with its own prompt.
-                erase_prompt()?;
-                initial = std::mem::take(&mut self.unfinished);
-            }
-        } else if initial.is_empty() {
-            if let Some(text) = self.pasted.pop_front() {
-                self.echo(&shown_prompt, &text)?;
-                return Ok(Line { text, typed: false });
-            }
-            initial = std::mem::take(&mut self.unfinished);
+        if let Some(helper) = self.editor.helper_mut() {
+            helper.set_pending(pending);
+            helper.set_names(&vocabulary);
         }
-        let text = self.editor.readline_with_initial(prompt, (&initial, ""))?;
+        let started = Instant::now();
+        let text = self.editor.readline_with_initial(prompt, (initial, ""))?;
         Ok(Line { text, typed: started.elapsed() >= TYPING })
     }
 
@@ -185,16 +150,6 @@ impl Lines for Terminal {
         if let Some(path) = &self.history {
             let _ = self.editor.append_history(path);
         }
-    }
-}
-
-impl Terminal {
-    /// Shows a pasted `line` after `shown_prompt`, as the editor would show it.
-    fn echo(&self, shown_prompt: &str, line: &str) -> Result<(), ReadlineError> {
-        let helper = self.editor.helper().expect("the session's editor has its helper");
-        let mut out = std::io::stdout();
-        writeln!(out, "{shown_prompt}{}", helper.highlight(line, line.len()))?;
-        Ok(out.flush()?)
     }
 }
 

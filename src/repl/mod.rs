@@ -25,7 +25,6 @@ mod inspect;
 mod interactive;
 mod lessons;
 mod outcome;
-mod paste;
 mod play;
 mod preview;
 mod reload;
