@@ -16,7 +16,8 @@ use std::sync::Arc;
 
 use image::RgbImage;
 
-use crate::render::{self, Cancelled, FrameReuse, RenderControl, RenderOptions, RenderStats, SceneGeometry};
+use crate::render::intersect::Aabb;
+use crate::render::{self, Cancelled, FrameReuse, Geometry, RenderControl, RenderOptions, RenderStats, SceneGeometry};
 use crate::scene::Scene;
 
 /// Most frames evaluated ahead of rendering for [`FrameReuse`]: a pixel is
@@ -75,28 +76,36 @@ pub fn render_animation<E>(
         }
         return Ok(stats);
     }
-    let reuse = FrameReuse::applies(&first, &first_prepared, options);
+    let reuse = FrameReuse::applies(&first, options);
     let static_part = Arc::clone(first_prepared.static_part());
-    let mut pending = Some((start, first, first_prepared));
+    // A frame waiting for a window, with the boxes of its moving objects,
+    // held in no more memory than they need.
+    let waiting = |k: u32, mut scene: Scene| {
+        scene.timed_primitives.shrink_to_fit();
+        scene.lights.shrink_to_fit();
+        let mut bounds = first_prepared.bounds_of(&scene.timed_primitives);
+        bounds.shrink_to_fit();
+        Frame { k, scene, bounds }
+    };
+    let mut pending = Some(waiting(start, first));
     // The next frame to evaluate; u64 so that it can pass the last u32.
     let mut next = u64::from(start) + 1;
     let end = u64::from(end);
     loop {
         // Gather a window: frames that frame reuse can take together, or a
         // single frame that it cannot.
-        let mut window: Vec<(u32, Scene, SceneGeometry)> = Vec::new();
+        let mut window: Vec<Frame> = Vec::new();
         let mut timed = 0;
         let mut failure = None;
         let mut together = reuse;
         loop {
-            let (k, scene, prepared) = match pending.take() {
+            let frame = match pending.take() {
                 Some(frame) => frame,
                 None if next > end => break,
                 None => match evaluate(next as u32, true) {
                     Ok(scene) => {
-                        let prepared = SceneGeometry::with_static(Arc::clone(&static_part), &scene.timed_primitives);
                         next += 1;
-                        ((next - 1) as u32, scene, prepared)
+                        waiting((next - 1) as u32, scene)
                     }
                     Err(e) => {
                         failure = Some(e);
@@ -104,19 +113,19 @@ pub fn render_animation<E>(
                     }
                 },
             };
-            let fits = reuse && FrameReuse::holds_for(&scene, &prepared);
+            let fits = reuse && FrameReuse::holds_for(&frame.scene);
             if !fits && !window.is_empty() {
-                pending = Some((k, scene, prepared));
+                pending = Some(frame);
                 break;
             }
             together &= fits;
-            timed += scene.timed_primitives.len();
-            window.push((k, scene, prepared));
+            timed += frame.scene.timed_primitives.len();
+            window.push(frame);
             if !together || window.len() >= WINDOW_FRAMES || timed >= WINDOW_TIMED_PRIMITIVES {
                 break;
             }
         }
-        render_window(&window, together, options, control, &mut total, &mut sink)?;
+        render_window(&window, &static_part, together, options, control, &mut total, &mut sink)?;
         if let Some(e) = failure {
             return Err(AnimationError::Failed(e));
         }
@@ -126,21 +135,33 @@ pub fn render_animation<E>(
     }
 }
 
-/// Renders the frames of one window in order, with [`FrameReuse`] when
-/// `together`, and hands them to `sink`.
+/// A frame evaluated and waiting in a window: its number, its scene and the
+/// boxes of its moving objects. Its geometry is built when it is rendered,
+/// so a window holds little more than the scene.
+struct Frame {
+    k: u32,
+    scene: Scene,
+    bounds: Vec<Aabb>,
+}
+
+/// Renders the frames of one window in order, over the shared
+/// `static_part`, with [`FrameReuse`] when `together`, and hands them to
+/// `sink`.
 fn render_window<E>(
-    window: &[(u32, Scene, SceneGeometry)],
+    window: &[Frame],
+    static_part: &Arc<Geometry>,
     together: bool,
     options: &RenderOptions,
     control: &RenderControl,
     total: &mut RenderStats,
     sink: &mut impl FnMut(u32, RgbImage) -> Result<(), E>,
 ) -> Result<(), AnimationError<E>> {
-    let mut reuse = together.then(|| FrameReuse::new(window.iter().map(|(_, _, prepared)| prepared), options));
-    for (k, scene, prepared) in window {
+    let mut reuse = together.then(|| FrameReuse::new(window.iter().map(|frame| frame.bounds.as_slice()), options));
+    for Frame { k, scene, .. } in window {
+        let prepared = SceneGeometry::with_static(Arc::clone(static_part), &scene.timed_primitives);
         let (image, stats) = match &mut reuse {
-            Some(reuse) => reuse.render(scene, prepared, control)?,
-            None => render::render(scene, prepared, options, control)?,
+            Some(reuse) => reuse.render(scene, &prepared, control)?,
+            None => render::render(scene, &prepared, options, control)?,
         };
         *total += stats;
         sink(*k, image).map_err(AnimationError::Failed)?;

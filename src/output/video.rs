@@ -174,12 +174,25 @@ fn container(format: ImageFormat) -> &'static str {
 
 /// The encoder and container for `format`: H.264 in MP4 (played everywhere,
 /// the index at the front for the web), or VP9 in WebM (open, for the web).
+/// x264 looks 10 frames ahead rather than the preset's 30, so that its
+/// memory stops growing after a few frames (see BENCHMARKS.md).
 fn encoder_arguments(format: ImageFormat) -> Vec<&'static str> {
     let codec: &[&str] = match format {
         ImageFormat::Webm => {
             &["-c:v", "libvpx-vp9", "-crf", "32", "-b:v", "0", "-deadline", "realtime", "-cpu-used", "8"]
         }
-        _ => &["-c:v", "libx264", "-preset", "fast", "-crf", "18", "-movflags", "+faststart"],
+        _ => &[
+            "-c:v",
+            "libx264",
+            "-preset",
+            "fast",
+            "-crf",
+            "18",
+            "-x264-params",
+            "rc-lookahead=10",
+            "-movflags",
+            "+faststart",
+        ],
     };
     codec.iter().copied().chain(["-f", container(format)]).collect()
 }

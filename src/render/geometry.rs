@@ -374,12 +374,6 @@ impl SceneGeometry {
         }
     }
 
-    /// Whether some primitive of the timed part is a plane (frame reuse
-    /// handles bounded moving objects only).
-    pub fn has_timed_planes(&self) -> bool {
-        !self.timed.planes.is_empty()
-    }
-
     /// Where the primitive `hit` is on stands among
     /// [`Scene::all_primitives`] (static ones first).
     pub fn primitive_index(&self, hit: &SurfaceHit) -> usize {
@@ -394,8 +388,17 @@ impl SceneGeometry {
         if hit.timed { self.static_part.len() + source } else { source }
     }
 
-    /// The bounding boxes of the timed part's bounded objects.
-    pub fn timed_bounds(&self) -> Vec<Aabb> {
-        self.timed.bvh.objects().iter().map(Bounded::bounds).collect()
+    /// The bounding boxes of the spheres and boxes among `primitives`, in
+    /// this geometry's unit: what frame reuse needs to know of a frame,
+    /// without building its tree.
+    pub fn bounds_of(&self, primitives: &[Primitive]) -> Vec<Aabb> {
+        let scale = self.static_part.scale;
+        primitives
+            .iter()
+            .filter_map(|primitive| match ShapeClass::from(&primitive.shape.scaled(scale)) {
+                ShapeClass::Bounded(b) => Some(b.bounds()),
+                ShapeClass::Plane(_) => None,
+            })
+            .collect()
     }
 }

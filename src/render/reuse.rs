@@ -11,7 +11,8 @@
 //! ```no_run
 //! # use rayrepl::render::{FrameReuse, SceneGeometry, RenderControl, RenderOptions};
 //! # fn demo(frames: &[(rayrepl::scene::Scene, SceneGeometry)], options: &RenderOptions) {
-//! let mut reuse = FrameReuse::new(frames.iter().map(|(_, prepared)| prepared), options);
+//! let bounds: Vec<_> = frames.iter().map(|(scene, prepared)| prepared.bounds_of(&scene.timed_primitives)).collect();
+//! let mut reuse = FrameReuse::new(bounds.iter().map(Vec::as_slice), options);
 //! for (scene, prepared) in frames {
 //!     let (image, _) = reuse.render(scene, prepared, &RenderControl::default()).expect("not cancelled");
 //! }
@@ -23,12 +24,12 @@ use std::time::Instant;
 use image::RgbImage;
 
 use super::geometry::{Blocker, SceneGeometry, SurfaceHit};
-use super::intersect::Ray;
+use super::intersect::{Aabb, Ray};
 use super::moving_bounds::MovingBounds;
 use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
 use super::pixels::Pass;
 use super::shade::PathObserver;
-use crate::scene::Scene;
+use crate::scene::{Scene, Shape};
 
 /// The state carried from one frame of a run to the next.
 #[derive(Debug)]
@@ -60,23 +61,24 @@ impl FrameReuse {
     /// nothing but bounded objects depends on `time`, and no adaptive
     /// anti-aliasing (whose choice of pixels looks at their neighbours).
     /// Each later frame must also pass [`FrameReuse::holds_for`].
-    pub fn applies(scene: &Scene, prepared: &SceneGeometry, options: &RenderOptions) -> bool {
-        !options.is_adaptive() && FrameReuse::holds_for(scene, prepared)
+    pub fn applies(scene: &Scene, options: &RenderOptions) -> bool {
+        !options.is_adaptive() && FrameReuse::holds_for(scene)
     }
 
     /// Whether one frame keeps the camera, ambient light, lights and planes
     /// fixed.
-    pub fn holds_for(scene: &Scene, prepared: &SceneGeometry) -> bool {
+    pub fn holds_for(scene: &Scene) -> bool {
         let time_use = scene.time_use;
-        !(time_use.camera || time_use.ambient || time_use.lights || prepared.has_timed_planes())
+        let timed_plane = scene.timed_primitives.iter().any(|p| matches!(p.shape, Shape::Plane { .. }));
+        !(time_use.camera || time_use.ambient || time_use.lights || timed_plane)
     }
 
-    /// Frame reuse over the frames whose geometry is `frames`, in order,
-    /// rendered with `options`.
-    pub fn new<'a>(frames: impl IntoIterator<Item = &'a SceneGeometry>, options: &RenderOptions) -> FrameReuse {
-        let bounds: Vec<_> = frames.into_iter().map(SceneGeometry::timed_bounds).collect();
+    /// Frame reuse over frames given, in order, by the boxes of their
+    /// moving objects ([`SceneGeometry::bounds_of`]), rendered with
+    /// `options`.
+    pub fn new<'a>(frames: impl IntoIterator<Item = &'a [Aabb]>, options: &RenderOptions) -> FrameReuse {
         FrameReuse {
-            moving_bounds: MovingBounds::new(bounds.iter().map(Vec::as_slice)),
+            moving_bounds: MovingBounds::new(frames),
             options: *options,
             next: 0,
             image: None,
