@@ -26,6 +26,8 @@ pub(crate) struct Console<'a> {
     pub cancel: Option<&'static CancelSwitch>,
     /// A person at a terminal types the entries (not a script).
     pub interactive: bool,
+    /// The line being written, kept to reuse its allocation.
+    line: String,
 }
 
 impl<'a> Console<'a> {
@@ -42,13 +44,18 @@ impl<'a> Console<'a> {
             progress: false,
             cancel: None,
             interactive: false,
+            line: String::new(),
         }
     }
 
     /// Writes one line of information. Output errors (a closed pipe) are
     /// ignored: the session goes on and the exit status tells what happened.
     pub(crate) fn say(&mut self, text: impl Display) {
-        let _ = writeln!(self.out, "{text}");
+        use std::fmt::Write as _;
+        // Formatted first, so that the stream sees one write per line.
+        self.line.clear();
+        let _ = writeln!(self.line, "{text}");
+        let _ = self.out.write_all(self.line.as_bytes());
         let _ = self.out.flush();
     }
 

@@ -85,7 +85,12 @@ pub fn run(options: &SessionOptions) -> ExitCode {
         }
     } else {
         let stdin = std::io::stdin();
-        run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
+        let (code, session) =
+            script::run_script_keeping_session(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options);
+        // The process ends now: freeing a long script's inputs one by one
+        // would only add to its time.
+        std::mem::forget(session);
+        code
     };
     ExitCode::from(u8::try_from(code).unwrap_or(1))
 }
