@@ -6,13 +6,13 @@ use std::io::BufRead;
 
 use anstream::stream::RawStream;
 
-use crate::lang::is_incomplete;
+use crate::lang::Entry;
 
 use super::cancel::{ArmedSwitch, CancelSwitch};
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::session::Session;
-use super::{SessionOptions, handle_input, new_session};
+use super::{SessionOptions, new_session, report_input};
 use crate::output::INTERRUPTED_EXIT_CODE;
 
 /// The name scripts' diagnostics show.
@@ -133,25 +133,31 @@ impl Script<'_, '_> {
                 pending.push('\n');
             }
             pending.push_str(line);
-            if is_incomplete(&pending) {
+            let entry = Entry::read(&pending);
+            if entry.is_incomplete() {
                 continue;
             }
-            if self.input(&std::mem::take(&mut pending), first_line) == Step::Stop {
+            let step = self.input(entry, first_line);
+            pending.clear();
+            if step == Step::Stop {
                 return;
             }
         }
         if !pending.trim().is_empty() {
             // Unfinished at the end: the parser says what is missing.
-            self.input(&pending, first_line);
+            self.input(Entry::read(&pending), first_line);
         }
     }
 
-    fn input(&mut self, text: &str, first_line: usize) -> Step {
+    fn input(&mut self, entry: Entry, first_line: usize) -> Step {
+        let text = entry.text();
         if text.trim().is_empty() {
             return Step::Next;
         }
         let armed = self.console.cancel.map(|switch| switch.arm());
-        let result = handle_input(self.session, self.console, SCRIPT_NAME, text, first_line.saturating_sub(1));
+        let line_offset = first_line.saturating_sub(1);
+        let accepted = self.session.submit_entry(SCRIPT_NAME, entry, line_offset);
+        let result = report_input(self.session, self.console, text, accepted);
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;
         }

@@ -12,7 +12,7 @@ use image::RgbImage;
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
+use crate::lang::{Diagnostic, Entry, Interpreter, Limits, SourceId, SourceMap, Span, parse_items};
 use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
@@ -164,8 +164,30 @@ impl Session {
     /// `line_offset` is the number of lines before it in its script. On
     /// error the session is unchanged (SPEC 7).
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
+        self.submit_parsed(name, text, line_offset, |source| parse_items(source, text))
+    }
+
+    /// Runs one input as [`Session::submit`] does, parsed from the tokens
+    /// read to see that it was finished.
+    pub(crate) fn submit_entry(
+        &mut self,
+        name: &str,
+        entry: Entry,
+        line_offset: usize,
+    ) -> Result<Accepted, Diagnostic> {
+        self.submit_parsed(name, entry.text(), line_offset, |source| entry.parse(source))
+    }
+
+    /// Runs the input `text`, which `parse` parses given its source.
+    fn submit_parsed(
+        &mut self,
+        name: &str,
+        text: &str,
+        line_offset: usize,
+        parse: impl FnOnce(SourceId) -> Result<Program, Diagnostic>,
+    ) -> Result<Accepted, Diagnostic> {
         let source = self.sources.add(name, text, line_offset);
-        let program = parse_items(source, text)?;
+        let program = parse(source)?;
         self.run(Input { text: text.to_string(), loaded_from: None, program: Rc::new(program) })
     }
 
