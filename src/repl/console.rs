@@ -5,8 +5,8 @@ use std::fmt::Display;
 use std::io::Write;
 
 use annotate_snippets::renderer::{DEFAULT_EMPHASIS_STYLE, DEFAULT_ERROR_STYLE, DEFAULT_NOTE_STYLE};
-use anstream::AutoStream;
 use anstream::stream::RawStream;
+use anstream::{AutoStream, ColorChoice};
 
 use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
@@ -16,7 +16,9 @@ use super::preview::Preview;
 
 /// The session's output and what it may do on the terminal.
 pub(crate) struct Console<'a> {
-    out: AutoStream<&'a mut (dyn Write + 'static)>,
+    /// The stream for messages, and whether it wants them styled.
+    out: &'a mut (dyn Write + 'static),
+    out_choice: ColorChoice,
     err: AutoStream<&'a mut (dyn Write + 'static)>,
     /// Where renders are shown; `None` when previews are off.
     pub preview: Option<Preview>,
@@ -38,7 +40,8 @@ impl<'a> Console<'a> {
     pub(crate) fn new<O: RawStream + 'static, E: RawStream + 'static>(out: &'a mut O, err: &'a mut E) -> Console<'a> {
         let (out_choice, err_choice) = (AutoStream::choice(&*out), AutoStream::choice(&*err));
         Console {
-            out: AutoStream::new(out as &mut dyn Write, out_choice),
+            out,
+            out_choice,
             err: AutoStream::new(err as &mut dyn Write, err_choice),
             preview: None,
             progress: false,
@@ -55,7 +58,13 @@ impl<'a> Console<'a> {
         // Formatted first, so that the stream sees one write per line.
         self.line.clear();
         let _ = writeln!(self.line, "{text}");
-        let _ = self.out.write_all(self.line.as_bytes());
+        let plain = self.line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
+        let _ = if plain {
+            // Nothing to style or strip: most lines, such as confirmations.
+            self.out.write_all(self.line.as_bytes())
+        } else {
+            AutoStream::new(&mut *self.out, self.out_choice).write_all(self.line.as_bytes())
+        };
         let _ = self.out.flush();
     }
 
