@@ -201,9 +201,10 @@ pub struct Lexer<'a> {
     text: &'a str,
     pos: usize,
     source: SourceId,
-    /// Every word read so far, and the keywords from the start: one lookup
-    /// tells a keyword from a name and interns the name.
-    words: WordTable<'a>,
+    /// The keywords, shared by every lexer of the thread.
+    keywords: &'static KeywordTable,
+    /// The names read so far, interned.
+    names: HashMap<&'a str, Rc<str>, BuildHasherDefault<NameHasher>>,
     /// Where the line of the last token starts.
     line_start: usize,
     failed: bool,
@@ -232,22 +233,24 @@ impl Hasher for NameHasher {
     }
 }
 
-/// The words table of a lexer: names read so far, keywords from the start.
-type WordTable<'a> = HashMap<&'a str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>;
+/// The keywords, their tokens and rows of the words table.
+type KeywordTable = HashMap<&'static str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>;
 
 thread_local! {
-    /// The keywords' words table, built once: a session or a script makes a
-    /// lexer per input, and copying a built table is cheaper than building it.
-    static KEYWORDS: WordTable<'static> =
-        words::keywords().map(|(word, token)| (word.text, (token.clone(), Some(word)))).collect();
+    /// The keywords' table, built once per thread and kept to the end: a
+    /// session or a script makes a lexer per input, and neither building
+    /// nor copying a table per lexer is needed.
+    static KEYWORDS: &'static KeywordTable = Box::leak(Box::new(
+        words::keywords().map(|(word, token)| (word.text, (token.clone(), Some(word)))).collect(),
+    ));
 }
 
 impl<'a> Lexer<'a> {
     /// A lexer over `text`, whose spans in diagnostics name `source`.
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
         let pos = if text.starts_with(BYTE_ORDER_MARK) { BYTE_ORDER_MARK.len_utf8() } else { 0 };
-        let words = KEYWORDS.with(WordTable::clone);
-        Lexer { text, pos, source, words, line_start: 0, failed: false }
+        let keywords = KEYWORDS.with(|keywords| *keywords);
+        Lexer { text, pos, source, keywords, names: HashMap::default(), line_start: 0, failed: false }
     }
 
     /// Where the line of the last token read starts, as a byte offset.
@@ -332,7 +335,10 @@ impl<'a> Lexer<'a> {
             .unwrap_or(self.text.len() - start);
         self.pos += len;
         let word = &self.text[start..self.pos];
-        let (token, row) = self.words.entry(word).or_insert_with(|| (Token::Ident(Rc::from(word)), None)).clone();
+        let (token, row) = match self.keywords.get(word) {
+            Some(keyword) => keyword.clone(),
+            None => (Token::Ident(Rc::clone(self.names.entry(word).or_insert_with(|| Rc::from(word)))), None),
+        };
         ((start, token, self.pos), row)
     }
 

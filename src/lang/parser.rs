@@ -19,7 +19,7 @@ use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
 use super::lexer::{Lexer, Token};
 use super::source::{SourceId, Span};
-use context::Tracked;
+use context::{Read, Tracked};
 use errors::Mode;
 
 lalrpop_mod!(
@@ -44,7 +44,11 @@ pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> 
 /// Runs the generated parser over the tokens, recording what they open so
 /// that a syntax error can say what is not closed.
 fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic> {
-    let mut tokens = Tracked::new(source, text);
+    parse_tokens(source, text, mode, Tracked::new(source, text))
+}
+
+/// Parses `text` from `tokens`, its tokens.
+fn parse_tokens(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked) -> Result<Program, Diagnostic> {
     let parsed = grammar::ItemsParser::new().parse(source, &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),
@@ -100,20 +104,60 @@ pub fn entry_state(text: &str) -> EntryState {
 /// lexing error, or with an `end` or `)` that closes nothing, is complete:
 /// submitting it shows the error at once instead of waiting for more lines.
 pub fn is_incomplete(text: &str) -> bool {
-    let mut tokens = Tracked::new(SourceId::default(), text);
-    let mut last = None;
-    while let Some(token) = tokens.next() {
-        let Ok((_, token, _)) = token else {
-            return false;
-        };
-        if tokens.context().stray_closer {
-            return false;
+    Entry::read(text).is_incomplete()
+}
+
+/// One entry of the session whose tokens were read to see whether it is
+/// finished ([`is_incomplete`]), and kept for the parser: a script's input
+/// is lexed once.
+pub struct Entry<'t> {
+    text: &'t str,
+    incomplete: bool,
+    /// The tokens of the whole text, unless reading stopped early (a lexing
+    /// error, a stray closer): the parser then reads the text itself.
+    tokens: Option<Vec<Read>>,
+}
+
+impl<'t> Entry<'t> {
+    /// Reads the tokens of `text`.
+    pub fn read(text: &'t str) -> Entry<'t> {
+        let complete = Entry { text, incomplete: false, tokens: None };
+        let mut tokens = Tracked::new(SourceId::default(), text);
+        // Tokens take a few bytes each: one allocation instead of growing.
+        let mut read = Vec::with_capacity(text.len() / 2);
+        while let Some(token) = tokens.next_read() {
+            let Ok(token) = token else {
+                return complete;
+            };
+            if tokens.context().stray_closer {
+                return complete;
+            }
+            read.push(token);
         }
-        last = Some(token);
+        let context = tokens.context();
+        let last = read.last().map(|(((_, token, _), _), _)| token);
+        let incomplete = !context.stray_closer
+            && (!context.open.is_empty() || !context.parens.is_empty() || last.is_some_and(needs_more));
+        Entry { text, incomplete, tokens: Some(read) }
     }
-    let context = tokens.context();
-    !context.stray_closer
-        && (!context.open.is_empty() || !context.parens.is_empty() || last.is_some_and(|token| needs_more(&token)))
+
+    /// The entry's text.
+    pub fn text(&self) -> &'t str {
+        self.text
+    }
+
+    /// Whether the entry is unfinished, as [`is_incomplete`] says.
+    pub fn is_incomplete(&self) -> bool {
+        self.incomplete
+    }
+
+    /// Parses the entry as [`parse_items`] does, from the tokens read.
+    pub fn parse(self, source: SourceId) -> Result<Program, Diagnostic> {
+        match self.tokens {
+            Some(read) => parse_tokens(source, self.text, Mode::Session, Tracked::replay(source, read)),
+            None => parse_items(source, self.text),
+        }
+    }
 }
 
 /// Whether an input cannot end with `token`.
@@ -155,6 +199,23 @@ mod tests {
         assert_eq!(entry_state("let x = 1 $"), EntryState::Broken);
         assert_eq!(entry_state("end"), EntryState::Broken);
         assert_eq!(entry_state(""), EntryState::Complete);
+    }
+
+    #[test]
+    fn an_entry_parses_from_its_tokens_as_its_text_does() {
+        let texts = [
+            "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end",
+            "let x = (1 +\n 2) let y = x",
+            "proc p(a)\n  put a\n",
+            "proc p(a)\n  if a < 1 then\n    put b\n  end\nend end",
+            "let = 2",
+            "let x = 1 $",
+            "end",
+        ];
+        for text in texts {
+            let parsed = Entry::read(text).parse(SourceId(3));
+            assert_eq!(format!("{parsed:?}"), format!("{:?}", parse_items(SourceId(3), text)), "{text}");
+        }
     }
 
     #[test]

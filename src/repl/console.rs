@@ -5,8 +5,8 @@ use std::fmt::Display;
 use std::io::Write;
 
 use annotate_snippets::renderer::{DEFAULT_EMPHASIS_STYLE, DEFAULT_ERROR_STYLE, DEFAULT_NOTE_STYLE};
-use anstream::AutoStream;
 use anstream::stream::RawStream;
+use anstream::{AutoStream, ColorChoice};
 
 use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
@@ -16,7 +16,9 @@ use super::preview::Preview;
 
 /// The session's output and what it may do on the terminal.
 pub(crate) struct Console<'a> {
-    out: AutoStream<&'a mut (dyn Write + 'static)>,
+    /// The stream for messages, and whether it wants them styled.
+    out: &'a mut (dyn Write + 'static),
+    out_choice: ColorChoice,
     err: AutoStream<&'a mut (dyn Write + 'static)>,
     /// Where renders are shown; `None` when previews are off.
     pub preview: Option<Preview>,
@@ -26,6 +28,8 @@ pub(crate) struct Console<'a> {
     pub cancel: Option<&'static CancelSwitch>,
     /// A person at a terminal types the entries (not a script).
     pub interactive: bool,
+    /// The line being written, kept to reuse its allocation.
+    line: String,
 }
 
 impl<'a> Console<'a> {
@@ -36,19 +40,31 @@ impl<'a> Console<'a> {
     pub(crate) fn new<O: RawStream + 'static, E: RawStream + 'static>(out: &'a mut O, err: &'a mut E) -> Console<'a> {
         let (out_choice, err_choice) = (AutoStream::choice(&*out), AutoStream::choice(&*err));
         Console {
-            out: AutoStream::new(out as &mut dyn Write, out_choice),
+            out,
+            out_choice,
             err: AutoStream::new(err as &mut dyn Write, err_choice),
             preview: None,
             progress: false,
             cancel: None,
             interactive: false,
+            line: String::new(),
         }
     }
 
     /// Writes one line of information. Output errors (a closed pipe) are
     /// ignored: the session goes on and the exit status tells what happened.
     pub(crate) fn say(&mut self, text: impl Display) {
-        let _ = writeln!(self.out, "{text}");
+        use std::fmt::Write as _;
+        // Formatted first, so that the stream sees one write per line.
+        self.line.clear();
+        let _ = writeln!(self.line, "{text}");
+        let plain = self.line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
+        let _ = if plain {
+            // Nothing to style or strip: most lines, such as confirmations.
+            self.out.write_all(self.line.as_bytes())
+        } else {
+            AutoStream::new(&mut *self.out, self.out_choice).write_all(self.line.as_bytes())
+        };
         let _ = self.out.flush();
     }
 

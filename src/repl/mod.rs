@@ -39,7 +39,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use crate::lang::Limits;
+use crate::lang::{Diagnostic, Limits};
 use crate::lint::{Allowed, Picture};
 
 pub use interactive::{ReplError, run_interactive, run_typed};
@@ -50,6 +50,7 @@ pub use session::Session;
 
 use console::Console;
 use rendering::Size;
+use session::Accepted;
 
 /// How a session starts: what the command line asked for.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -85,7 +86,12 @@ pub fn run(options: &SessionOptions) -> ExitCode {
         }
     } else {
         let stdin = std::io::stdin();
-        run_script(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options)
+        let (code, session) =
+            script::run_script_keeping_session(stdin.lock(), &mut std::io::stdout(), &mut std::io::stderr(), options);
+        // The process ends now: freeing a long script's inputs one by one
+        // would only add to its time.
+        std::mem::forget(session);
+        code
     };
     ExitCode::from(u8::try_from(code).unwrap_or(1))
 }
@@ -100,6 +106,17 @@ pub(crate) fn handle_input(
     line_offset: usize,
 ) -> Result<(), ()> {
     let result = session.submit(name, text, line_offset);
+    report_input(session, console, text, result)
+}
+
+/// Prints what the input `text` did (`result`), or its error.
+/// `Err(())` tells the caller it failed (the session is unchanged).
+pub(crate) fn report_input(
+    session: &mut Session,
+    console: &mut Console,
+    text: &str,
+    result: Result<Accepted, Diagnostic>,
+) -> Result<(), ()> {
     show_printed(session, console);
     match result {
         Ok(accepted) => {

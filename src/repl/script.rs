@@ -6,13 +6,13 @@ use std::io::BufRead;
 
 use anstream::stream::RawStream;
 
-use crate::lang::is_incomplete;
+use crate::lang::Entry;
 
 use super::cancel::{ArmedSwitch, CancelSwitch};
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::session::Session;
-use super::{SessionOptions, handle_input, new_session};
+use super::{SessionOptions, new_session, report_input};
 use crate::output::INTERRUPTED_EXIT_CODE;
 
 /// The name scripts' diagnostics show.
@@ -30,36 +30,64 @@ pub fn run_script(
     err: &mut (impl RawStream + 'static),
     options: &SessionOptions,
 ) -> i32 {
+    run_script_keeping_session(input, out, err, options).0
+}
+
+/// Runs the script as [`run_script`] does and returns its exit status with
+/// the session it built, for a caller that ends the process next and need
+/// not free what the session holds.
+pub(crate) fn run_script_keeping_session(
+    input: impl BufRead,
+    out: &mut (impl RawStream + 'static),
+    err: &mut (impl RawStream + 'static),
+    options: &SessionOptions,
+) -> (i32, Session) {
     let mut console = Console::new(out, err);
     console.cancel = CancelSwitch::install();
     let mut session = new_session(options, console.cancel);
-    let mut script = Script {
-        session: &mut session,
-        console: &mut console,
-        keep_going: options.keep_going,
-        errors: 0,
-        wrote: false,
-        interrupted: false,
+    let ended = run_in(&mut session, &mut console, input, options);
+    drop(console);
+    let code = match ended {
+        Ended::Status(code) => code,
+        Ended::WithoutPicture => {
+            let _ = writeln!(
+                err,
+                "note: the script wrote no picture: end it with `:save out.png` (or `:anim 100 out.gif`)"
+            );
+            0
+        }
     };
+    (code, session)
+}
+
+/// How a script ended.
+enum Ended {
+    /// With this exit status.
+    Status(i32),
+    /// Successfully, without writing an image file.
+    WithoutPicture,
+}
+
+/// Runs the script in `session`, as [`run_script`] says.
+fn run_in(session: &mut Session, console: &mut Console, input: impl BufRead, options: &SessionOptions) -> Ended {
+    let mut script =
+        Script { session, console, keep_going: options.keep_going, errors: 0, wrote: false, interrupted: false };
     if let Some(path) = &options.initial_file {
         let loaded = commands::load_reporting(script.session, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
-            return 1;
+            return Ended::Status(1);
         }
     }
     script.run(input);
-    let (errors, wrote) = (script.errors, script.wrote);
     if script.interrupted {
-        return INTERRUPTED_EXIT_CODE;
+        Ended::Status(INTERRUPTED_EXIT_CODE)
+    } else if script.errors > 0 {
+        Ended::Status(1)
+    } else if script.wrote {
+        Ended::Status(0)
+    } else {
+        Ended::WithoutPicture
     }
-    if errors > 0 {
-        return 1;
-    }
-    if !wrote {
-        let _ =
-            writeln!(err, "note: the script wrote no picture: end it with `:save out.png` (or `:anim 100 out.gif`)");
-    }
-    0
 }
 
 /// Whether the script goes on.
@@ -105,25 +133,31 @@ impl Script<'_, '_> {
                 pending.push('\n');
             }
             pending.push_str(line);
-            if is_incomplete(&pending) {
+            let entry = Entry::read(&pending);
+            if entry.is_incomplete() {
                 continue;
             }
-            if self.input(&std::mem::take(&mut pending), first_line) == Step::Stop {
+            let step = self.input(entry, first_line);
+            pending.clear();
+            if step == Step::Stop {
                 return;
             }
         }
         if !pending.trim().is_empty() {
             // Unfinished at the end: the parser says what is missing.
-            self.input(&pending, first_line);
+            self.input(Entry::read(&pending), first_line);
         }
     }
 
-    fn input(&mut self, text: &str, first_line: usize) -> Step {
+    fn input(&mut self, entry: Entry, first_line: usize) -> Step {
+        let text = entry.text();
         if text.trim().is_empty() {
             return Step::Next;
         }
         let armed = self.console.cancel.map(|switch| switch.arm());
-        let result = handle_input(self.session, self.console, SCRIPT_NAME, text, first_line.saturating_sub(1));
+        let line_offset = first_line.saturating_sub(1);
+        let accepted = self.session.submit_entry(SCRIPT_NAME, entry, line_offset);
+        let result = report_input(self.session, self.console, text, accepted);
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;
         }

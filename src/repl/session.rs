@@ -6,13 +6,14 @@ use std::cell::RefCell;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceMap, Span, parse_items};
+use crate::lang::{Diagnostic, Entry, Interpreter, Limits, SourceId, SourceMap, Span, parse_items};
 use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
@@ -24,8 +25,9 @@ use super::rendering::RenderSettings;
 /// written back, listed or shown.
 #[derive(Debug, Clone)]
 pub(crate) struct Input {
-    /// The text as typed (`:load FILE` for a file), for `:undo`'s message.
-    pub text: String,
+    /// The text as typed (`:load FILE` for a file), for `:undo`'s message;
+    /// a typed input shares it with the source map.
+    pub text: Arc<str>,
     /// The file it was read from, for an input of `:load`, `:reload` or `:watch`.
     pub loaded_from: Option<PathBuf>,
     /// The parsed items.
@@ -164,9 +166,35 @@ impl Session {
     /// `line_offset` is the number of lines before it in its script. On
     /// error the session is unchanged (SPEC 7).
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
-        let source = self.sources.add(name, text, line_offset);
-        let program = parse_items(source, text)?;
-        self.run(Input { text: text.to_string(), loaded_from: None, program: Rc::new(program) })
+        self.submit_parsed(name, text, line_offset, |source| parse_items(source, text))
+    }
+
+    /// Runs one input as [`Session::submit`] does, parsed from the tokens
+    /// read to see that it was finished.
+    pub(crate) fn submit_entry(
+        &mut self,
+        name: &str,
+        entry: Entry,
+        line_offset: usize,
+    ) -> Result<Accepted, Diagnostic> {
+        self.submit_parsed(name, entry.text(), line_offset, |source| entry.parse(source))
+    }
+
+    /// Runs the input `text`, which `parse` parses given its source.
+    fn submit_parsed(
+        &mut self,
+        name: &str,
+        text: &str,
+        line_offset: usize,
+        parse: impl FnOnce(SourceId) -> Result<Program, Diagnostic>,
+    ) -> Result<Accepted, Diagnostic> {
+        let text: Arc<str> = Arc::from(text);
+        let source = self.sources.add(name, Arc::clone(&text), line_offset);
+        let mut program = parse(source)?;
+        // An input holds one item or a few: the room the parser left for
+        // more would be most of a long script's memory.
+        program.items.shrink_to_fit();
+        self.run(Input { text, loaded_from: None, program: Rc::new(program) })
     }
 
     /// Runs the text of the file at `path`, all of it as one input (its
@@ -187,7 +215,7 @@ impl Session {
         let input = self.parse_file_input(path, text)?;
         let previous = self.history.clone();
         let mut history = previous.clone();
-        history[index] = Input { text: std::mem::take(&mut history[index].text), ..input };
+        history[index] = Input { text: Arc::clone(&history[index].text), ..input };
         self.rebuild(history)?;
         self.undo_steps.push(UndoStep::Reload(previous, path.to_path_buf()));
         Ok(())
@@ -203,7 +231,7 @@ impl Session {
         let name = path.display().to_string();
         let source = self.sources.add(name.as_str(), text, 0);
         let program = parse_items(source, text)?;
-        let text = format!(":load {name}");
+        let text = format!(":load {name}").into();
         Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Rc::new(program) })
     }
 
@@ -295,7 +323,7 @@ impl Session {
         };
         let mut history = self.history.clone();
         let undone = match &step {
-            UndoStep::Input => Undone::Input(history.pop().map(|input| input.text).unwrap_or_default()),
+            UndoStep::Input => Undone::Input(history.pop().map(|input| input.text.to_string()).unwrap_or_default()),
             UndoStep::Reset(cleared) => {
                 history = cleared.clone();
                 Undone::Reset(history.len())

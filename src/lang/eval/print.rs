@@ -151,7 +151,10 @@ fn describe_object(primitives: &[Primitive]) -> String {
 /// decimals at most, trailing zeros dropped; tiny numbers in `1e-9` form).
 pub fn format_number(value: f64) -> String {
     if value == value.trunc() && value.abs() < 1e15 {
-        return format!("{value:.0}");
+        // Exact as an integer, which formats faster than the float; `-0`
+        // keeps its sign, as `{:.0}` writes it.
+        let integer = value as i64;
+        return if integer == 0 && value.is_sign_negative() { "-0".to_string() } else { integer.to_string() };
     }
     let text = format!("{value:.6}");
     let text = text.trim_end_matches('0').trim_end_matches('.');
@@ -171,6 +174,8 @@ mod tests {
         assert_eq!(format_number(std::f64::consts::PI), "3.141593");
         assert_eq!(format_number(1e-9), "1e-9");
         assert_eq!(format_number(0.0), "0");
+        assert_eq!(format_number(-0.0), format!("{:.0}", -0.0));
+        assert_eq!(format_number(-123_456_789_012_345.0), "-123456789012345");
     }
 
     #[test]

@@ -10,7 +10,7 @@
 //! one whose `end` is missing.
 
 use crate::lang::diagnostic::Diagnostic;
-use crate::lang::lexer::{Lexer, Spanned, Token};
+use crate::lang::lexer::{Lexer, Spanned, Token, WordToken};
 use crate::lang::source::{SourceId, Span};
 use crate::lang::words::{Role, Word};
 
@@ -274,9 +274,20 @@ impl Context {
     }
 }
 
+/// A token as the lexer read it, with where its line starts.
+pub(super) type Read = (WordToken, usize);
+
+/// Where [`Tracked`] takes its tokens from.
+enum Tokens<'t> {
+    /// The lexer, reading the text.
+    Lexed(Lexer<'t>),
+    /// Tokens the lexer read before, from the start of the text to its end.
+    Replayed(std::vec::IntoIter<Read>),
+}
+
 /// The lexer's tokens, as the parser reads them, recorded in a [`Context`].
 pub(super) struct Tracked<'t> {
-    lexer: Lexer<'t>,
+    tokens: Tokens<'t>,
     source: SourceId,
     context: Context,
 }
@@ -284,7 +295,13 @@ pub(super) struct Tracked<'t> {
 impl<'t> Tracked<'t> {
     /// The tokens of `text`, whose spans name `source`.
     pub(super) fn new(source: SourceId, text: &'t str) -> Tracked<'t> {
-        Tracked { lexer: Lexer::new(source, text), source, context: Context::default() }
+        Tracked { tokens: Tokens::Lexed(Lexer::new(source, text)), source, context: Context::default() }
+    }
+
+    /// The tokens `read` before from a whole text, handed out again, their
+    /// spans naming `source`.
+    pub(super) fn replay(source: SourceId, read: Vec<Read>) -> Tracked<'static> {
+        Tracked { tokens: Tokens::Replayed(read.into_iter()), source, context: Context::default() }
     }
 
     /// What the tokens before the last one handed out leave open (all of
@@ -292,23 +309,28 @@ impl<'t> Tracked<'t> {
     pub(super) fn context(&self) -> &Context {
         &self.context
     }
+
+    /// The next token with its row of the words table and where its line
+    /// starts.
+    pub(super) fn next_read(&mut self) -> Option<Result<Read, Box<Diagnostic>>> {
+        self.context.count_handed();
+        let read = match &mut self.tokens {
+            Tokens::Lexed(lexer) => lexer.next_word()?.map(|word_token| (word_token, lexer.line_start())),
+            Tokens::Replayed(read) => Ok(read.next()?),
+        };
+        if let Ok((((start, token, end), word), line_start)) = &read {
+            let span = Span::new(self.source, *start, *end);
+            self.context.hand(Handed { span, class: Class::of(token), word: *word, line_start: *line_start });
+        }
+        Some(read)
+    }
 }
 
 impl Iterator for Tracked<'_> {
     type Item = Result<Spanned, Box<Diagnostic>>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        self.context.count_handed();
-        let result = match self.lexer.next_word()? {
-            Ok(((start, token, end), word)) => {
-                let span = Span::new(self.source, start, end);
-                let line_start = self.lexer.line_start();
-                self.context.hand(Handed { span, class: Class::of(&token), word, line_start });
-                Ok((start, token, end))
-            }
-            Err(error) => Err(error),
-        };
-        Some(result)
+        Some(self.next_read()?.map(|((spanned, _), _)| spanned))
     }
 }
 
