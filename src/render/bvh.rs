@@ -1,6 +1,7 @@
 //! A bounding volume hierarchy over spheres and boxes: binned SAH build
-//! (parallel for large node ranges), flattened depth-first nodes, and
-//! stack-based traversal for the closest hit and for any hit.
+//! (subtrees built in parallel, and the binning of large ranges too) that
+//! writes flattened depth-first nodes directly, and stack-based traversal
+//! for the closest hit and for any hit.
 //!
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
@@ -210,14 +211,17 @@ struct Extent {
 impl Extent {
     const EMPTY: Extent = Extent { bounds: Aabb::EMPTY, centroids: Aabb::EMPTY };
 
+    /// The extent of `items`.
     fn of(items: &[Item]) -> Extent {
         items.iter().fold(Extent::EMPTY, |e, it| e.add(it))
     }
 
+    /// The extent grown to hold `it`.
     fn add(self, it: &Item) -> Extent {
         Extent { bounds: self.bounds.union(it.bounds), centroids: self.centroids.grow(it.centroid) }
     }
 
+    /// The extent holding both.
     fn union(self, other: Extent) -> Extent {
         Extent { bounds: self.bounds.union(other.bounds), centroids: self.centroids.union(other.centroids) }
     }
@@ -535,6 +539,8 @@ struct Binning {
 }
 
 impl Binning {
+    /// The bins over `centroids`: on an axis where they do not spread, the
+    /// scale is infinite or NaN, and that axis is not evaluated.
     fn new(centroids: &Aabb) -> Binning {
         Binning { min: centroids.min, scale: BINS as f64 / (centroids.max - centroids.min) }
     }
@@ -562,9 +568,10 @@ struct Bins {
 impl Bins {
     const EMPTY: Bins = Bins { bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
 
-    /// The bins of `items`: in parallel over chunks for large ranges (bounds
-    /// and counts add up in any order, so the result does not depend on
-    /// threads).
+    /// The bins of `items`: for large ranges, binned in parallel over chunks
+    /// that are then merged in order, so that the result does not depend on
+    /// threads (not even the sign of a zero bound, which a minimum of 0 and
+    /// -0 takes from its order).
     fn of(items: &[Item], binning: &Binning) -> Bins {
         let add_all = |items: &[Item]| {
             let mut bins = Bins::EMPTY;
@@ -581,9 +588,11 @@ impl Bins {
         if items.len() < PARALLEL_BINNING_MIN {
             return add_all(items);
         }
-        items.par_chunks(PARALLEL_MIN).map(add_all).reduce(|| Bins::EMPTY, Bins::merge)
+        let chunks: Vec<Bins> = items.par_chunks(PARALLEL_MIN).map(add_all).collect();
+        chunks.into_iter().fold(Bins::EMPTY, Bins::merge)
     }
 
+    /// The bins of the items of both.
     fn merge(mut self, other: Bins) -> Bins {
         for axis in 0..3 {
             for k in 0..BINS {
