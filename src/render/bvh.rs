@@ -199,6 +199,9 @@ struct Item {
     bounds: Aabb,
     centroid: DVec3,
     index: u32,
+    /// Its bin on each axis in the range last binned (set by [`Bins::of`],
+    /// read by the partition that follows; it fits in the padding).
+    bins: [u8; 3],
 }
 
 /// The bounds of a range of items and the bounds of their centroids.
@@ -249,7 +252,7 @@ impl Bvh {
                     Some(to_local) => SharedFrame::local_bounds(to_local, o),
                     None => o.bounds(),
                 };
-                Item { bounds, centroid: bounds.center(), index: k as u32 }
+                Item { bounds, centroid: bounds.center(), index: k as u32, bins: [0; 3] }
             })
             .collect();
         let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
@@ -550,12 +553,6 @@ impl Binning {
     fn bins(&self, centroid: DVec3) -> UVec3 {
         ((centroid - self.min) * self.scale).as_uvec3().min(UVec3::splat(BINS as u32 - 1))
     }
-
-    /// The bin of `centroid` on `axis`.
-    #[inline(always)]
-    fn bin(&self, centroid: DVec3, axis: usize) -> usize {
-        (((centroid[axis] - self.min[axis]) * self.scale[axis]) as usize).min(BINS - 1)
-    }
 }
 
 /// The bounds and item counts of the bins of a range, on every axis.
@@ -568,15 +565,16 @@ struct Bins {
 impl Bins {
     const EMPTY: Bins = Bins { bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
 
-    /// The bins of `items`: for large ranges, binned in parallel over chunks
+    /// The bins of `items`, noting each item's bins in it: for large ranges, binned in parallel over chunks
     /// that are then merged in order, so that the result does not depend on
     /// threads (not even the sign of a zero bound, which a minimum of 0 and
     /// -0 takes from its order).
-    fn of(items: &[Item], binning: &Binning) -> Bins {
-        let add_all = |items: &[Item]| {
+    fn of(items: &mut [Item], binning: &Binning) -> Bins {
+        let add_all = |items: &mut [Item]| {
             let mut bins = Bins::EMPTY;
             for it in items {
                 let b = binning.bins(it.centroid);
+                it.bins = [b.x as u8, b.y as u8, b.z as u8];
                 for axis in 0..3 {
                     let k = b[axis] as usize;
                     bins.bounds[axis][k] = bins.bounds[axis][k].union(it.bounds);
@@ -588,7 +586,7 @@ impl Bins {
         if items.len() < PARALLEL_BINNING_MIN {
             return add_all(items);
         }
-        let chunks: Vec<Bins> = items.par_chunks(PARALLEL_MIN).map(add_all).collect();
+        let chunks: Vec<Bins> = items.par_chunks_mut(PARALLEL_MIN).map(add_all).collect();
         chunks.into_iter().fold(Bins::EMPTY, Bins::merge)
     }
 
@@ -659,7 +657,7 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
         return Some(Split::Leaf);
     }
     let side_bounds = |bins: &[Aabb]| bins.iter().copied().fold(Aabb::EMPTY, Aabb::union);
-    let (mid, left_centroids, right_centroids) = partition(items, |it| binning.bin(it.centroid, axis) < bin);
+    let (mid, left_centroids, right_centroids) = partition(items, |it| usize::from(it.bins[axis]) < bin);
     let left = Extent { bounds: side_bounds(&bins.bounds[axis][..bin]), centroids: left_centroids };
     let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..]), centroids: right_centroids };
     Some(Split::At { axis, mid, left, right })
