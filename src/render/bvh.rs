@@ -1,13 +1,14 @@
 //! A bounding volume hierarchy over spheres and boxes: binned SAH build
-//! (parallel for large node ranges), flattened depth-first nodes, and
-//! stack-based traversal for the closest hit and for any hit.
+//! (subtrees built in parallel, and the binning of large ranges too) that
+//! writes flattened depth-first nodes directly, and stack-based traversal
+//! for the closest hit and for any hit.
 //!
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
 
 use std::cell::Cell;
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec3, UVec3};
 use rayon::prelude::*;
 
 use super::intersect::{Aabb, Bounded, BoxShape, Ray};
@@ -23,6 +24,10 @@ const BINS: usize = 16;
 
 /// Node ranges at least this large build their two children in parallel.
 const PARALLEL_MIN: usize = 4096;
+
+/// Node ranges at least this large are binned in parallel, in chunks of
+/// [`PARALLEL_MIN`] items.
+const PARALLEL_BINNING_MIN: usize = 65536;
 
 /// Most objects a leaf may hold.
 const MAX_LEAF: usize = 8;
@@ -194,12 +199,35 @@ struct Item {
     bounds: Aabb,
     centroid: DVec3,
     index: u32,
+    /// Its bin on each axis in the range last binned (set by [`Bins::of`],
+    /// read by the partition that follows; it fits in the padding).
+    bins: [u8; 3],
 }
 
-/// The tree as built, before flattening.
-enum BuildNode {
-    Leaf { bounds: Aabb, start: usize, count: usize },
-    Interior { bounds: Aabb, axis: usize, children: Box<(BuildNode, BuildNode)> },
+/// The bounds of a range of items and the bounds of their centroids.
+#[derive(Debug, Clone, Copy)]
+struct Extent {
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent { bounds: Aabb::EMPTY, centroids: Aabb::EMPTY };
+
+    /// The extent of `items`.
+    fn of(items: &[Item]) -> Extent {
+        items.iter().fold(Extent::EMPTY, |e, it| e.add(it))
+    }
+
+    /// The extent grown to hold `it`.
+    fn add(self, it: &Item) -> Extent {
+        Extent { bounds: self.bounds.union(it.bounds), centroids: self.centroids.grow(it.centroid) }
+    }
+
+    /// The extent holding both.
+    fn union(self, other: Extent) -> Extent {
+        Extent { bounds: self.bounds.union(other.bounds), centroids: self.centroids.union(other.centroids) }
+    }
 }
 
 impl Bvh {
@@ -224,12 +252,12 @@ impl Bvh {
                     Some(to_local) => SharedFrame::local_bounds(to_local, o),
                     None => o.bounds(),
                 };
-                Item { bounds, centroid: bounds.center(), index: k as u32 }
+                Item { bounds, centroid: bounds.center(), index: k as u32, bins: [0; 3] }
             })
             .collect();
-        let root = build_range(&mut items, 0, 0);
+        let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
         let mut nodes = Vec::with_capacity(objects.len());
-        flatten(&root, &mut nodes);
+        build_range(&mut items, 0, 0, extent, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
         let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &mut nodes, &objects)));
@@ -450,75 +478,171 @@ pub(crate) fn nearer_than(t: f64) -> f64 {
 }
 
 /// Builds the subtree over `items` (which start at `offset` in the whole
-/// array), reordering them in place.
-fn build_range(items: &mut [Item], offset: usize, depth: usize) -> BuildNode {
-    let bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
+/// array, and have the bounds and centroid bounds `extent`), reordering
+/// them in place and appending its nodes depth-first to `nodes`: the node,
+/// its left subtree, its right subtree.
+fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, nodes: &mut Vec<Node>) {
     let count = items.len();
+    let leaf = Node { bounds: extent.bounds, index: offset as u32, count: count as u16, axis: 0 };
     if count <= 2 {
-        return BuildNode::Leaf { bounds, start: offset, count };
+        nodes.push(leaf);
+        return;
     }
-    let centroids = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
-    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &bounds, &centroids) } else { None };
-    let (axis, mid) = match split {
+    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &extent) } else { None };
+    let (axis, mid, left_extent, right_extent) = match split {
         Some(Split::Leaf) if count <= MAX_LEAF => {
-            return BuildNode::Leaf { bounds, start: offset, count };
+            nodes.push(leaf);
+            return;
         }
-        Some(Split::At { axis, mid }) => (axis, mid),
-        _ => median_split(items, &centroids),
+        Some(Split::At { axis, mid, left, right }) => (axis, mid, left, right),
+        _ => {
+            let (axis, mid) = median_split(items, &extent.centroids);
+            (axis, mid, Extent::of(&items[..mid]), Extent::of(&items[mid..]))
+        }
     };
+    let at = nodes.len();
+    nodes.push(Node { bounds: extent.bounds, index: 0, count: 0, axis: axis as u16 });
     let (left, right) = items.split_at_mut(mid);
-    let (left, right) = if count >= PARALLEL_MIN {
-        rayon::join(|| build_range(left, offset, depth + 1), || build_range(right, offset + mid, depth + 1))
+    if count >= PARALLEL_MIN {
+        // The right subtree is built into its own list, with indices from
+        // its start, then appended.
+        let mut right_nodes = Vec::new();
+        rayon::join(
+            || build_range(left, offset, depth + 1, left_extent, nodes),
+            || build_range(right, offset + mid, depth + 1, right_extent, &mut right_nodes),
+        );
+        let base = nodes.len() as u32;
+        nodes[at].index = base;
+        nodes.extend(
+            right_nodes.into_iter().map(|n| if n.count == 0 { Node { index: n.index + base, ..n } } else { n }),
+        );
     } else {
-        (build_range(left, offset, depth + 1), build_range(right, offset + mid, depth + 1))
-    };
-    BuildNode::Interior { bounds, axis, children: Box::new((left, right)) }
+        build_range(left, offset, depth + 1, left_extent, nodes);
+        nodes[at].index = nodes.len() as u32;
+        build_range(right, offset + mid, depth + 1, right_extent, nodes);
+    }
 }
 
 /// What the SAH chose for a range.
+// Only ever returned, never stored: boxing the extents would allocate per node.
+#[allow(clippy::large_enum_variant)]
 enum Split {
     /// Keeping the range as a leaf is cheapest.
     Leaf,
-    /// Split on `axis`; `items[..mid]` go left after reordering.
-    At { axis: usize, mid: usize },
+    /// Split on `axis`; `items[..mid]` go left after reordering; the extents
+    /// of both sides.
+    At { axis: usize, mid: usize, left: Extent, right: Extent },
+}
+
+/// Which of [`BINS`] bins along each axis an item's centroid falls in: the
+/// centroid bounds cut into equal slices.
+struct Binning {
+    min: DVec3,
+    scale: DVec3,
+}
+
+impl Binning {
+    /// The bins over `centroids`: on an axis where they do not spread, the
+    /// scale is infinite or NaN, and that axis is not evaluated.
+    fn new(centroids: &Aabb) -> Binning {
+        Binning { min: centroids.min, scale: BINS as f64 / (centroids.max - centroids.min) }
+    }
+
+    /// The bin of `centroid` on each axis.
+    #[inline(always)]
+    fn bins(&self, centroid: DVec3) -> UVec3 {
+        ((centroid - self.min) * self.scale).as_uvec3().min(UVec3::splat(BINS as u32 - 1))
+    }
+}
+
+/// The bounds and item counts of the bins of a range, on every axis.
+#[derive(Clone, Copy)]
+struct Bins {
+    bounds: [[Aabb; BINS]; 3],
+    counts: [[u32; BINS]; 3],
+}
+
+impl Bins {
+    const EMPTY: Bins = Bins { bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
+
+    /// The bins of `items`, noting each item's bins in it: for large ranges, binned in parallel over chunks
+    /// that are then merged in order, so that the result does not depend on
+    /// threads (not even the sign of a zero bound, which a minimum of 0 and
+    /// -0 takes from its order).
+    fn of(items: &mut [Item], binning: &Binning) -> Bins {
+        let add_all = |items: &mut [Item]| {
+            let mut bins = Bins::EMPTY;
+            for it in items {
+                let b = binning.bins(it.centroid);
+                it.bins = [b.x as u8, b.y as u8, b.z as u8];
+                for axis in 0..3 {
+                    let k = b[axis] as usize;
+                    bins.bounds[axis][k] = bins.bounds[axis][k].union(it.bounds);
+                    bins.counts[axis][k] += 1;
+                }
+            }
+            bins
+        };
+        if items.len() < PARALLEL_BINNING_MIN {
+            return add_all(items);
+        }
+        let chunks: Vec<Bins> = items.par_chunks_mut(PARALLEL_MIN).map(add_all).collect();
+        chunks.into_iter().fold(Bins::EMPTY, Bins::merge)
+    }
+
+    /// The bins of the items of both.
+    fn merge(mut self, other: Bins) -> Bins {
+        for axis in 0..3 {
+            for k in 0..BINS {
+                self.bounds[axis][k] = self.bounds[axis][k].union(other.bounds[axis][k]);
+                self.counts[axis][k] += other.counts[axis][k];
+            }
+        }
+        self
+    }
 }
 
 /// The binned surface area heuristic: over 16 bins per axis of the centroid
 /// bounds, the split minimising `C_trav + (A_l N_l + A_r N_r) / A`, compared
 /// with the leaf cost `N`. `None` when the centroids all coincide.
-fn sah_split(items: &mut [Item], bounds: &Aabb, centroids: &Aabb) -> Option<Split> {
-    let extent = centroids.max - centroids.min;
+fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
+    let size = extent.centroids.max - extent.centroids.min;
+    // Axes where the centroids spread (not 0, not NaN).
+    let spread = |axis: usize| size[axis] > 0.0;
+    if !(0..3).any(spread) {
+        return None;
+    }
+    let binning = Binning::new(&extent.centroids);
+    let bins = Bins::of(items, &binning);
     let mut best: Option<(f64, usize, usize)> = None;
-    for axis in 0..3 {
-        if extent[axis].is_nan() || extent[axis] <= 0.0 {
-            continue;
-        }
-        let scale = BINS as f64 / extent[axis];
-        let bin_of = |c: DVec3| (((c[axis] - centroids.min[axis]) * scale) as usize).min(BINS - 1);
-        let mut bin_bounds = [Aabb::EMPTY; BINS];
-        let mut bin_counts = [0usize; BINS];
-        for it in items.iter() {
-            let b = bin_of(it.centroid);
-            bin_bounds[b] = bin_bounds[b].union(it.bounds);
-            bin_counts[b] += 1;
-        }
+    for axis in (0..3).filter(|&axis| spread(axis)) {
+        let (bounds, counts) = (&bins.bounds[axis], &bins.counts[axis]);
         // Sweep from the right to get the right-hand area and count of each
-        // split, then from the left to evaluate.
+        // split, then from the left to evaluate. Only splits right after a
+        // bin that is not empty are evaluated: past an empty bin nothing
+        // changes, so the cost is the one just evaluated, and of equal
+        // costs the first is kept.
         let mut right_area = [0.0; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        let mut right_count = [0u32; BINS];
+        let (mut acc, mut area, mut n) = (Aabb::EMPTY, 0.0, 0);
         for b in (1..BINS).rev() {
-            acc = acc.union(bin_bounds[b]);
-            n += bin_counts[b];
-            right_area[b] = acc.half_area();
+            if counts[b] > 0 {
+                acc = acc.union(bounds[b]);
+                area = acc.half_area();
+                n += counts[b];
+            }
+            right_area[b] = area;
             right_count[b] = n;
         }
         let (mut acc, mut n) = (Aabb::EMPTY, 0);
         for b in 1..BINS {
-            acc = acc.union(bin_bounds[b - 1]);
-            n += bin_counts[b - 1];
-            if n == 0 || right_count[b] == 0 {
+            if counts[b - 1] == 0 {
                 continue;
+            }
+            acc = acc.union(bounds[b - 1]);
+            n += counts[b - 1];
+            if right_count[b] == 0 {
+                break;
             }
             let cost = acc.half_area() * n as f64 + right_area[b] * right_count[b] as f64;
             if best.is_none_or(|(c, _, _)| cost < c) {
@@ -527,14 +651,16 @@ fn sah_split(items: &mut [Item], bounds: &Aabb, centroids: &Aabb) -> Option<Spli
         }
     }
     let (cost, axis, bin) = best?;
-    let area = bounds.half_area();
+    let area = extent.bounds.half_area();
     let split_cost = if area > 0.0 { TRAVERSAL_COST + cost / area } else { f64::INFINITY };
     if split_cost >= items.len() as f64 {
         return Some(Split::Leaf);
     }
-    let scale = BINS as f64 / extent[axis];
-    let mid = partition(items, |it| (((it.centroid[axis] - centroids.min[axis]) * scale) as usize).min(BINS - 1) < bin);
-    Some(Split::At { axis, mid })
+    let side_bounds = |bins: &[Aabb]| bins.iter().copied().fold(Aabb::EMPTY, Aabb::union);
+    let (mid, left_centroids, right_centroids) = partition(items, |it| usize::from(it.bins[axis]) < bin);
+    let left = Extent { bounds: side_bounds(&bins.bounds[axis][..bin]), centroids: left_centroids };
+    let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..]), centroids: right_centroids };
+    Some(Split::At { axis, mid, left, right })
 }
 
 /// Splits by object count along the longest centroid axis (the fallback
@@ -553,33 +679,23 @@ fn median_split(items: &mut [Item], centroids: &Aabb) -> (usize, usize) {
     (axis, mid)
 }
 
-/// Moves the items satisfying `left` to the front; returns their count.
-/// Deterministic (no dependence on threads).
-fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> usize {
+/// Moves the items satisfying `left` to the front; returns their count and
+/// the centroid bounds of both sides. Deterministic (no dependence on
+/// threads).
+fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> (usize, Aabb, Aabb) {
     let mut mid = 0;
+    let (mut left_centroids, mut right_centroids) = (Aabb::EMPTY, Aabb::EMPTY);
     for k in 0..items.len() {
+        let centroid = items[k].centroid;
         if left(&items[k]) {
             items.swap(mid, k);
             mid += 1;
+            left_centroids = left_centroids.grow(centroid);
+        } else {
+            right_centroids = right_centroids.grow(centroid);
         }
     }
-    mid
-}
-
-/// Appends the subtree depth-first: a node, its left subtree, its right.
-fn flatten(node: &BuildNode, nodes: &mut Vec<Node>) {
-    match node {
-        BuildNode::Leaf { bounds, start, count } => {
-            nodes.push(Node { bounds: *bounds, index: *start as u32, count: *count as u16, axis: 0 });
-        }
-        BuildNode::Interior { bounds, axis, children } => {
-            let at = nodes.len();
-            nodes.push(Node { bounds: *bounds, index: 0, count: 0, axis: *axis as u16 });
-            flatten(&children.0, nodes);
-            nodes[at].index = nodes.len() as u32;
-            flatten(&children.1, nodes);
-        }
-    }
+    (mid, left_centroids, right_centroids)
 }
 
 #[cfg(test)]
