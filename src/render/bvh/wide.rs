@@ -1,0 +1,505 @@
+//! The traversal form of the tree: 4-wide nodes whose children's boxes are
+//! stored as f32 in SoA layout and tested together (one SIMD lane per
+//! child), made by collapsing the binary tree the build produces.
+//!
+//! The f32 test never loses a hit: boxes are rounded outwards and padded,
+//! the ray origin is rounded up for the lower planes and down for the upper
+//! ones, `1 / direction` is rounded towards zero for the entry planes and
+//! away from zero for the exit planes, and the interval's end is widened by
+//! [`WIDEN`] to cover the rounding of the subtraction and the product. The
+//! objects themselves are tested by the exact f64 tests of the caller.
+//!
+//! The node tests are plain `[f32; 4]` loops, which LLVM turns into SSE on
+//! the x86_64 baseline and NEON on aarch64; on x86_64 the walks are also
+//! compiled for AVX2 and AVX-512 and chosen at run time ([`Isa`]).
+
+use std::mem::MaybeUninit;
+
+use super::{Aabb, Node, STACK_SIZE, reach_past};
+
+/// Children per node.
+const WIDTH: usize = 4;
+
+/// The factor by which the exit distance is widened before it is compared
+/// with the entry distance: the entry and exit distances are each off by at
+/// most two roundings (`(1 + 2⁻²⁴)²` relative), so `1 + 2⁻²¹` covers both
+/// with room to spare.
+const WIDEN: f32 = 1.0 + 1.0 / (1u32 << 21) as f32;
+
+/// Every child box is padded by this fraction of its largest coordinate:
+/// far above the rounding of the f64 tests of the binary tree (a few units
+/// of 2⁻⁵³), so a hit the f64 arithmetic finds at a box's very edge is not
+/// culled by exact arithmetic either.
+const PAD: f64 = 1.0 / (1u64 << 22) as f64;
+
+/// A node: the boxes of up to [`WIDTH`] children, and where each child is.
+///
+/// An inner child (`count == 0`) is the node at `child`; a leaf child holds
+/// the objects `child .. child + count`. An unused slot has an empty box
+/// (`min = +∞`, `max = -∞`), which no ray meets.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
+struct WideNode {
+    /// Minimum x, y, z, then maximum x, y, z, of each child.
+    bounds: [[f32; WIDTH]; 6],
+    child: [u32; WIDTH],
+    count: [u32; WIDTH],
+}
+
+impl WideNode {
+    const EMPTY: WideNode = WideNode {
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
+        child: [0; WIDTH],
+        count: [0; WIDTH],
+    };
+
+    /// Stores `bounds` as the box of child `slot`, rounded outwards.
+    fn set_bounds(&mut self, slot: usize, bounds: &Aabb) {
+        let pad = PAD * bounds.min.abs().max(bounds.max.abs()).max_element();
+        for axis in 0..3 {
+            self.bounds[axis][slot] = round_down(bounds.min[axis] - pad);
+            self.bounds[axis + 3][slot] = round_up(bounds.max[axis] + pad);
+        }
+    }
+}
+
+/// Which compiled form of the walks runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Isa {
+    /// The baseline of the target (SSE2 on x86_64, NEON on aarch64).
+    Portable,
+    /// AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    /// AVX-512 (F, VL).
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
+}
+
+impl Isa {
+    /// The widest form this processor runs.
+    pub(super) fn detect() -> Isa {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
+                return Isa::Avx512;
+            }
+            if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
+                return Isa::Avx2;
+            }
+        }
+        Isa::Portable
+    }
+
+    /// Every form this processor runs (for tests).
+    #[cfg(test)]
+    pub(super) fn all_available() -> Vec<Isa> {
+        let mut all = vec![Isa::Portable];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
+                all.push(Isa::Avx2);
+            }
+            if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
+                all.push(Isa::Avx512);
+            }
+        }
+        all
+    }
+}
+
+/// The tree in its traversal form.
+#[derive(Debug, Clone)]
+pub(super) struct WideBvh {
+    nodes: Vec<WideNode>,
+    isa: Isa,
+}
+
+impl Default for WideBvh {
+    fn default() -> WideBvh {
+        WideBvh { nodes: Vec::new(), isa: Isa::Portable }
+    }
+}
+
+/// A ray prepared for the f32 node tests; for each axis, the plane the ray
+/// enters a box by (the lower one when the direction is positive) and the
+/// one it leaves by.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct WideRay {
+    /// Row of [`WideNode::bounds`] of the entry plane, per axis.
+    entry_row: [usize; 3],
+    exit_row: [usize; 3],
+    /// The origin rounded up for lower planes, down for upper planes.
+    entry_origin: [f32; 3],
+    exit_origin: [f32; 3],
+    /// `1 / direction`, rounded towards zero for the entry planes (so entry
+    /// distances come out no larger) and away from zero for the exit planes.
+    entry_inv: [f32; 3],
+    exit_inv: [f32; 3],
+}
+
+impl WideRay {
+    /// The ray `origin + t dir`.
+    pub(super) fn new(origin: [f64; 3], dir: [f64; 3]) -> WideRay {
+        let mut ray = WideRay {
+            entry_row: [0; 3],
+            exit_row: [0; 3],
+            entry_origin: [0.0; 3],
+            exit_origin: [0.0; 3],
+            entry_inv: [0.0; 3],
+            exit_inv: [0.0; 3],
+        };
+        for axis in 0..3 {
+            let inv = 1.0 / dir[axis];
+            // `(lower - origin)` may only shrink, `(upper - origin)` only grow.
+            let (lower_origin, upper_origin) = (round_up(origin[axis]), round_down(origin[axis]));
+            if inv.is_sign_negative() {
+                (ray.entry_row[axis], ray.exit_row[axis]) = (axis + 3, axis);
+                (ray.entry_origin[axis], ray.exit_origin[axis]) = (upper_origin, lower_origin);
+            } else {
+                (ray.entry_row[axis], ray.exit_row[axis]) = (axis, axis + 3);
+                (ray.entry_origin[axis], ray.exit_origin[axis]) = (lower_origin, upper_origin);
+            }
+            ray.entry_inv[axis] = round_towards_zero(inv);
+            ray.exit_inv[axis] = round_away_from_zero(inv);
+        }
+        ray
+    }
+}
+
+/// The largest f32 not above `x`.
+fn round_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// The smallest f32 not below `x`.
+fn round_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
+/// `x` as f32 with no larger magnitude.
+fn round_towards_zero(x: f64) -> f32 {
+    if x.is_sign_negative() { round_up(x) } else { round_down(x) }
+}
+
+/// `x` as f32 with no smaller magnitude.
+fn round_away_from_zero(x: f64) -> f32 {
+    if x.is_sign_negative() { round_down(x) } else { round_up(x) }
+}
+
+/// The entry distance of each child whose box the ray meets at some
+/// `t <= t_max`, and a bit mask of those children.
+///
+/// A `0 · ∞` (the ray in a plane of a box, parallel to it) gives NaN, which
+/// the comparisons drop: that axis then does not limit the interval, which
+/// is conservative.
+#[inline(always)]
+fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
+    let mut entry = [0.0f32; WIDTH];
+    let mut exit = [t_max; WIDTH];
+    for axis in 0..3 {
+        let lower = &node.bounds[ray.entry_row[axis]];
+        let upper = &node.bounds[ray.exit_row[axis]];
+        for i in 0..WIDTH {
+            let t_in = (lower[i] - ray.entry_origin[axis]) * ray.entry_inv[axis];
+            let t_out = (upper[i] - ray.exit_origin[axis]) * ray.exit_inv[axis];
+            entry[i] = if t_in > entry[i] { t_in } else { entry[i] };
+            exit[i] = if t_out < exit[i] { t_out } else { exit[i] };
+        }
+    }
+    let mut mask = 0;
+    for i in 0..WIDTH {
+        mask |= u32::from(entry[i] <= exit[i] * WIDEN) << i;
+    }
+    (entry, mask)
+}
+
+/// A child waiting on the traversal stack: where it is, its object count
+/// (0 for a node) and the distance at which the ray enters its box.
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    child: u32,
+    count: u32,
+    entry: f32,
+}
+
+/// Most children waiting at once: each level of the walk leaves at most
+/// `WIDTH - 1` of them, and the tree is shallower than the binary one.
+const WIDE_STACK_SIZE: usize = (WIDTH - 1) * STACK_SIZE + 1;
+
+/// The traversal stack, left uninitialised: zeroing it took a fifth of the
+/// instructions of a render.
+struct Stack {
+    items: [MaybeUninit<Pending>; WIDE_STACK_SIZE],
+    len: usize,
+}
+
+impl Stack {
+    /// A stack holding the root.
+    #[inline(always)]
+    fn new() -> Stack {
+        let mut items = [const { MaybeUninit::uninit() }; WIDE_STACK_SIZE];
+        items[0].write(Pending { child: 0, count: 0, entry: 0.0 });
+        Stack { items, len: 1 }
+    }
+
+    /// The item at `k < len`.
+    #[inline(always)]
+    fn get(&self, k: usize) -> Pending {
+        debug_assert!(k < self.len);
+        // SAFETY: every item below `len` was written (`new`, `push`,
+        // `push_sorted`), and the callers pass `k < len`.
+        unsafe { self.items[k].assume_init() }
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Pending> {
+        let top = self.len.checked_sub(1)?;
+        let item = self.get(top);
+        self.len = top;
+        Some(item)
+    }
+
+    #[inline(always)]
+    fn push(&mut self, item: Pending) {
+        self.items[self.len].write(item);
+        self.len += 1;
+    }
+
+    /// Pushes `item` among the items from `first` up, which are kept in
+    /// decreasing entry distance (the nearest on top).
+    #[inline(always)]
+    fn push_sorted(&mut self, first: usize, item: Pending) {
+        let mut at = self.len;
+        while at > first && self.get(at - 1).entry < item.entry {
+            self.items[at] = self.items[at - 1];
+            at -= 1;
+        }
+        self.items[at].write(item);
+        self.len += 1;
+    }
+}
+
+impl WideBvh {
+    /// Collapses the binary tree `nodes` (flattened depth-first, the root
+    /// first) into 4-wide nodes: each takes the children of a binary node
+    /// and opens its largest inner child until it has four. `bounds(k)` is
+    /// the box tested for binary node `k`.
+    pub(super) fn collapse(nodes: &[Node], bounds: impl Fn(usize) -> Aabb) -> WideBvh {
+        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 2), isa: Isa::detect() };
+        if !nodes.is_empty() {
+            wide.add(nodes, &bounds, 0);
+        }
+        wide
+    }
+
+    /// Appends the wide node made from binary node `k` and its subtrees;
+    /// returns its index.
+    fn add(&mut self, nodes: &[Node], bounds: &impl Fn(usize) -> Aabb, k: usize) -> u32 {
+        let at = self.nodes.len();
+        self.nodes.push(WideNode::EMPTY);
+        let is_leaf = |k: usize| nodes[k].count > 0;
+        let (mut kids, mut n) = ([k; WIDTH], 1);
+        if !is_leaf(k) {
+            (kids[0], kids[1], n) = (k + 1, nodes[k].index as usize, 2);
+        }
+        while n < WIDTH {
+            let largest = (0..n)
+                .filter(|&i| !is_leaf(kids[i]))
+                .max_by(|&a, &b| bounds(kids[a]).half_area().total_cmp(&bounds(kids[b]).half_area()));
+            let Some(i) = largest else { break };
+            let opened = kids[i];
+            (kids[i], kids[n]) = (opened + 1, nodes[opened].index as usize);
+            n += 1;
+        }
+        let mut node = WideNode::EMPTY;
+        for (slot, &kid) in kids[..n].iter().enumerate() {
+            node.set_bounds(slot, &bounds(kid));
+            (node.child[slot], node.count[slot]) = if is_leaf(kid) {
+                (nodes[kid].index, u32::from(nodes[kid].count))
+            } else {
+                (self.add(nodes, bounds, kid), 0)
+            };
+        }
+        self.nodes[at] = node;
+        at as u32
+    }
+
+    /// Whether there is no tree.
+    pub(super) fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The depth of the tree (1 for a single node, 0 without a tree).
+    pub(super) fn depth(&self) -> usize {
+        fn depth_from(nodes: &[WideNode], k: usize) -> usize {
+            let node = &nodes[k];
+            // Unused slots point at the root, which is no one's child.
+            let inner = (0..WIDTH).filter(|&i| node.count[i] == 0 && node.child[i] != 0);
+            1 + inner.map(|i| depth_from(nodes, node.child[i] as usize)).max().unwrap_or(0)
+        }
+        if self.nodes.is_empty() { 0 } else { depth_from(&self.nodes, 0) }
+    }
+
+    /// The closest-hit walk: the children the ray meets are visited nearest
+    /// first, each only while its entry distance is within
+    /// [`reach_past`]`(best.0)`, so that ties are still seen;
+    /// `leaf(start, count, best)` tests the objects
+    /// `start .. start + count` and keeps the nearest hit in `best`
+    /// (starting at `(t_max, u32::MAX)`).
+    #[inline(always)]
+    pub(super) fn closest_hit(
+        &self,
+        ray: &WideRay,
+        t_max: f64,
+        leaf: impl FnMut(usize, usize, &mut (f64, u32)),
+    ) -> (f64, u32) {
+        match self.isa {
+            Isa::Portable => closest_walk(&self.nodes, ray, t_max, leaf),
+            // SAFETY: `isa` is `Avx2` only when the processor has AVX2 and
+            // FMA ([`Isa::detect`], or a test's `all_available`).
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2 => unsafe { closest_walk_avx2(&self.nodes, ray, t_max, leaf) },
+            // SAFETY: `isa` is `Avx512` only when the processor has AVX-512 F and VL.
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx512 => unsafe { closest_walk_avx512(&self.nodes, ray, t_max, leaf) },
+        }
+    }
+
+    /// The any-hit walk: whether `leaf(start, count)` returns true for the
+    /// objects of some leaf whose box the ray meets before `t_max`.
+    #[inline(always)]
+    pub(super) fn any_hit(&self, ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
+        match self.isa {
+            Isa::Portable => any_walk(&self.nodes, ray, t_max, leaf),
+            // SAFETY: as in `closest_hit`.
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2 => unsafe { any_walk_avx2(&self.nodes, ray, t_max, leaf) },
+            // SAFETY: as in `closest_hit`.
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx512 => unsafe { any_walk_avx512(&self.nodes, ray, t_max, leaf) },
+        }
+    }
+
+    /// The same tree walked with the compiled form `isa` (for tests).
+    #[cfg(test)]
+    pub(super) fn with_isa(&self, isa: Isa) -> WideBvh {
+        WideBvh { nodes: self.nodes.clone(), isa }
+    }
+}
+
+/// [`WideBvh::closest_hit`], compiled for the baseline.
+#[inline(always)]
+fn closest_walk(
+    nodes: &[WideNode],
+    ray: &WideRay,
+    t_max: f64,
+    mut leaf: impl FnMut(usize, usize, &mut (f64, u32)),
+) -> (f64, u32) {
+    let mut best = (t_max, u32::MAX);
+    let mut stack = Stack::new();
+    while let Some(Pending { child, count, entry }) = stack.pop() {
+        let limit = round_up(reach_past(best.0));
+        if entry > limit * WIDEN {
+            continue;
+        }
+        if count > 0 {
+            leaf(child as usize, count as usize, &mut best);
+            continue;
+        }
+        let node = &nodes[child as usize];
+        let (entries, mut mask) = meet(node, ray, limit);
+        // The children met, the nearest on top.
+        let first = stack.len;
+        while mask != 0 {
+            let i = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            stack.push_sorted(first, Pending { child: node.child[i], count: node.count[i], entry: entries[i] });
+        }
+    }
+    best
+}
+
+/// [`WideBvh::any_hit`], compiled for the baseline.
+#[inline(always)]
+fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(usize, usize) -> bool) -> bool {
+    let limit = round_up(t_max);
+    let mut stack = Stack::new();
+    while let Some(Pending { child, count, .. }) = stack.pop() {
+        if count > 0 {
+            if leaf(child as usize, count as usize) {
+                return true;
+            }
+            continue;
+        }
+        let node = &nodes[child as usize];
+        let (_, mut mask) = meet(node, ray, limit);
+        while mask != 0 {
+            let i = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            stack.push(Pending { child: node.child[i], count: node.count[i], entry: 0.0 });
+        }
+    }
+    false
+}
+
+/// [`closest_walk`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn closest_walk_avx2(
+    nodes: &[WideNode],
+    ray: &WideRay,
+    t_max: f64,
+    leaf: impl FnMut(usize, usize, &mut (f64, u32)),
+) -> (f64, u32) {
+    closest_walk(nodes, ray, t_max, leaf)
+}
+
+/// [`any_walk`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn any_walk_avx2(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
+    any_walk(nodes, ray, t_max, leaf)
+}
+
+/// [`closest_walk`] compiled for AVX-512.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+fn closest_walk_avx512(
+    nodes: &[WideNode],
+    ray: &WideRay,
+    t_max: f64,
+    leaf: impl FnMut(usize, usize, &mut (f64, u32)),
+) -> (f64, u32) {
+    closest_walk(nodes, ray, t_max, leaf)
+}
+
+/// [`any_walk`] compiled for AVX-512.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+fn any_walk_avx512(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
+    any_walk(nodes, ray, t_max, leaf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rounding_is_outward() {
+        for x in [0.1, -0.1, 1e-50, -1e-50, 1e300, -1e300, 3.0, 1.0 / 3.0] {
+            assert!(f64::from(round_down(x)) <= x && f64::from(round_up(x)) >= x, "{x}");
+            assert!(f64::from(round_towards_zero(x)).abs() <= x.abs());
+            assert!(f64::from(round_away_from_zero(x)).abs() >= x.abs());
+        }
+    }
+}
