@@ -492,7 +492,11 @@ fn any_walk_avx512(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaf: impl FnM
 
 #[cfg(test)]
 mod tests {
+    use glam::{DMat3, DVec3};
+
+    use super::super::{Bvh, test_range};
     use super::*;
+    use crate::render::intersect::{Bounded, BoxShape, Ray, SphereShape};
 
     #[test]
     fn rounding_is_outward() {
@@ -501,5 +505,101 @@ mod tests {
             assert!(f64::from(round_towards_zero(x)).abs() <= x.abs());
             assert!(f64::from(round_away_from_zero(x)).abs() >= x.abs());
         }
+    }
+
+    /// A xorshift generator: the same scenes and rays on every run.
+    struct Random(u64);
+
+    impl Random {
+        /// Uniform in `[-1, 1)`.
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+
+        fn vector(&mut self) -> DVec3 {
+            DVec3::new(self.next(), self.next(), self.next())
+        }
+
+        /// A unit direction; one time in four along an axis or in a
+        /// coordinate plane (zero components: `1 / 0` in the node tests).
+        fn direction(&mut self) -> DVec3 {
+            let mut d = self.vector();
+            match (self.next() * 8.0) as i32 {
+                -8 | -7 => d.x = 0.0,
+                -6 => (d.x, d.y) = (0.0, 0.0),
+                _ => {}
+            }
+            if d.length() < 1e-3 { DVec3::Z } else { d.normalize() }
+        }
+    }
+
+    /// The objects hit in tree order, tested one by one: the reference that
+    /// every compiled form of the walks must match.
+    fn brute_force(bvh: &Bvh, ray: &Ray, t_max: f64) -> ((f64, u32), bool) {
+        let mut best = (t_max, u32::MAX);
+        test_range(bvh.objects(), 0, ray, &mut best);
+        (best, bvh.objects().iter().any(|o| o.hit(ray) < t_max))
+    }
+
+    /// Checks random rays through `objects`, some starting on the objects'
+    /// faces and corners, against [`brute_force`] with every compiled form.
+    fn check_against_brute_force(objects: &[Bounded], random: &mut Random) {
+        let (bvh, _) = Bvh::build(objects);
+        assert!(!bvh.is_flat());
+        for _ in 0..3000 {
+            let origin = match (random.next() * 2.0) as i32 {
+                // On a box's corner or a sphere's pole: origins in the planes of the node boxes.
+                0 => match objects[((random.next() + 1.0) * 0.5 * objects.len() as f64) as usize] {
+                    Bounded::Box(b) => b.center + b.to_local.transpose() * b.half,
+                    Bounded::Sphere(s) => s.center + DVec3::new(0.0, s.radius, 0.0),
+                },
+                _ => random.vector() * 12.0,
+            };
+            let ray = Ray::new(origin, random.direction());
+            let t_max = if random.next() < 0.0 { f64::INFINITY } else { 8.0 * (random.next() + 1.0) };
+            let expected = brute_force(&bvh, &ray, t_max);
+            for isa in Isa::all_available() {
+                let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
+                let found = (tree.closest_hit(&ray, t_max), tree.any_hit(&ray, t_max));
+                assert_eq!(found, expected, "{isa:?} {ray:?} t_max {t_max}");
+            }
+        }
+    }
+
+    #[test]
+    fn spheres_and_turned_boxes_give_the_hits_of_brute_force() {
+        let mut random = Random(0x9E37_79B9_7F4A_7C15);
+        let objects: Vec<Bounded> = (0..600)
+            .map(|k| {
+                let center = random.vector() * 10.0;
+                if k % 2 == 0 {
+                    Bounded::Sphere(SphereShape { center, radius: 0.05 + 0.5 * (random.next() + 1.0) })
+                } else {
+                    let axes = DMat3::from_rotation_z(random.next()) * DMat3::from_rotation_x(random.next());
+                    let half = (random.vector().abs() + 0.05) * 0.6;
+                    Bounded::Box(BoxShape { center, half, to_local: axes.transpose() })
+                }
+            })
+            .collect();
+        check_against_brute_force(&objects, &mut random);
+    }
+
+    #[test]
+    fn boxes_of_one_frame_sharing_faces_give_the_hits_of_brute_force() {
+        // A turned grid of cubes that touch (the sponge's case): ties
+        // between coincident faces everywhere.
+        let mut random = Random(0x2545_F491_4F6C_DD1D);
+        let axes = DMat3::from_rotation_y(0.4) * DMat3::from_rotation_x(0.3);
+        let objects: Vec<Bounded> = (0..512)
+            .filter(|k| k % 3 != 0)
+            .map(|k| {
+                let cell = DVec3::new((k % 8) as f64, (k / 8 % 8) as f64, (k / 64) as f64) - 3.5;
+                Bounded::Box(BoxShape { center: axes * cell, half: DVec3::splat(0.5), to_local: axes.transpose() })
+            })
+            .collect();
+        check_against_brute_force(&objects, &mut random);
     }
 }
