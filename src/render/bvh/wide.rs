@@ -5,7 +5,8 @@
 //! The f32 test never loses a hit: boxes are rounded outwards and padded,
 //! the ray origin is rounded up for the lower planes and down for the upper
 //! ones, `1 / direction` is rounded towards zero for the entry planes and
-//! away from zero for the exit planes, and the interval's end is widened by
+//! away from zero for the exit planes (by a margin of two ulps, cheaper per
+//! ray than exact directed rounding), and the interval's end is widened by
 //! [`WIDEN`] to cover the rounding of the subtraction and the product. The
 //! objects themselves are tested by the exact f64 tests of the caller.
 //!
@@ -59,6 +60,14 @@ impl WideNode {
         child: [0; WIDTH],
         count: [0; WIDTH],
     };
+
+    /// The lowest child of `mask`, which loses it.
+    #[inline(always)]
+    fn take(&self, mask: &mut u32, entries: &[f32; WIDTH]) -> Pending {
+        let i = mask.trailing_zeros() as usize;
+        *mask &= *mask - 1;
+        Pending { child: self.child[i], count: self.count[i], entry: entries[i] }
+    }
 
     /// Stores `bounds` as the box of child `slot`, rounded outwards.
     fn set_bounds(&mut self, slot: usize, bounds: &Aabb) {
@@ -147,6 +156,7 @@ pub(super) struct WideRay {
 
 impl WideRay {
     /// The ray `origin + t dir`.
+    #[inline(always)]
     pub(super) fn new(origin: [f64; 3], dir: [f64; 3]) -> WideRay {
         let mut ray = WideRay {
             entry_row: [0; 3],
@@ -159,19 +169,39 @@ impl WideRay {
         for axis in 0..3 {
             let inv = 1.0 / dir[axis];
             // `(lower - origin)` may only shrink, `(upper - origin)` only grow.
-            let (lower_origin, upper_origin) = (round_up(origin[axis]), round_down(origin[axis]));
-            if inv.is_sign_negative() {
-                (ray.entry_row[axis], ray.exit_row[axis]) = (axis + 3, axis);
-                (ray.entry_origin[axis], ray.exit_origin[axis]) = (upper_origin, lower_origin);
-            } else {
-                (ray.entry_row[axis], ray.exit_row[axis]) = (axis, axis + 3);
-                (ray.entry_origin[axis], ray.exit_origin[axis]) = (lower_origin, upper_origin);
-            }
-            ray.entry_inv[axis] = round_towards_zero(inv);
-            ray.exit_inv[axis] = round_away_from_zero(inv);
+            let (o, margin) = widened(origin[axis]);
+            let (lower_origin, upper_origin) = (o + margin, o - margin);
+            let (inv, margin) = widened(inv);
+            let (towards_zero, away_from_zero) = (inv - margin.copysign(inv), inv + margin.copysign(inv));
+            let negative = inv.is_sign_negative();
+            ray.entry_row[axis] = if negative { axis + 3 } else { axis };
+            ray.exit_row[axis] = if negative { axis } else { axis + 3 };
+            ray.entry_origin[axis] = if negative { upper_origin } else { lower_origin };
+            ray.exit_origin[axis] = if negative { lower_origin } else { upper_origin };
+            ray.entry_inv[axis] = towards_zero;
+            ray.exit_inv[axis] = away_from_zero;
         }
         ray
     }
+}
+
+/// `x` in f32 (clamped to the finite range) and a margin above its
+/// rounding error: `value - margin <= x <= value + margin` once each side
+/// is rounded, and past the range the sums round to infinity. Cheaper per
+/// ray than exact directed rounding.
+#[inline(always)]
+fn widened(x: f64) -> (f32, f32) {
+    let value = x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
+    // Two units in the last place, and the smallest normal for values
+    // that rounded to zero or below the normal range.
+    (value, value.abs() * (1.0 / (1u32 << 22) as f32) + f32::MIN_POSITIVE)
+}
+
+/// An f32 not below `x`: a distance limit for the node tests.
+#[inline(always)]
+fn limit_above(x: f64) -> f32 {
+    let (value, margin) = widened(x);
+    value + margin
 }
 
 /// The largest f32 not above `x`.
@@ -184,16 +214,6 @@ fn round_down(x: f64) -> f32 {
 fn round_up(x: f64) -> f32 {
     let f = x as f32;
     if f64::from(f) < x { f.next_up() } else { f }
-}
-
-/// `x` as f32 with no larger magnitude.
-fn round_towards_zero(x: f64) -> f32 {
-    if x.is_sign_negative() { round_up(x) } else { round_down(x) }
-}
-
-/// `x` as f32 with no smaller magnitude.
-fn round_away_from_zero(x: f64) -> f32 {
-    if x.is_sign_negative() { round_down(x) } else { round_up(x) }
 }
 
 /// The entry distance of each child whose box the ray meets at some
@@ -216,11 +236,27 @@ fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
             exit[i] = if t_out < exit[i] { t_out } else { exit[i] };
         }
     }
-    let mut mask = 0;
-    for i in 0..WIDTH {
-        mask |= u32::from(entry[i] <= exit[i] * WIDEN) << i;
+    for t in &mut exit {
+        *t *= WIDEN;
     }
-    (entry, mask)
+    (entry, lanes_at_most(&entry, &exit))
+}
+
+/// The bit mask of the lanes where `a <= b`.
+#[inline(always)]
+fn lanes_at_most(a: &[f32; WIDTH], b: &[f32; WIDTH]) -> u32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_cmple_ps, _mm_loadu_ps, _mm_movemask_ps};
+        // LLVM builds this mask lane by lane from the portable loop.
+        // SAFETY: SSE is part of the x86_64 baseline, and each load reads
+        // the 4 f32 of an array (no alignment needed).
+        unsafe { _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(a.as_ptr()), _mm_loadu_ps(b.as_ptr()))) as u32 }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        (0..WIDTH).fold(0, |mask, i| mask | u32::from(a[i] <= b[i]) << i)
+    }
 }
 
 /// A child waiting on the traversal stack: where it is, its object count
@@ -231,6 +267,9 @@ struct Pending {
     count: u32,
     entry: f32,
 }
+
+/// The walks start at the root node.
+const ROOT: Pending = Pending { child: 0, count: 0, entry: 0.0 };
 
 /// Most children waiting at once: each level of the walk leaves at most
 /// `WIDTH - 1` of them, and the tree is shallower than the binary one.
@@ -244,12 +283,9 @@ struct Stack {
 }
 
 impl Stack {
-    /// A stack holding the root.
     #[inline(always)]
     fn new() -> Stack {
-        let mut items = [const { MaybeUninit::uninit() }; WIDE_STACK_SIZE];
-        items[0].write(Pending { child: 0, count: 0, entry: 0.0 });
-        Stack { items, len: 1 }
+        Stack { items: [const { MaybeUninit::uninit() }; WIDE_STACK_SIZE], len: 0 }
     }
 
     /// The item at `k < len`.
@@ -406,50 +442,66 @@ fn closest_walk(
     mut leaf: impl FnMut(usize, usize, &mut (f64, u32)),
 ) -> (f64, u32) {
     let mut best = (t_max, u32::MAX);
+    let mut limit = limit_above(reach_past(t_max));
     let mut stack = Stack::new();
-    while let Some(Pending { child, count, entry }) = stack.pop() {
-        let limit = round_up(reach_past(best.0));
-        if entry > limit * WIDEN {
-            continue;
+    let mut current = ROOT;
+    loop {
+        if current.count > 0 {
+            leaf(current.child as usize, current.count as usize, &mut best);
+            limit = limit_above(reach_past(best.0));
+        } else {
+            let node = &nodes[current.child as usize];
+            let (entries, mut mask) = meet(node, ray, limit);
+            if mask != 0 {
+                let met = node.take(&mut mask, &entries);
+                if mask == 0 {
+                    current = met;
+                    continue;
+                }
+                // Several children met: onto the stack, the nearest on top.
+                let first = stack.len;
+                stack.push(met);
+                while mask != 0 {
+                    stack.push_sorted(first, node.take(&mut mask, &entries));
+                }
+            }
         }
-        if count > 0 {
-            leaf(child as usize, count as usize, &mut best);
-            continue;
-        }
-        let node = &nodes[child as usize];
-        let (entries, mut mask) = meet(node, ray, limit);
-        // The children met, the nearest on top.
-        let first = stack.len;
-        while mask != 0 {
-            let i = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            stack.push_sorted(first, Pending { child: node.child[i], count: node.count[i], entry: entries[i] });
+        // The nearest waiting child still within reach.
+        loop {
+            let Some(next) = stack.pop() else { return best };
+            if next.entry <= limit * WIDEN {
+                current = next;
+                break;
+            }
         }
     }
-    best
 }
 
 /// [`WideBvh::any_hit`], compiled for the baseline.
 #[inline(always)]
 fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(usize, usize) -> bool) -> bool {
-    let limit = round_up(t_max);
+    let limit = limit_above(t_max);
     let mut stack = Stack::new();
-    while let Some(Pending { child, count, .. }) = stack.pop() {
-        if count > 0 {
-            if leaf(child as usize, count as usize) {
+    let mut current = ROOT;
+    loop {
+        if current.count > 0 {
+            if leaf(current.child as usize, current.count as usize) {
                 return true;
             }
-            continue;
+        } else {
+            let node = &nodes[current.child as usize];
+            let (entries, mut mask) = meet(node, ray, limit);
+            if mask != 0 {
+                current = node.take(&mut mask, &entries);
+                while mask != 0 {
+                    stack.push(node.take(&mut mask, &entries));
+                }
+                continue;
+            }
         }
-        let node = &nodes[child as usize];
-        let (_, mut mask) = meet(node, ray, limit);
-        while mask != 0 {
-            let i = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            stack.push(Pending { child: node.child[i], count: node.count[i], entry: 0.0 });
-        }
+        let Some(next) = stack.pop() else { return false };
+        current = next;
     }
-    false
 }
 
 /// [`closest_walk`] compiled for AVX2.
@@ -502,8 +554,12 @@ mod tests {
     fn rounding_is_outward() {
         for x in [0.1, -0.1, 1e-50, -1e-50, 1e300, -1e300, 3.0, 1.0 / 3.0] {
             assert!(f64::from(round_down(x)) <= x && f64::from(round_up(x)) >= x, "{x}");
-            assert!(f64::from(round_towards_zero(x)).abs() <= x.abs());
-            assert!(f64::from(round_away_from_zero(x)).abs() >= x.abs());
+            let (value, margin) = widened(x);
+            assert!(f64::from(value - margin) <= x && f64::from(value + margin) >= x, "{x}");
+            if x.abs() >= 1.0 {
+                // As `1 / direction` is (a unit direction).
+                assert!(f64::from(value - margin.copysign(value)).abs() <= x.abs(), "{x}");
+            }
         }
     }
 
