@@ -1,6 +1,6 @@
 //! A bounding volume hierarchy over spheres and boxes: binned SAH build
 //! (parallel for large node ranges) of a binary tree, collapsed into the
-//! 4-wide tree of [`wide`] for the closest hit and any hit.
+//! 8-wide tree of [`wide`] for the closest hit and any hit.
 //!
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
