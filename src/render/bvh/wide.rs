@@ -405,30 +405,29 @@ impl WideBvh {
         t_max: f64,
         leaf: impl FnMut(usize, usize, &mut (f64, u32)),
     ) -> (f64, u32) {
-        match self.isa {
-            Isa::Portable => closest_walk(&self.nodes, ray, t_max, leaf),
-            // SAFETY: `isa` is `Avx2` only when the processor has AVX2 and
-            // FMA ([`Isa::detect`], or a test's `all_available`).
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx2 => unsafe { closest_walk_avx2(&self.nodes, ray, t_max, leaf) },
-            // SAFETY: `isa` is `Avx512` only when the processor has AVX-512 F and VL.
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => unsafe { closest_walk_avx512(&self.nodes, ray, t_max, leaf) },
-        }
+        self.run(Closest { ray, t_max, leaf })
     }
 
     /// The any-hit walk: whether `leaf(start, count)` returns true for the
     /// objects of some leaf whose box the ray meets before `t_max`.
     #[inline(always)]
     pub(super) fn any_hit(&self, ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
+        self.run(Any { ray, t_max, leaf })
+    }
+
+    /// Runs `walk` in the compiled form chosen at build time.
+    #[inline(always)]
+    fn run<W: Walk>(&self, walk: W) -> W::Output {
         match self.isa {
-            Isa::Portable => any_walk(&self.nodes, ray, t_max, leaf),
-            // SAFETY: as in `closest_hit`.
+            Isa::Portable => walk.walk(&self.nodes),
+            // SAFETY: `isa` is `Avx2` only when the processor has AVX2 and
+            // FMA ([`Isa::detect`], or a test's `all_available`).
             #[cfg(target_arch = "x86_64")]
-            Isa::Avx2 => unsafe { any_walk_avx2(&self.nodes, ray, t_max, leaf) },
-            // SAFETY: as in `closest_hit`.
+            Isa::Avx2 => unsafe { walk_avx2(walk, &self.nodes) },
+            // SAFETY: `isa` is `Avx512` only when the processor has AVX-512
+            // F and VL (as above).
             #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => unsafe { any_walk_avx512(&self.nodes, ray, t_max, leaf) },
+            Isa::Avx512 => unsafe { walk_avx512(walk, &self.nodes) },
         }
     }
 
@@ -510,47 +509,63 @@ fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(
     }
 }
 
-/// [`closest_walk`] compiled for AVX2.
+/// A query's walk of the tree, compiled once per [`Isa`].
+trait Walk {
+    type Output;
+    fn walk(self, nodes: &[WideNode]) -> Self::Output;
+}
+
+/// [`WideBvh::closest_hit`]'s walk.
+struct Closest<'a, L> {
+    ray: &'a WideRay,
+    t_max: f64,
+    leaf: L,
+}
+
+impl<L: FnMut(usize, usize, &mut (f64, u32))> Walk for Closest<'_, L> {
+    type Output = (f64, u32);
+
+    #[inline(always)]
+    fn walk(self, nodes: &[WideNode]) -> (f64, u32) {
+        closest_walk(nodes, self.ray, self.t_max, self.leaf)
+    }
+}
+
+/// [`WideBvh::any_hit`]'s walk.
+struct Any<'a, L> {
+    ray: &'a WideRay,
+    t_max: f64,
+    leaf: L,
+}
+
+impl<L: FnMut(usize, usize) -> bool> Walk for Any<'_, L> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn walk(self, nodes: &[WideNode]) -> bool {
+        any_walk(nodes, self.ray, self.t_max, self.leaf)
+    }
+}
+
+/// `walk` compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn closest_walk_avx2(
-    nodes: &[WideNode],
-    ray: &WideRay,
-    t_max: f64,
-    leaf: impl FnMut(usize, usize, &mut (f64, u32)),
-) -> (f64, u32) {
-    closest_walk(nodes, ray, t_max, leaf)
+fn walk_avx2<W: Walk>(walk: W, nodes: &[WideNode]) -> W::Output {
+    walk.walk(nodes)
 }
 
-/// [`any_walk`] compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn any_walk_avx2(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
-    any_walk(nodes, ray, t_max, leaf)
-}
-
-/// [`closest_walk`] compiled for AVX-512.
+/// `walk` compiled for AVX-512.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-fn closest_walk_avx512(
-    nodes: &[WideNode],
-    ray: &WideRay,
-    t_max: f64,
-    leaf: impl FnMut(usize, usize, &mut (f64, u32)),
-) -> (f64, u32) {
-    closest_walk(nodes, ray, t_max, leaf)
-}
-
-/// [`any_walk`] compiled for AVX-512.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-fn any_walk_avx512(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
-    any_walk(nodes, ray, t_max, leaf)
+fn walk_avx512<W: Walk>(walk: W, nodes: &[WideNode]) -> W::Output {
+    walk.walk(nodes)
 }
 
 #[cfg(test)]
 mod tests {
     use glam::{DMat3, DVec3};
+    use proptest::prelude::Rng;
+    use proptest::test_runner::{RngAlgorithm, TestRng};
 
     use super::super::{Bvh, test_range};
     use super::*;
@@ -569,16 +584,17 @@ mod tests {
         }
     }
 
-    /// A xorshift generator: the same scenes and rays on every run.
-    struct Random(u64);
+    /// Proptest's deterministic generator: the same scenes and rays on every run.
+    struct Random(TestRng);
 
     impl Random {
+        fn new() -> Random {
+            Random(TestRng::deterministic_rng(RngAlgorithm::ChaCha))
+        }
+
         /// Uniform in `[-1, 1)`.
         fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+            (self.0.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
         }
 
         fn vector(&mut self) -> DVec3 {
@@ -633,7 +649,7 @@ mod tests {
 
     #[test]
     fn spheres_and_turned_boxes_give_the_hits_of_brute_force() {
-        let mut random = Random(0x9E37_79B9_7F4A_7C15);
+        let mut random = Random::new();
         let objects: Vec<Bounded> = (0..600)
             .map(|k| {
                 let center = random.vector() * 10.0;
@@ -653,7 +669,7 @@ mod tests {
     fn boxes_of_one_frame_sharing_faces_give_the_hits_of_brute_force() {
         // A turned grid of cubes that touch (the sponge's case): ties
         // between coincident faces everywhere.
-        let mut random = Random(0x2545_F491_4F6C_DD1D);
+        let mut random = Random::new();
         let axes = DMat3::from_rotation_y(0.4) * DMat3::from_rotation_x(0.3);
         let objects: Vec<Bounded> = (0..512)
             .filter(|k| k % 3 != 0)
