@@ -29,9 +29,9 @@ const WIDTH: usize = 8;
 const WIDEN: f32 = 1.0 + 1.0 / (1u32 << 21) as f32;
 
 /// Every child box is padded by this fraction of its largest coordinate:
-/// far above the rounding of the f64 tests of the binary tree (a few units
-/// of 2⁻⁵³), so a hit the f64 arithmetic finds at a box's very edge is not
-/// culled by exact arithmetic either.
+/// far above the rounding of f64 arithmetic (a few units of 2⁻⁵³), so a hit
+/// that the f64 object tests find at a box's very edge, off it by their
+/// rounding, is not culled.
 const PAD: f64 = 1.0 / (1u64 << 22) as f64;
 
 /// A node: the boxes of up to [`WIDTH`] children, and where each child is.
@@ -96,29 +96,20 @@ pub(super) enum Isa {
 impl Isa {
     /// The widest form this processor runs.
     pub(super) fn detect() -> Isa {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
-                return Isa::Avx512;
-            }
-            if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
-                return Isa::Avx2;
-            }
-        }
-        Isa::Portable
+        *Isa::available().last().expect("the portable form always runs")
     }
 
-    /// Every form this processor runs (for tests).
-    #[cfg(test)]
-    pub(super) fn all_available() -> Vec<Isa> {
+    /// Every form this processor runs, the widest last.
+    pub(super) fn available() -> Vec<Isa> {
+        #[allow(unused_mut, reason = "only x86_64 has other forms")]
         let mut all = vec![Isa::Portable];
         #[cfg(target_arch = "x86_64")]
         {
             if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
                 all.push(Isa::Avx2);
-            }
-            if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
-                all.push(Isa::Avx512);
+                if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
+                    all.push(Isa::Avx512);
+                }
             }
         }
         all
@@ -421,7 +412,7 @@ impl WideBvh {
         match self.isa {
             Isa::Portable => walk.walk(&self.nodes),
             // SAFETY: `isa` is `Avx2` only when the processor has AVX2 and
-            // FMA ([`Isa::detect`], or a test's `all_available`).
+            // FMA ([`Isa::available`]).
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { walk_avx2(walk, &self.nodes) },
             // SAFETY: `isa` is `Avx512` only when the processor has AVX-512
@@ -639,7 +630,7 @@ mod tests {
             let ray = Ray::new(origin, random.direction());
             let t_max = if random.next() < 0.0 { f64::INFINITY } else { 8.0 * (random.next() + 1.0) };
             let expected = brute_force(&bvh, &ray, t_max);
-            for isa in Isa::all_available() {
+            for isa in Isa::available() {
                 let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
                 let found = (tree.closest_hit(&ray, t_max), tree.any_hit(&ray, t_max));
                 assert_eq!(found, expected, "{isa:?} {ray:?} t_max {t_max}");
