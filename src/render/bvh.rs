@@ -1,16 +1,17 @@
 //! A bounding volume hierarchy over spheres and boxes: binned SAH build
 //! (subtrees built in parallel, and the binning of large ranges too) that
-//! writes flattened depth-first nodes directly, and stack-based traversal
-//! for the closest hit and for any hit.
+//! writes flattened depth-first binary nodes directly, collapsed into the
+//! 8-wide tree of [`wide`] for the closest hit and any hit.
 //!
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
 
-use std::cell::Cell;
+mod wide;
 
 use glam::{DMat3, DVec3, UVec3};
 use rayon::prelude::*;
 
+use self::wide::{WideBvh, WideRay};
 use super::intersect::{Aabb, Bounded, BoxShape, Ray};
 
 /// Up to this many objects a tree costs more than it saves: on the solar
@@ -53,13 +54,13 @@ struct Node {
     bounds: Aabb,
     index: u32,
     count: u16,
-    axis: u16,
 }
 
 /// A BVH over bounded objects, or a flat list when they are few.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    /// The tree; empty for a flat list.
+    wide: WideBvh,
     objects: Vec<Bounded>,
     /// When every object is a box with the same axes (a rotated grid of
     /// boxes): a compact copy for faster traversal.
@@ -74,16 +75,14 @@ pub struct Bvh {
 /// box); the ray is turned into the frame once per query, not once per box.
 /// Hit distances are computed by the very arithmetic of [`BoxShape::hit`]
 /// (with `1 / (to_local * dir)` shared), so they are the same to the bit;
-/// the node boxes are padded, so culling is conservative, and the visiting
-/// order is the one of the world tree, so ties are broken as before.
+/// the node boxes (of the tree built in the frame) are padded, so culling
+/// is conservative.
 #[derive(Debug, Clone)]
 struct SharedFrame {
     /// The common axes, as rows ([`BoxShape::to_local`]).
     to_local: DMat3,
     /// Per object (tree order): centre and half sizes.
     boxes: Vec<(DVec3, DVec3)>,
-    /// Per node: its bounds in the common frame, padded.
-    bounds: Vec<Aabb>,
 }
 
 impl SharedFrame {
@@ -107,10 +106,8 @@ impl SharedFrame {
         }
     }
 
-    /// The frame of a tree built over the frame's boxes (`nodes` bounded in
-    /// the frame); the node bounds are padded here, and replaced in `nodes`
-    /// by world bounds.
-    fn new(to_local: DMat3, nodes: &mut [Node], objects: &[Bounded]) -> SharedFrame {
+    /// The frame of the boxes `objects`, whose axes are `to_local`.
+    fn new(to_local: DMat3, objects: &[Bounded]) -> SharedFrame {
         let boxes = objects
             .iter()
             .map(|o| match o {
@@ -118,78 +115,46 @@ impl SharedFrame {
                 Bounded::Sphere(_) => unreachable!("a shared frame holds only boxes"),
             })
             .collect();
-        let pad = |b: &Aabb| {
-            // Far above the rounding of either way of turning a ray into the
-            // frame (a few ulps of the coordinates involved), so culling is
-            // conservative.
-            let p = 1e-6 * b.min.abs().max(b.max.abs()).max_element();
-            Aabb { min: b.min - p, max: b.max + p }
-        };
-        let bounds = nodes.iter().map(|n| pad(&n.bounds)).collect();
-        // World bounds (for other users of the nodes); children come after
-        // their parent in the flattened order.
-        for k in (0..nodes.len()).rev() {
-            let node = nodes[k];
-            nodes[k].bounds = if node.count > 0 {
-                let start = node.index as usize;
-                objects[start..start + node.count as usize].iter().map(Bounded::bounds).fold(Aabb::EMPTY, Aabb::union)
-            } else {
-                nodes[k + 1].bounds.union(nodes[node.index as usize].bounds)
-            };
-        }
-        SharedFrame { to_local, boxes, bounds }
+        SharedFrame { to_local, boxes }
     }
 
-    /// The ray in the frame (for the node tests) and `1 / direction` there.
+    /// A node's box in the frame, padded far above the rounding of either
+    /// way of turning a ray into the frame (a few ulps of the coordinates
+    /// involved), so culling is conservative.
+    fn padded(b: &Aabb) -> Aabb {
+        let p = 1e-6 * b.min.abs().max(b.max.abs()).max_element();
+        Aabb { min: b.min - p, max: b.max + p }
+    }
+
+    /// The ray in the frame, for the node tests, and `1 / direction` there.
     #[inline(always)]
-    fn local_ray(&self, ray: &Ray) -> (Ray, DVec3) {
+    fn local_ray(&self, ray: &Ray) -> (WideRay, DVec3) {
         let d = self.to_local * ray.dir;
-        (Ray::new(self.to_local * ray.origin, d), d.recip())
+        (WideRay::new((self.to_local * ray.origin).into(), d.into()), d.recip())
     }
 
-    /// [`Bvh::closest_hit`] through the frame; `nodes` are the tree's links.
-    fn closest_hit(&self, nodes: &[Node], ray: &Ray, t_max: f64) -> (f64, u32) {
+    /// [`Bvh::closest_hit`] through the frame; `tree` was built in the frame.
+    fn closest_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> (f64, u32) {
         let (local, inv) = self.local_ray(ray);
-        // The tree was split along the frame's axes: near child first, as in `closest_in`.
-        let dir_negative = [local.dir.x < 0.0, local.dir.y < 0.0, local.dir.z < 0.0];
-        let best = Cell::new((t_max, u32::MAX));
-        walk(
-            nodes,
-            |k| self.bounds[k].hit(&local, inv, reach_past(best.get().0)),
-            |axis| dir_negative[axis as usize],
-            |start, count| {
-                for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
-                    let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
-                    let k = (start + k) as u32;
-                    if goes_before(t, k, best.get()) {
-                        best.set((t, k));
-                    }
+        tree.closest_hit(&local, t_max, |start, count, best| {
+            for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
+                let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
+                let k = (start + k) as u32;
+                if goes_before(t, k, *best) {
+                    *best = (t, k);
                 }
-                false
-            },
-        );
-        best.get()
+            }
+        })
     }
 
     /// [`Bvh::any_hit`] through the frame.
-    fn any_hit(&self, nodes: &[Node], ray: &Ray, t_max: f64) -> bool {
+    fn any_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> bool {
         let (local, inv) = self.local_ray(ray);
-        // Far child first (on the split axis, the child the ray moves
-        // towards): a shadow ray leaves a lit face, whose own side of the
-        // tree is mostly empty in the light's direction, and the occluders
-        // lie further on. Callgrind, sponge4 at 320x180: any-hit 196.4M ->
-        // 163.5M Ir (near child first: 205.7M; left child first: 196.4M).
-        let far_is_right = [local.dir.x >= 0.0, local.dir.y >= 0.0, local.dir.z >= 0.0];
-        walk(
-            nodes,
-            |k| self.bounds[k].hit(&local, inv, t_max),
-            |axis| far_is_right[axis as usize],
-            |start, count| {
-                self.boxes[start..start + count]
-                    .iter()
-                    .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
-            },
-        )
+        tree.any_hit(&local, t_max, |start, count| {
+            self.boxes[start..start + count]
+                .iter()
+                .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
+        })
     }
 }
 
@@ -238,7 +203,7 @@ impl Bvh {
     pub fn build(objects: &[Bounded]) -> (Bvh, Vec<u32>) {
         if objects.len() <= BRUTE_FORCE_MAX {
             let order = (0..objects.len() as u32).collect();
-            return (Bvh { nodes: Vec::new(), objects: objects.to_vec(), shared: None }, order);
+            return (Bvh { wide: WideBvh::default(), objects: objects.to_vec(), shared: None }, order);
         }
         // Boxes that share their axes are grouped in their common frame,
         // where they are axis-aligned: far tighter nodes than their world
@@ -260,20 +225,24 @@ impl Bvh {
         build_range(&mut items, 0, 0, extent, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
-        let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &mut nodes, &objects)));
-        (Bvh { nodes, objects, shared }, order)
+        let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &objects)));
+        let wide = match shared {
+            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds)),
+            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds),
+        };
+        (Bvh { wide, objects, shared }, order)
     }
 
     /// Whether this is a flat list (no tree: at most [`BRUTE_FORCE_MAX`]
     /// objects).
     pub fn is_flat(&self) -> bool {
-        self.nodes.is_empty()
+        self.wide.is_empty()
     }
 
     /// A flat list of the objects of two flat lists, `a`'s first.
     pub fn concat_flat(a: &Bvh, b: &Bvh) -> Option<Bvh> {
         (a.is_flat() && b.is_flat()).then(|| Bvh {
-            nodes: Vec::new(),
+            wide: WideBvh::default(),
             objects: a.objects.iter().chain(&b.objects).copied().collect(),
             shared: None,
         })
@@ -298,7 +267,7 @@ impl Bvh {
     /// time on the solar scene).
     #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
-        if self.nodes.is_empty() {
+        if self.is_flat() {
             let mut best = (t_max, u32::MAX);
             test_range(&self.objects, 0, ray, &mut best);
             return best;
@@ -309,10 +278,12 @@ impl Bvh {
     /// [`Bvh::closest_hit`] when there is a tree.
     fn closest_hit_in_tree(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
         if let Some(shared) = &self.shared {
-            return shared.closest_hit(&self.nodes, ray, t_max);
+            return shared.closest_hit(&self.wide, ray, t_max);
         }
-        let inv_dir = ray.dir.recip();
-        closest_in(&self.nodes, &self.objects, ray, t_max, |node, t| node.bounds.hit(ray, inv_dir, t))
+        let wide_ray = WideRay::new(ray.origin.into(), ray.dir.into());
+        self.wide.closest_hit(&wide_ray, t_max, |start, count, best| {
+            test_range(&self.objects[start..start + count], start, ray, best);
+        })
     }
 
     /// Whether some object is hit at `0 < t < t_max`; stops at the first hit
@@ -321,7 +292,7 @@ impl Bvh {
     /// Inlined for flat lists, as [`Bvh::closest_hit`] is.
     #[inline(always)]
     pub fn any_hit(&self, ray: &Ray, t_max: f64) -> bool {
-        if self.nodes.is_empty() {
+        if self.is_flat() {
             // A plain loop: `Iterator::any` is not always inlined, which
             // would put the ray through memory again.
             for object in &self.objects {
@@ -337,97 +308,17 @@ impl Bvh {
     /// [`Bvh::any_hit`] when there is a tree.
     fn any_hit_in_tree(&self, ray: &Ray, t_max: f64) -> bool {
         if let Some(shared) = &self.shared {
-            return shared.any_hit(&self.nodes, ray, t_max);
+            return shared.any_hit(&self.wide, ray, t_max);
         }
-        let inv_dir = ray.dir.recip();
-        walk(
-            &self.nodes,
-            |k| self.nodes[k].bounds.hit(ray, inv_dir, t_max),
-            |_| false,
-            |start, count| self.objects[start..start + count].iter().any(|o| o.hit(ray) < t_max),
-        )
+        let wide_ray = WideRay::new(ray.origin.into(), ray.dir.into());
+        self.wide.any_hit(&wide_ray, t_max, |start, count| {
+            self.objects[start..start + count].iter().any(|o| o.hit(ray) < t_max)
+        })
     }
 
-    /// The depth of the tree (1 for a single leaf, 0 without a tree).
+    /// The depth of the tree (1 for a single node, 0 without a tree).
     pub fn depth(&self) -> usize {
-        fn depth_from(nodes: &[Node], k: usize) -> usize {
-            let node = &nodes[k];
-            if node.count > 0 { 1 } else { 1 + depth_from(nodes, k + 1).max(depth_from(nodes, node.index as usize)) }
-        }
-        if self.nodes.is_empty() { 0 } else { depth_from(&self.nodes, 0) }
-    }
-}
-
-/// The closest-hit traversal of a flattened tree: `node_hit(node, t)` says whether the ray meets the node's box
-/// before `t`. An empty `nodes` means a flat list.
-#[inline(always)]
-fn closest_in(
-    nodes: &[Node],
-    objects: &[Bounded],
-    ray: &Ray,
-    t_max: f64,
-    node_hit: impl Fn(&Node, f64) -> bool,
-) -> (f64, u32) {
-    let mut best = (t_max, u32::MAX);
-    if nodes.is_empty() {
-        test_range(objects, 0, ray, &mut best);
-        return best;
-    }
-    // Visit the child on the ray's side of the split first, so `best`
-    // shrinks early and prunes the other.
-    let dir_negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
-    let best = Cell::new(best);
-    walk(
-        nodes,
-        |k| node_hit(&nodes[k], reach_past(best.get().0)),
-        |axis| dir_negative[axis as usize],
-        |start, count| {
-            let mut nearest = best.get();
-            test_range(&objects[start..start + count], start, ray, &mut nearest);
-            best.set(nearest);
-            false
-        },
-    );
-    best.get()
-}
-
-/// The depth-first walk of a flattened tree shared by every query, with an
-/// explicit stack: at a node whose box the ray `meets`, a leaf's objects go
-/// to `leaf(start, count)`, which returns true to stop the walk (the walk
-/// then returns true); of an inner node's two children, the one stored at
-/// the node's `index` is visited first when `index_first(axis)`, else the
-/// one right after the node.
-#[inline(always)]
-fn walk(
-    nodes: &[Node],
-    mut meets: impl FnMut(usize) -> bool,
-    index_first: impl Fn(u16) -> bool,
-    mut leaf: impl FnMut(usize, usize) -> bool,
-) -> bool {
-    let mut stack = [0u32; STACK_SIZE];
-    let mut top = 0usize;
-    let mut current = 0usize;
-    loop {
-        if meets(current) {
-            let Node { index, count, axis, .. } = nodes[current];
-            if count > 0 {
-                if leaf(index as usize, count as usize) {
-                    return true;
-                }
-            } else {
-                let (first, second) =
-                    if index_first(axis) { (index as usize, current + 1) } else { (current + 1, index as usize) };
-                stack[top] = second as u32;
-                top += 1;
-                current = first;
-                continue;
-            }
-        }
-        if top == 0 {
-            return false;
-        }
-        top -= 1;
-        current = stack[top] as usize;
+        self.wide.depth()
     }
 }
 
@@ -483,25 +374,25 @@ pub(crate) fn nearer_than(t: f64) -> f64 {
 /// its left subtree, its right subtree.
 fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, nodes: &mut Vec<Node>) {
     let count = items.len();
-    let leaf = Node { bounds: extent.bounds, index: offset as u32, count: count as u16, axis: 0 };
+    let leaf = Node { bounds: extent.bounds, index: offset as u32, count: count as u16 };
     if count <= 2 {
         nodes.push(leaf);
         return;
     }
     let split = if depth < SAH_MAX_DEPTH { sah_split(items, &extent) } else { None };
-    let (axis, mid, left_extent, right_extent) = match split {
+    let (mid, left_extent, right_extent) = match split {
         Some(Split::Leaf) if count <= MAX_LEAF => {
             nodes.push(leaf);
             return;
         }
-        Some(Split::At { axis, mid, left, right }) => (axis, mid, left, right),
+        Some(Split::At { mid, left, right }) => (mid, left, right),
         _ => {
-            let (axis, mid) = median_split(items, &extent.centroids);
-            (axis, mid, Extent::of(&items[..mid]), Extent::of(&items[mid..]))
+            let mid = median_split(items, &extent.centroids);
+            (mid, Extent::of(&items[..mid]), Extent::of(&items[mid..]))
         }
     };
     let at = nodes.len();
-    nodes.push(Node { bounds: extent.bounds, index: 0, count: 0, axis: axis as u16 });
+    nodes.push(Node { bounds: extent.bounds, index: 0, count: 0 });
     let (left, right) = items.split_at_mut(mid);
     if count >= PARALLEL_MIN {
         // The right subtree is built into its own list, with indices from
@@ -529,9 +420,9 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, 
 enum Split {
     /// Keeping the range as a leaf is cheapest.
     Leaf,
-    /// Split on `axis`; `items[..mid]` go left after reordering; the extents
-    /// of both sides.
-    At { axis: usize, mid: usize, left: Extent, right: Extent },
+    /// Split: `items[..mid]` go left after reordering; the extents of both
+    /// sides.
+    At { mid: usize, left: Extent, right: Extent },
 }
 
 /// Which of [`BINS`] bins along each axis an item's centroid falls in: the
@@ -660,12 +551,12 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
     let (mid, left_centroids, right_centroids) = partition(items, |it| usize::from(it.bins[axis]) < bin);
     let left = Extent { bounds: side_bounds(&bins.bounds[axis][..bin]), centroids: left_centroids };
     let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..]), centroids: right_centroids };
-    Some(Split::At { axis, mid, left, right })
+    Some(Split::At { mid, left, right })
 }
 
 /// Splits by object count along the longest centroid axis (the fallback
-/// when the SAH cannot or should not decide).
-fn median_split(items: &mut [Item], centroids: &Aabb) -> (usize, usize) {
+/// when the SAH cannot or should not decide); returns the left side's count.
+fn median_split(items: &mut [Item], centroids: &Aabb) -> usize {
     let extent = centroids.max - centroids.min;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
         0
@@ -676,7 +567,7 @@ fn median_split(items: &mut [Item], centroids: &Aabb) -> (usize, usize) {
     };
     let mid = items.len() / 2;
     items.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]).then(a.index.cmp(&b.index)));
-    (axis, mid)
+    mid
 }
 
 /// Moves the items satisfying `left` to the front; returns their count and

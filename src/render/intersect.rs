@@ -372,17 +372,6 @@ impl Aabb {
         let d = (self.max - self.min).max(DVec3::ZERO);
         d.x * d.y + d.y * d.z + d.z * d.x
     }
-
-    /// The slab test: whether the ray meets the box at some `t` in
-    /// `[0, t_max]`; `inv_dir` is `1 / ray.dir` per component.
-    #[inline]
-    pub fn hit(&self, ray: &Ray, inv_dir: DVec3, t_max: f64) -> bool {
-        let t1 = (self.min - ray.origin) * inv_dir;
-        let t2 = (self.max - ray.origin) * inv_dir;
-        let t_near = t1.min(t2).max_element().max(0.0);
-        let t_far = t1.max(t2).min_element().min(t_max);
-        t_near <= t_far
-    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,674 @@
+//! The traversal form of the tree: 8-wide nodes whose children's boxes are
+//! stored as f32 in SoA layout and tested together (one SIMD lane per
+//! child), made by collapsing the binary tree the build produces.
+//!
+//! The f32 test never loses a hit: boxes are rounded outwards and padded,
+//! the ray origin is rounded up for the lower planes and down for the upper
+//! ones, `1 / direction` is rounded towards zero for the entry planes and
+//! away from zero for the exit planes (by a margin of two ulps, cheaper per
+//! ray than exact directed rounding), and the interval's end is widened by
+//! [`WIDEN`] to cover the rounding of the subtraction and the product. The
+//! objects themselves are tested by the exact f64 tests of the caller.
+//!
+//! The node tests are plain `[f32; 8]` loops, which LLVM turns into SSE on
+//! the x86_64 baseline (AVX with the wider forms) and NEON on aarch64; on
+//! x86_64 the walks are also compiled for AVX2 and AVX-512 and chosen at
+//! run time ([`Isa`]).
+
+use std::mem::MaybeUninit;
+
+use super::{Aabb, Node, STACK_SIZE, reach_past};
+
+/// Children per node.
+const WIDTH: usize = 8;
+
+/// The factor by which the exit distance is widened before it is compared
+/// with the entry distance: the entry and exit distances are each off by at
+/// most two roundings (`(1 + 2⁻²⁴)²` relative), so `1 + 2⁻²¹` covers both
+/// with room to spare.
+const WIDEN: f32 = 1.0 + 1.0 / (1u32 << 21) as f32;
+
+/// Every child box is padded by this fraction of its largest coordinate:
+/// far above the rounding of f64 arithmetic (a few units of 2⁻⁵³), so a hit
+/// that the f64 object tests find at a box's very edge, off it by their
+/// rounding, is not culled.
+const PAD: f64 = 1.0 / (1u64 << 22) as f64;
+
+/// A node: the boxes of up to [`WIDTH`] children, and where each child is.
+///
+/// An inner child (`count == 0`) is the node at `child`; a leaf child holds
+/// the objects `child .. child + count`. An unused slot has an empty box
+/// (`min = +∞`, `max = -∞`), which no ray meets.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
+struct WideNode {
+    /// Minimum x, y, z, then maximum x, y, z, of each child.
+    bounds: [[f32; WIDTH]; 6],
+    child: [u32; WIDTH],
+    count: [u32; WIDTH],
+}
+
+impl WideNode {
+    const EMPTY: WideNode = WideNode {
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
+        child: [0; WIDTH],
+        count: [0; WIDTH],
+    };
+
+    /// The lowest child of `mask`, which loses it.
+    #[inline(always)]
+    fn take(&self, mask: &mut u32, entries: &[f32; WIDTH]) -> Pending {
+        let i = mask.trailing_zeros() as usize;
+        *mask &= *mask - 1;
+        Pending { child: self.child[i], count: self.count[i], entry: entries[i] }
+    }
+
+    /// Stores `bounds` as the box of child `slot`, rounded outwards.
+    fn set_bounds(&mut self, slot: usize, bounds: &Aabb) {
+        let pad = PAD * bounds.min.abs().max(bounds.max.abs()).max_element();
+        for axis in 0..3 {
+            self.bounds[axis][slot] = round_down(bounds.min[axis] - pad);
+            self.bounds[axis + 3][slot] = round_up(bounds.max[axis] + pad);
+        }
+    }
+}
+
+/// Which compiled form of the walks runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Isa {
+    /// The baseline of the target (SSE2 on x86_64, NEON on aarch64).
+    Portable,
+    /// AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    /// AVX-512 (F, VL).
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
+}
+
+impl Isa {
+    /// The widest form this processor runs.
+    pub(super) fn detect() -> Isa {
+        *Isa::available().last().expect("the portable form always runs")
+    }
+
+    /// Every form this processor runs, the widest last.
+    pub(super) fn available() -> Vec<Isa> {
+        #[allow(unused_mut, reason = "only x86_64 has other forms")]
+        let mut all = vec![Isa::Portable];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
+                all.push(Isa::Avx2);
+                if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
+                    all.push(Isa::Avx512);
+                }
+            }
+        }
+        all
+    }
+}
+
+/// The tree in its traversal form.
+#[derive(Debug, Clone)]
+pub(super) struct WideBvh {
+    nodes: Vec<WideNode>,
+    isa: Isa,
+}
+
+impl Default for WideBvh {
+    fn default() -> WideBvh {
+        WideBvh { nodes: Vec::new(), isa: Isa::Portable }
+    }
+}
+
+/// A ray prepared for the f32 node tests; for each axis, the plane the ray
+/// enters a box by (the lower one when the direction is positive) and the
+/// one it leaves by.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct WideRay {
+    /// Row of [`WideNode::bounds`] of the entry plane, per axis.
+    entry_row: [usize; 3],
+    exit_row: [usize; 3],
+    /// The origin rounded up for lower planes, down for upper planes.
+    entry_origin: [f32; 3],
+    exit_origin: [f32; 3],
+    /// `1 / direction`, rounded towards zero for the entry planes (so entry
+    /// distances come out no larger) and away from zero for the exit planes.
+    entry_inv: [f32; 3],
+    exit_inv: [f32; 3],
+}
+
+impl WideRay {
+    /// The ray `origin + t dir`.
+    #[inline(always)]
+    pub(super) fn new(origin: [f64; 3], dir: [f64; 3]) -> WideRay {
+        let mut ray = WideRay {
+            entry_row: [0; 3],
+            exit_row: [0; 3],
+            entry_origin: [0.0; 3],
+            exit_origin: [0.0; 3],
+            entry_inv: [0.0; 3],
+            exit_inv: [0.0; 3],
+        };
+        for axis in 0..3 {
+            let inv = 1.0 / dir[axis];
+            // `(lower - origin)` may only shrink, `(upper - origin)` only grow.
+            let (o, margin) = widened(origin[axis]);
+            let (lower_origin, upper_origin) = (o + margin, o - margin);
+            let (inv, margin) = widened(inv);
+            let (towards_zero, away_from_zero) = (inv - margin.copysign(inv), inv + margin.copysign(inv));
+            let negative = inv.is_sign_negative();
+            ray.entry_row[axis] = if negative { axis + 3 } else { axis };
+            ray.exit_row[axis] = if negative { axis } else { axis + 3 };
+            ray.entry_origin[axis] = if negative { upper_origin } else { lower_origin };
+            ray.exit_origin[axis] = if negative { lower_origin } else { upper_origin };
+            ray.entry_inv[axis] = towards_zero;
+            ray.exit_inv[axis] = away_from_zero;
+        }
+        ray
+    }
+}
+
+/// `x` in f32 (clamped to the finite range) and a margin above its
+/// rounding error: `value - margin <= x <= value + margin` once each side
+/// is rounded, and past the range the sums round to infinity. Cheaper per
+/// ray than exact directed rounding.
+#[inline(always)]
+fn widened(x: f64) -> (f32, f32) {
+    let value = x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
+    // Two units in the last place, and the smallest normal for values
+    // that rounded to zero or below the normal range.
+    (value, value.abs() * (1.0 / (1u32 << 22) as f32) + f32::MIN_POSITIVE)
+}
+
+/// An f32 not below `x`: a distance limit for the node tests.
+#[inline(always)]
+fn limit_above(x: f64) -> f32 {
+    let (value, margin) = widened(x);
+    value + margin
+}
+
+/// The largest f32 not above `x`.
+fn round_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// The smallest f32 not below `x`.
+fn round_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
+/// The entry distance of each child whose box the ray meets at some
+/// `t <= t_max`, and a bit mask of those children.
+///
+/// A `0 · ∞` (the ray in a plane of a box, parallel to it) gives NaN, which
+/// the comparisons drop: that axis then does not limit the interval, which
+/// is conservative.
+#[inline(always)]
+fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
+    let mut entry = [0.0f32; WIDTH];
+    let mut exit = [t_max; WIDTH];
+    for axis in 0..3 {
+        let lower = &node.bounds[ray.entry_row[axis]];
+        let upper = &node.bounds[ray.exit_row[axis]];
+        for i in 0..WIDTH {
+            let t_in = (lower[i] - ray.entry_origin[axis]) * ray.entry_inv[axis];
+            let t_out = (upper[i] - ray.exit_origin[axis]) * ray.exit_inv[axis];
+            entry[i] = if t_in > entry[i] { t_in } else { entry[i] };
+            exit[i] = if t_out < exit[i] { t_out } else { exit[i] };
+        }
+    }
+    for t in &mut exit {
+        *t *= WIDEN;
+    }
+    (entry, lanes_at_most(&entry, &exit))
+}
+
+/// The bit mask of the lanes where `a <= b`.
+#[inline(always)]
+fn lanes_at_most(a: &[f32; WIDTH], b: &[f32; WIDTH]) -> u32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_cmple_ps, _mm_loadu_ps, _mm_movemask_ps};
+        // LLVM builds this mask lane by lane from the portable loop; one
+        // SSE compare and move-mask per 4 lanes is much cheaper.
+        (0..WIDTH / 4).fold(0, |mask, c| {
+            let (a, b) = (&a[4 * c..4 * c + 4], &b[4 * c..4 * c + 4]);
+            // SAFETY: SSE is part of the x86_64 baseline, and each load
+            // reads 4 f32 of a slice of 4 (no alignment needed).
+            let lanes = unsafe { _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(a.as_ptr()), _mm_loadu_ps(b.as_ptr()))) };
+            mask | (lanes as u32) << (4 * c)
+        })
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        (0..WIDTH).fold(0, |mask, i| mask | u32::from(a[i] <= b[i]) << i)
+    }
+}
+
+/// A child waiting on the traversal stack: where it is, its object count
+/// (0 for a node) and the distance at which the ray enters its box.
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    child: u32,
+    count: u32,
+    entry: f32,
+}
+
+/// The walks start at the root node.
+const ROOT: Pending = Pending { child: 0, count: 0, entry: 0.0 };
+
+/// Most children waiting at once: each level of the walk leaves at most
+/// `WIDTH - 1` of them, and the tree is shallower than the binary one.
+const WIDE_STACK_SIZE: usize = (WIDTH - 1) * STACK_SIZE + 1;
+
+/// The traversal stack, left uninitialised: zeroing it took a fifth of the
+/// instructions of a render.
+struct Stack {
+    items: [MaybeUninit<Pending>; WIDE_STACK_SIZE],
+    len: usize,
+}
+
+impl Stack {
+    #[inline(always)]
+    fn new() -> Stack {
+        Stack { items: [const { MaybeUninit::uninit() }; WIDE_STACK_SIZE], len: 0 }
+    }
+
+    /// The item at `k < len`.
+    #[inline(always)]
+    fn get(&self, k: usize) -> Pending {
+        debug_assert!(k < self.len);
+        // SAFETY: every item below `len` was written (`new`, `push`,
+        // `push_sorted`), and the callers pass `k < len`.
+        unsafe { self.items[k].assume_init() }
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Pending> {
+        let top = self.len.checked_sub(1)?;
+        let item = self.get(top);
+        self.len = top;
+        Some(item)
+    }
+
+    #[inline(always)]
+    fn push(&mut self, item: Pending) {
+        self.items[self.len].write(item);
+        self.len += 1;
+    }
+
+    /// Pushes `item` among the items from `first` up, which are kept in
+    /// decreasing entry distance (the nearest on top).
+    #[inline(always)]
+    fn push_sorted(&mut self, first: usize, item: Pending) {
+        let mut at = self.len;
+        while at > first && self.get(at - 1).entry < item.entry {
+            self.items[at] = self.items[at - 1];
+            at -= 1;
+        }
+        self.items[at].write(item);
+        self.len += 1;
+    }
+}
+
+impl WideBvh {
+    /// Collapses the binary tree `nodes` (flattened depth-first, the root
+    /// first) into wide nodes: each takes the children of a binary node and
+    /// opens its largest inner child until it has [`WIDTH`]. `bounds(k)` is
+    /// the box tested for binary node `k`.
+    pub(super) fn collapse(nodes: &[Node], bounds: impl Fn(usize) -> Aabb) -> WideBvh {
+        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 2), isa: Isa::detect() };
+        if !nodes.is_empty() {
+            wide.add(nodes, &bounds, 0);
+        }
+        wide
+    }
+
+    /// Appends the wide node made from binary node `k` and its subtrees;
+    /// returns its index.
+    fn add(&mut self, nodes: &[Node], bounds: &impl Fn(usize) -> Aabb, k: usize) -> u32 {
+        let at = self.nodes.len();
+        self.nodes.push(WideNode::EMPTY);
+        let is_leaf = |k: usize| nodes[k].count > 0;
+        let (mut kids, mut n) = ([k; WIDTH], 1);
+        if !is_leaf(k) {
+            (kids[0], kids[1], n) = (k + 1, nodes[k].index as usize, 2);
+        }
+        while n < WIDTH {
+            let largest = (0..n)
+                .filter(|&i| !is_leaf(kids[i]))
+                .max_by(|&a, &b| bounds(kids[a]).half_area().total_cmp(&bounds(kids[b]).half_area()));
+            let Some(i) = largest else { break };
+            let opened = kids[i];
+            (kids[i], kids[n]) = (opened + 1, nodes[opened].index as usize);
+            n += 1;
+        }
+        let mut node = WideNode::EMPTY;
+        for (slot, &kid) in kids[..n].iter().enumerate() {
+            node.set_bounds(slot, &bounds(kid));
+            (node.child[slot], node.count[slot]) = if is_leaf(kid) {
+                (nodes[kid].index, u32::from(nodes[kid].count))
+            } else {
+                (self.add(nodes, bounds, kid), 0)
+            };
+        }
+        self.nodes[at] = node;
+        at as u32
+    }
+
+    /// Whether there is no tree.
+    pub(super) fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The depth of the tree (1 for a single node, 0 without a tree).
+    pub(super) fn depth(&self) -> usize {
+        fn depth_from(nodes: &[WideNode], k: usize) -> usize {
+            let node = &nodes[k];
+            // Unused slots point at the root, which is no one's child.
+            let inner = (0..WIDTH).filter(|&i| node.count[i] == 0 && node.child[i] != 0);
+            1 + inner.map(|i| depth_from(nodes, node.child[i] as usize)).max().unwrap_or(0)
+        }
+        if self.nodes.is_empty() { 0 } else { depth_from(&self.nodes, 0) }
+    }
+
+    /// The closest-hit walk: the children the ray meets are visited nearest
+    /// first, each only while its entry distance is within
+    /// [`reach_past`]`(best.0)`, so that ties are still seen;
+    /// `leaf(start, count, best)` tests the objects
+    /// `start .. start + count` and keeps the nearest hit in `best`
+    /// (starting at `(t_max, u32::MAX)`).
+    #[inline(always)]
+    pub(super) fn closest_hit(
+        &self,
+        ray: &WideRay,
+        t_max: f64,
+        leaf: impl FnMut(usize, usize, &mut (f64, u32)),
+    ) -> (f64, u32) {
+        self.run(Closest { ray, t_max, leaf })
+    }
+
+    /// The any-hit walk: whether `leaf(start, count)` returns true for the
+    /// objects of some leaf whose box the ray meets before `t_max`.
+    #[inline(always)]
+    pub(super) fn any_hit(&self, ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
+        self.run(Any { ray, t_max, leaf })
+    }
+
+    /// Runs `walk` in the compiled form chosen at build time.
+    #[inline(always)]
+    fn run<W: Walk>(&self, walk: W) -> W::Output {
+        match self.isa {
+            Isa::Portable => walk.walk(&self.nodes),
+            // SAFETY: `isa` is `Avx2` only when the processor has AVX2 and
+            // FMA ([`Isa::available`]).
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2 => unsafe { walk_avx2(walk, &self.nodes) },
+            // SAFETY: `isa` is `Avx512` only when the processor has AVX-512
+            // F and VL (as above).
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx512 => unsafe { walk_avx512(walk, &self.nodes) },
+        }
+    }
+
+    /// The same tree walked with the compiled form `isa` (for tests).
+    #[cfg(test)]
+    pub(super) fn with_isa(&self, isa: Isa) -> WideBvh {
+        WideBvh { nodes: self.nodes.clone(), isa }
+    }
+}
+
+/// [`WideBvh::closest_hit`], compiled for the baseline.
+#[inline(always)]
+fn closest_walk(
+    nodes: &[WideNode],
+    ray: &WideRay,
+    t_max: f64,
+    mut leaf: impl FnMut(usize, usize, &mut (f64, u32)),
+) -> (f64, u32) {
+    let mut best = (t_max, u32::MAX);
+    let mut limit = limit_above(reach_past(t_max));
+    let mut stack = Stack::new();
+    let mut current = ROOT;
+    loop {
+        if current.count > 0 {
+            leaf(current.child as usize, current.count as usize, &mut best);
+            limit = limit_above(reach_past(best.0));
+        } else {
+            let node = &nodes[current.child as usize];
+            let (entries, mut mask) = meet(node, ray, limit);
+            if mask != 0 {
+                let met = node.take(&mut mask, &entries);
+                if mask == 0 {
+                    current = met;
+                    continue;
+                }
+                // Several children met: onto the stack, the nearest on top.
+                let first = stack.len;
+                stack.push(met);
+                while mask != 0 {
+                    stack.push_sorted(first, node.take(&mut mask, &entries));
+                }
+            }
+        }
+        // The nearest waiting child still within reach.
+        loop {
+            let Some(next) = stack.pop() else { return best };
+            if next.entry <= limit * WIDEN {
+                current = next;
+                break;
+            }
+        }
+    }
+}
+
+/// [`WideBvh::any_hit`], compiled for the baseline.
+#[inline(always)]
+fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(usize, usize) -> bool) -> bool {
+    let limit = limit_above(t_max);
+    let mut stack = Stack::new();
+    let mut current = ROOT;
+    loop {
+        if current.count > 0 {
+            if leaf(current.child as usize, current.count as usize) {
+                return true;
+            }
+        } else {
+            let node = &nodes[current.child as usize];
+            let (entries, mut mask) = meet(node, ray, limit);
+            if mask != 0 {
+                current = node.take(&mut mask, &entries);
+                while mask != 0 {
+                    stack.push(node.take(&mut mask, &entries));
+                }
+                continue;
+            }
+        }
+        let Some(next) = stack.pop() else { return false };
+        current = next;
+    }
+}
+
+/// A query's walk of the tree, compiled once per [`Isa`].
+trait Walk {
+    type Output;
+    fn walk(self, nodes: &[WideNode]) -> Self::Output;
+}
+
+/// [`WideBvh::closest_hit`]'s walk.
+struct Closest<'a, L> {
+    ray: &'a WideRay,
+    t_max: f64,
+    leaf: L,
+}
+
+impl<L: FnMut(usize, usize, &mut (f64, u32))> Walk for Closest<'_, L> {
+    type Output = (f64, u32);
+
+    #[inline(always)]
+    fn walk(self, nodes: &[WideNode]) -> (f64, u32) {
+        closest_walk(nodes, self.ray, self.t_max, self.leaf)
+    }
+}
+
+/// [`WideBvh::any_hit`]'s walk.
+struct Any<'a, L> {
+    ray: &'a WideRay,
+    t_max: f64,
+    leaf: L,
+}
+
+impl<L: FnMut(usize, usize) -> bool> Walk for Any<'_, L> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn walk(self, nodes: &[WideNode]) -> bool {
+        any_walk(nodes, self.ray, self.t_max, self.leaf)
+    }
+}
+
+/// `walk` compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn walk_avx2<W: Walk>(walk: W, nodes: &[WideNode]) -> W::Output {
+    walk.walk(nodes)
+}
+
+/// `walk` compiled for AVX-512.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+fn walk_avx512<W: Walk>(walk: W, nodes: &[WideNode]) -> W::Output {
+    walk.walk(nodes)
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DMat3, DVec3};
+    use proptest::prelude::Rng;
+    use proptest::test_runner::{RngAlgorithm, TestRng};
+
+    use super::super::{Bvh, test_range};
+    use super::*;
+    use crate::render::intersect::{Bounded, BoxShape, Ray, SphereShape};
+
+    #[test]
+    fn rounding_is_outward() {
+        for x in [0.1, -0.1, 1e-50, -1e-50, 1e300, -1e300, 3.0, 1.0 / 3.0] {
+            assert!(f64::from(round_down(x)) <= x && f64::from(round_up(x)) >= x, "{x}");
+            let (value, margin) = widened(x);
+            assert!(f64::from(value - margin) <= x && f64::from(value + margin) >= x, "{x}");
+            if x.abs() >= 1.0 {
+                // As `1 / direction` is (a unit direction).
+                assert!(f64::from(value - margin.copysign(value)).abs() <= x.abs(), "{x}");
+            }
+        }
+    }
+
+    /// Proptest's deterministic generator: the same scenes and rays on every run.
+    struct Random(TestRng);
+
+    impl Random {
+        fn new() -> Random {
+            Random(TestRng::deterministic_rng(RngAlgorithm::ChaCha))
+        }
+
+        /// Uniform in `[-1, 1)`.
+        fn next(&mut self) -> f64 {
+            (self.0.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+
+        fn vector(&mut self) -> DVec3 {
+            DVec3::new(self.next(), self.next(), self.next())
+        }
+
+        /// A unit direction; one time in four along an axis or in a
+        /// coordinate plane (zero components: `1 / 0` in the node tests).
+        fn direction(&mut self) -> DVec3 {
+            let mut d = self.vector();
+            match (self.next() * 8.0) as i32 {
+                -8 | -7 => d.x = 0.0,
+                -6 => (d.x, d.y) = (0.0, 0.0),
+                _ => {}
+            }
+            if d.length() < 1e-3 { DVec3::Z } else { d.normalize() }
+        }
+    }
+
+    /// The objects hit in tree order, tested one by one: the reference that
+    /// every compiled form of the walks must match.
+    fn brute_force(bvh: &Bvh, ray: &Ray, t_max: f64) -> ((f64, u32), bool) {
+        let mut best = (t_max, u32::MAX);
+        test_range(bvh.objects(), 0, ray, &mut best);
+        (best, bvh.objects().iter().any(|o| o.hit(ray) < t_max))
+    }
+
+    /// Checks random rays through `objects`, some starting on the objects'
+    /// faces and corners, against [`brute_force`] with every compiled form.
+    fn check_against_brute_force(objects: &[Bounded], random: &mut Random) {
+        let (bvh, _) = Bvh::build(objects);
+        assert!(!bvh.is_flat());
+        for _ in 0..3000 {
+            let origin = match (random.next() * 2.0) as i32 {
+                // On a box's corner or a sphere's pole: origins in the planes of the node boxes.
+                0 => match objects[((random.next() + 1.0) * 0.5 * objects.len() as f64) as usize] {
+                    Bounded::Box(b) => b.center + b.to_local.transpose() * b.half,
+                    Bounded::Sphere(s) => s.center + DVec3::new(0.0, s.radius, 0.0),
+                },
+                _ => random.vector() * 12.0,
+            };
+            let ray = Ray::new(origin, random.direction());
+            let t_max = if random.next() < 0.0 { f64::INFINITY } else { 8.0 * (random.next() + 1.0) };
+            let expected = brute_force(&bvh, &ray, t_max);
+            for isa in Isa::available() {
+                let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
+                let found = (tree.closest_hit(&ray, t_max), tree.any_hit(&ray, t_max));
+                assert_eq!(found, expected, "{isa:?} {ray:?} t_max {t_max}");
+            }
+        }
+    }
+
+    #[test]
+    fn spheres_and_turned_boxes_give_the_hits_of_brute_force() {
+        let mut random = Random::new();
+        let objects: Vec<Bounded> = (0..600)
+            .map(|k| {
+                let center = random.vector() * 10.0;
+                if k % 2 == 0 {
+                    Bounded::Sphere(SphereShape { center, radius: 0.05 + 0.5 * (random.next() + 1.0) })
+                } else {
+                    let axes = DMat3::from_rotation_z(random.next()) * DMat3::from_rotation_x(random.next());
+                    let half = (random.vector().abs() + 0.05) * 0.6;
+                    Bounded::Box(BoxShape { center, half, to_local: axes.transpose() })
+                }
+            })
+            .collect();
+        check_against_brute_force(&objects, &mut random);
+    }
+
+    #[test]
+    fn boxes_of_one_frame_sharing_faces_give_the_hits_of_brute_force() {
+        // A turned grid of cubes that touch (the sponge's case): ties
+        // between coincident faces everywhere.
+        let mut random = Random::new();
+        let axes = DMat3::from_rotation_y(0.4) * DMat3::from_rotation_x(0.3);
+        let objects: Vec<Bounded> = (0..512)
+            .filter(|k| k % 3 != 0)
+            .map(|k| {
+                let cell = DVec3::new((k % 8) as f64, (k / 8 % 8) as f64, (k / 64) as f64) - 3.5;
+                Bounded::Box(BoxShape { center: axes * cell, half: DVec3::splat(0.5), to_local: axes.transpose() })
+            })
+            .collect();
+        check_against_brute_force(&objects, &mut random);
+    }
+}
