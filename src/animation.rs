@@ -79,8 +79,12 @@ pub fn render_animation<E>(
     let reuse = FrameReuse::applies(&first, options);
     let static_part = Arc::clone(first_prepared.static_part());
     // A frame waiting for a window, with the boxes of its moving objects,
-    // held in no more memory than they need.
+    // held in no more memory than they need; without frame reuse a window
+    // is one frame, and the boxes are not needed.
     let waiting = |k: u32, mut scene: Scene| {
+        if !reuse {
+            return Frame { k, scene, bounds: Vec::new() };
+        }
         scene.timed_primitives.shrink_to_fit();
         scene.lights.shrink_to_fit();
         let mut bounds = first_prepared.bounds_of(&scene.timed_primitives);
