@@ -369,3 +369,24 @@ fn watch_renders_at_every_save_until_ctrl_c() {
     session.send(ControlCode::EndOfTransmission).unwrap();
     session.expect(Eof).unwrap();
 }
+
+#[test]
+fn a_long_line_pasted_without_bracketed_paste_is_written_once() {
+    // Each key of a pasted line arrives alone. The editor writes each at
+    // the end of the line, a new row at every wrap: what reaches the
+    // terminal grows with the line, not with its square (as when every
+    // wrap, or every key with a hint from history, repainted the line).
+    let (mut session, _home) = fresh(false);
+    let line = format!("let long = 0{}", " + 1".repeat(2500));
+    // The second time, the history holds the line.
+    for round in 0..2 {
+        if round > 0 {
+            session.expect("ray> ").unwrap();
+        }
+        session.send_line(&line).unwrap();
+        let answer = session.expect("long = 2500").unwrap();
+        let written = answer.before().len();
+        assert!(written < 2 * line.len(), "{written} bytes written for a line of {}", line.len());
+    }
+    assert_eq!(leave(session), 0);
+}

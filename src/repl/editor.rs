@@ -26,9 +26,10 @@ use crate::lang::words::{self, Role};
 /// Commands whose arguments are file names.
 const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim", ":watch", ":write"];
 
-/// Lines longer than this are not coloured: colouring repaints the line at
-/// every key, and a long pasted line would take seconds.
-const MAX_COLOURED: usize = 1000;
+/// Lines longer than this are neither coloured nor hinted: either one makes
+/// rustyline repaint the whole line at every key, so a long pasted line
+/// would take seconds.
+const MAX_DECORATED: usize = 1000;
 
 /// The rustyline helper of the session.
 pub(crate) struct RayHelper {
@@ -188,14 +189,19 @@ impl Completer for RayHelper {
 
 /// Fish-style hints: the rest of the latest history entry that starts with
 /// the line typed, in grey after the cursor (→ or End takes it), up to the
-/// end of that entry's line.
+/// end of that entry's line; none where line and hint would be longer than
+/// [`MAX_DECORATED`] (each key repaints a hinted line).
 impl Hinter for RayHelper {
     type Hint = String;
 
     fn hint(&self, line: &str, pos: usize, ctx: &Context<'_>) -> Option<String> {
+        if line.len() > MAX_DECORATED {
+            return None;
+        }
         let hint = HistoryHinter::new().hint(line, pos, ctx)?;
         let first_line = hint.split('\n').next().unwrap_or_default();
-        (!first_line.is_empty()).then(|| first_line.to_string())
+        let fits = !first_line.is_empty() && line.len() + first_line.len() <= MAX_DECORATED;
+        fits.then(|| first_line.to_string())
     }
 }
 
@@ -214,7 +220,7 @@ impl Validator for RayHelper {
 
 impl Highlighter for RayHelper {
     fn highlight<'l>(&self, line: &'l str, _pos: usize) -> Cow<'l, str> {
-        if !self.color || line.len() > MAX_COLOURED {
+        if !self.color || line.len() > MAX_DECORATED {
             return Cow::Borrowed(line);
         }
         Cow::Owned(colorize(line))
@@ -229,15 +235,15 @@ impl Highlighter for RayHelper {
         Cow::Owned(format!("\x1b[{code}m{prompt}\x1b[0m"))
     }
 
-    /// Whether a key calls for the whole line to be drawn again. Without
-    /// that, rustyline writes just the key typed at the end of the line; with
-    /// it, a pasted line of n characters costs n repaints of up to n each.
     fn highlight_hint<'h>(&self, hint: &'h str) -> Cow<'h, str> {
         if self.color { Cow::Owned(format!("\x1b[2m{hint}\x1b[0m")) } else { Cow::Borrowed(hint) }
     }
 
+    /// Whether a key calls for the whole line to be drawn again. Without
+    /// that, rustyline writes just the key typed at the end of the line; with
+    /// it, a pasted line of n characters costs n repaints of up to n each.
     fn highlight_char(&self, line: &str, _pos: usize, kind: CmdKind) -> bool {
-        self.color && line.len() <= MAX_COLOURED && kind != CmdKind::MoveCursor
+        self.color && line.len() <= MAX_DECORATED && kind != CmdKind::MoveCursor
     }
 }
 
