@@ -83,8 +83,8 @@ enum BatchError {
     Scene(Box<Diagnostic>, SourceMap),
     /// Any other problem, in one message (`rayrepl: cannot read ...`).
     Other(String),
-    /// Ctrl-C or `kill` stopped a render: the files written before it,
-    /// each whole (no other file changed).
+    /// Ctrl-C or `kill` stopped a render or a write: the files written
+    /// before it, each whole (no other file changed).
     Interrupted(Vec<PathBuf>),
 }
 
@@ -370,20 +370,24 @@ fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_p
 /// Renders one image at `--time`, unless `cancel` is raised.
 fn still(cli: &Cli, parsed: &ParsedScene, output: &Path, cancel: &'static AtomicBool) -> Result<(), BatchError> {
     let start = Instant::now();
-    let image = render_still(cli, parsed, cancel).map_err(|e| unless_interrupted(e, cancel, &[]))?;
-    let name = if output == Path::new("-") {
-        let mut stdout = std::io::stdout().lock();
-        output::write_ppm(&mut stdout, &image)
-            .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
-        "standard output".to_string()
-    } else {
-        let written = output::write_image_cancellable(output, &image, cancel);
-        written.map_err(|e| unless_interrupted(format!("rayrepl: {e}").into(), cancel, &[]))?;
-        output.display().to_string()
-    };
+    let written = render_still(cli, parsed, cancel).and_then(|image| write_still(output, &image, cancel));
+    let name = written.map_err(|e| unless_interrupted(e, cancel, &[]))?;
     report_done(cli, &format!("wrote {name}"), &image_size(cli), start);
     Ok(())
+}
+
+/// Writes `image` to `output` (`-`: standard output, as PPM), unless
+/// `cancel` is raised; returns the name of where it went.
+fn write_still(output: &Path, image: &RgbImage, cancel: &'static AtomicBool) -> Result<String, BatchError> {
+    if output == Path::new("-") {
+        let mut stdout = std::io::stdout().lock();
+        output::write_ppm(&mut stdout, image)
+            .and_then(|()| stdout.flush())
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
+        return Ok("standard output".to_string());
+    }
+    output::write_image_cancellable(output, image, cancel).map_err(|e| format!("rayrepl: {e}"))?;
+    Ok(output.display().to_string())
 }
 
 /// Evaluates the scene at `--time` and renders it, with the progress bar
