@@ -8,7 +8,7 @@ use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use image::RgbImage;
@@ -25,7 +25,7 @@ use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::pov;
 use crate::progress::Progress;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
-use crate::repl::{self, SessionOptions};
+use crate::repl::{self, CancelSwitch, SessionOptions, cancel_flag};
 use crate::scene::Scene;
 use crate::watch::FileWatcher;
 
@@ -49,12 +49,12 @@ pub fn run(cli: Cli) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    if !cli.starts_session() {
-        // Sessions and scripts install their own handler, which stops what an entry does.
-        let _ = ctrlc::set_handler(|| output::exit_discarding_unfinished(output::INTERRUPTED_EXIT_CODE));
-    }
     match cli.scene.clone() {
-        Some(path) if !cli.interactive => pool.install(|| exit_code(run_file(&cli, &path))),
+        Some(path) if !cli.interactive => {
+            // Sessions and scripts install it too, and arm it for each entry.
+            let switch = CancelSwitch::install();
+            pool.install(|| exit_code(run_file(&cli, &path, switch)))
+        }
         _ => pool.install(|| repl::run(&session_options(&cli))),
     }
 }
@@ -83,6 +83,9 @@ enum BatchError {
     Scene(Box<Diagnostic>, SourceMap),
     /// Any other problem, in one message (`rayrepl: cannot read ...`).
     Other(String),
+    /// Ctrl-C or `kill` stopped a render or a write: the files written
+    /// before it, each whole (no other file changed).
+    Interrupted(Vec<PathBuf>),
 }
 
 impl From<String> for BatchError {
@@ -97,7 +100,10 @@ fn exit_code(result: Result<(), BatchError>) -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             print_error(&error);
-            ExitCode::FAILURE
+            match error {
+                BatchError::Interrupted(_) => ExitCode::from(output::INTERRUPTED_EXIT_CODE as u8),
+                _ => ExitCode::FAILURE,
+            }
         }
     }
 }
@@ -107,17 +113,25 @@ fn print_error(error: &BatchError) {
     match error {
         BatchError::Scene(diagnostic, sources) => emit(&mut anstream::stderr(), diagnostic, sources),
         BatchError::Other(message) => eprintln!("{}", message.trim_end()),
+        BatchError::Interrupted(written) if written.is_empty() => {
+            eprintln!("rayrepl: interrupted: no file was written")
+        }
+        BatchError::Interrupted(written) => {
+            eprintln!("rayrepl: interrupted: {} written before it stopped", output::describe_files(written))
+        }
     }
 }
 
-/// Checks or renders one scene file, or follows it with `--watch`.
-fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
+/// Checks or renders one scene file, or follows it with `--watch`. While
+/// it renders and writes, `switch` (Ctrl-C, `kill`) stops it; at any
+/// other time they end the process.
+fn run_file(cli: &Cli, path: &Path, switch: Option<&'static CancelSwitch>) -> Result<(), BatchError> {
     if cli.watch {
         return watch(cli, path);
     }
     let mut sources = SourceMap::new();
     let id = load(&mut sources, path)?;
-    let parsed = ParsedScene::parse(sources, id, cli)?;
+    let parsed = ParsedScene::parse(sources, id, cli, cancel_flag(switch))?;
     let result = if let Some(pov) = &cli.export_pov {
         export_pov(cli, &parsed, id, pov, path)
     } else if cli.check {
@@ -127,11 +141,14 @@ fn run_file(cli: &Cli, path: &Path) -> Result<(), BatchError> {
     } else if let Some((x, y)) = cli.explain {
         explain(cli, &parsed, x, y)
     } else {
-        output_path(cli, path).map_err(BatchError::from).and_then(|output| match cli.anim {
-            Some(count) => {
-                animation_format(cli, &output).and_then(|format| animate(cli, &parsed, count, &output, format))
+        output_path(cli, path).map_err(BatchError::from).and_then(|output| {
+            let _armed = switch.map(CancelSwitch::arm);
+            let cancel = cancel_flag(switch);
+            match cli.anim {
+                Some(count) => animation_format(cli, &output)
+                    .and_then(|format| animate(cli, &parsed, count, &output, format, cancel)),
+                None => still(cli, &parsed, &output, cancel),
             }
-            None => still(cli, &parsed, &output),
         })
     };
     if let Some(note) = parsed.printed.borrow().hidden_note() {
@@ -153,11 +170,18 @@ struct ParsedScene {
     allowed: Allowed,
     /// What `print` wrote, over every evaluation (the limit is for the whole run).
     printed: RefCell<PrintLog>,
+    /// Raised by Ctrl-C while a render is under way: stops an evaluation.
+    cancel: &'static AtomicBool,
 }
 
 impl ParsedScene {
-    /// Parses the file `id` of `sources`.
-    fn parse(sources: SourceMap, id: SourceId, cli: &Cli) -> Result<ParsedScene, BatchError> {
+    /// Parses the file `id` of `sources`, for evaluations that `cancel` stops.
+    fn parse(
+        sources: SourceMap,
+        id: SourceId,
+        cli: &Cli,
+        cancel: &'static AtomicBool,
+    ) -> Result<ParsedScene, BatchError> {
         let program = match parse_file(id, &sources.get(id).text) {
             Ok(program) => program,
             Err(diagnostic) => return Err(BatchError::Scene(Box::new(diagnostic), sources)),
@@ -176,6 +200,7 @@ impl ParsedScene {
             picture,
             allowed: cli.allowed(),
             printed: RefCell::default(),
+            cancel,
         })
     }
 
@@ -186,7 +211,7 @@ impl ParsedScene {
     /// What `print` writes comes first; the whole scene (not `skip_static`)
     /// is also checked for the mistakes that spoil a picture.
     fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, BatchError> {
-        let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static);
+        let interpreter = Interpreter::new(time, self.limits).skip_static(skip_static).interruptible(self.cancel);
         self.run(interpreter, !skip_static).map(Interpreter::into_scene)
     }
 
@@ -342,27 +367,32 @@ fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_p
     Ok(())
 }
 
-/// Renders one image at `--time`.
-fn still(cli: &Cli, parsed: &ParsedScene, output: &Path) -> Result<(), BatchError> {
+/// Renders one image at `--time`, unless `cancel` is raised.
+fn still(cli: &Cli, parsed: &ParsedScene, output: &Path, cancel: &'static AtomicBool) -> Result<(), BatchError> {
     let start = Instant::now();
-    let image = render_still(cli, parsed)?;
-    let name = if output == Path::new("-") {
-        let mut stdout = std::io::stdout().lock();
-        output::write_ppm(&mut stdout, &image)
-            .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
-        "standard output".to_string()
-    } else {
-        output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
-        output.display().to_string()
-    };
+    let written = render_still(cli, parsed, cancel).and_then(|image| write_still(output, &image, cancel));
+    let name = written.map_err(|e| unless_interrupted(e, cancel, &[]))?;
     report_done(cli, &format!("wrote {name}"), &image_size(cli), start);
     Ok(())
 }
 
+/// Writes `image` to `output` (`-`: standard output, as PPM), unless
+/// `cancel` is raised; returns the name of where it went.
+fn write_still(output: &Path, image: &RgbImage, cancel: &'static AtomicBool) -> Result<String, BatchError> {
+    if output == Path::new("-") {
+        let mut stdout = std::io::stdout().lock();
+        output::write_ppm(&mut stdout, image)
+            .and_then(|()| stdout.flush())
+            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
+        return Ok("standard output".to_string());
+    }
+    output::write_image_cancellable(output, image, cancel).map_err(|e| format!("rayrepl: {e}"))?;
+    Ok(output.display().to_string())
+}
+
 /// Evaluates the scene at `--time` and renders it, with the progress bar
-/// and `--stats`.
-fn render_still(cli: &Cli, parsed: &ParsedScene) -> Result<RgbImage, BatchError> {
+/// and `--stats`, unless `cancel` is raised.
+fn render_still(cli: &Cli, parsed: &ParsedScene, cancel: &AtomicBool) -> Result<RgbImage, BatchError> {
     let start = Instant::now();
     let scene = parsed.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
@@ -370,7 +400,7 @@ fn render_still(cli: &Cli, parsed: &ParsedScene) -> Result<RgbImage, BatchError>
     let built = start.elapsed() - evaluated;
     let options = render_options(cli);
     let progress = Progress::new(u64::from(options.width) * u64::from(options.height), "rendering");
-    let (image, stats) = render_frame(&scene, &prepared, &options, &progress);
+    let (image, stats) = render_frame(&scene, &prepared, &options, &progress, cancel)?;
     progress.finish();
     if cli.stats {
         eprintln!("evaluate {:.3} s, build {:.3} s", evaluated.as_secs_f64(), built.as_secs_f64());
@@ -424,8 +454,8 @@ fn render_version(
 ) -> Result<(), BatchError> {
     let start = Instant::now();
     let name = sources.get(id).name.clone();
-    let parsed = ParsedScene::parse(sources, id, cli)?;
-    let image = render_still(cli, &parsed)?;
+    let parsed = ParsedScene::parse(sources, id, cli, &output::NEVER_CANCELLED)?;
+    let image = render_still(cli, &parsed, &output::NEVER_CANCELLED)?;
     if let Some(preview) = preview {
         preview.show(&image).map_err(|e| format!("rayrepl: cannot show the picture here: {e}"))?;
     }
@@ -465,23 +495,38 @@ fn counted(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Renders one frame with the progress bar attached.
+/// Renders one frame with the progress bar attached, unless `cancel` is
+/// raised.
 fn render_frame(
     scene: &Scene,
     prepared: &SceneGeometry,
     options: &RenderOptions,
     progress: &Progress,
-) -> (RgbImage, RenderStats) {
+    cancel: &AtomicBool,
+) -> Result<(RgbImage, RenderStats), BatchError> {
     let tick = |pixels: u64| progress.advance(pixels);
-    let control = RenderControl { progress: Some(&tick), cancel: None };
-    render::render(scene, prepared, options, &control).expect("a batch render is never cancelled")
+    let control = RenderControl { progress: Some(&tick), cancel: Some(cancel) };
+    render::render(scene, prepared, options, &control).map_err(|_| BatchError::Interrupted(Vec::new()))
+}
+
+/// `error`, or, if `cancel` was raised (Ctrl-C, `kill`: the error comes
+/// from that), the interruption, after the files `written`.
+fn unless_interrupted(error: BatchError, cancel: &AtomicBool, written: &[PathBuf]) -> BatchError {
+    if cancel.load(Ordering::SeqCst) { BatchError::Interrupted(written.to_vec()) } else { error }
 }
 
 /// Renders frames `--frames` (default all) of an animation of `count`
 /// frames, frame k at the time `--time-start` and `--time-step` give it,
 /// to numbered images or one file in `format` (see [`animation`] for what
-/// is computed once and what per frame).
-fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path, format: ImageFormat) -> Result<(), BatchError> {
+/// is computed once and what per frame), unless `cancel` is raised.
+fn animate(
+    cli: &Cli,
+    parsed: &ParsedScene,
+    count: u32,
+    output: &Path,
+    format: ImageFormat,
+    cancel: &'static AtomicBool,
+) -> Result<(), BatchError> {
     let start = Instant::now();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
@@ -495,23 +540,24 @@ fn animate(cli: &Cli, parsed: &ParsedScene, count: u32, output: &Path, format: I
     let per_frame = u64::from(options.width) * u64::from(options.height);
     let progress = Progress::new(per_frame * u64::from(frames.end() - frames.start() + 1), "animating");
     let tick = |pixels: u64| progress.advance(pixels);
-    let control = RenderControl { progress: Some(&tick), cancel: None };
+    let control = RenderControl { progress: Some(&tick), cancel: Some(cancel) };
     let animation = cli.animation_options();
-    let mut frames_out = FrameSink::new(output, format, count as usize, animation.playback);
+    let mut frames_out = FrameSink::new(output, format, count as usize, animation.playback, cancel);
     let evaluate = |k: u32, skip_static: bool| parsed.evaluate(animation.timeline.time_of(k), skip_static);
     let sink = |k: u32, image: RgbImage| {
         frames_out.add(k as usize, image).map_err(|e| BatchError::Other(format!("rayrepl: {e}")))
     };
     let total = match render_animation(frames.clone(), evaluate, &options, &control, sink) {
         Ok(total) => total,
-        Err(AnimationError::Failed(message)) => return Err(message),
-        Err(AnimationError::Cancelled) => unreachable!("a batch render is never cancelled"),
+        Err(AnimationError::Failed(error)) => return Err(unless_interrupted(error, cancel, frames_out.written())),
+        Err(AnimationError::Cancelled) => return Err(BatchError::Interrupted(frames_out.written().to_vec())),
     };
     progress.finish();
     if cli.stats {
         print_stats(&total, frames.clone().count());
     }
-    let written = frames_out.finish().map_err(|e| format!("rayrepl: {e}"))?;
+    let written = frames_out.finish();
+    let written = written.map_err(|e| unless_interrupted(format!("rayrepl: {e}").into(), cancel, &[]))?;
     let what = format!("{} of {}", counted(frames.count(), "frame", "frames"), image_size(cli));
     report_done(cli, &format!("wrote {}", output::describe_files(&written)), &what, start);
     Ok(())

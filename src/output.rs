@@ -363,6 +363,8 @@ pub(crate) struct FrameSink {
     /// The number of frames of the whole animation.
     count: usize,
     playback: Playback,
+    /// Raised by Ctrl-C: the frame being written, or the one file, is dropped.
+    cancel: &'static AtomicBool,
     /// The one file being encoded, from the first frame on.
     stream: Option<Stream>,
     written: Vec<PathBuf>,
@@ -376,22 +378,17 @@ enum Stream {
 }
 
 impl Stream {
-    /// Starts the file at `path` in `format` for `count` frames the size of
-    /// `first`.
-    fn start(
-        path: &Path,
-        format: ImageFormat,
-        count: usize,
-        playback: &Playback,
-        first: &RgbImage,
-    ) -> Result<Stream, OutputError> {
-        Ok(match format {
-            ImageFormat::Gif => Stream::Gif(GifStream::start(path, first, playback)?),
+    /// Starts `sink`'s one file, for frames the size of `first`; writing
+    /// it fails as soon as the sink's cancel flag is raised.
+    fn start(sink: &FrameSink, first: &RgbImage) -> Result<Stream, OutputError> {
+        let (path, playback, cancel) = (&sink.path, &sink.playback, sink.cancel);
+        Ok(match sink.format {
+            ImageFormat::Gif => Stream::Gif(GifStream::start(path, first, playback, cancel)?),
             ImageFormat::Apng => {
-                let frames = u32::try_from(count).unwrap_or(u32::MAX);
-                Stream::Apng(ApngStream::start(path, first, frames, playback)?)
+                let frames = u32::try_from(sink.count).unwrap_or(u32::MAX);
+                Stream::Apng(ApngStream::start(path, first, frames, playback, cancel)?)
             }
-            _ => Stream::Video(VideoStream::start(path, format, first, playback)?),
+            format => Stream::Video(VideoStream::start(path, format, first, playback, cancel)?),
         })
     }
 }
@@ -399,24 +396,31 @@ impl Stream {
 impl FrameSink {
     /// A sink for the `count` frames of an animation, in `format` (from
     /// [`check_animation_output`]), named after `path` and played as
-    /// `playback` says.
-    pub fn new(path: &Path, format: ImageFormat, count: usize, playback: Playback) -> FrameSink {
-        FrameSink { path: path.to_path_buf(), format, count, playback, stream: None, written: Vec::new() }
+    /// `playback` says. Raising `cancel` (Ctrl-C) stops the writing with
+    /// [`OutputError::Cancelled`], even in the middle of a frame.
+    pub fn new(
+        path: &Path,
+        format: ImageFormat,
+        count: usize,
+        playback: Playback,
+        cancel: &'static AtomicBool,
+    ) -> FrameSink {
+        FrameSink { path: path.to_path_buf(), format, count, playback, cancel, stream: None, written: Vec::new() }
     }
 
     /// Takes frame number `frame` (from 1).
     pub fn add(&mut self, frame: usize, image: RgbImage) -> Result<(), OutputError> {
         if self.format.is_still() {
             let path = frame_path(&self.path, frame, self.count);
-            write_image(&path, &image)?;
+            write_image_cancellable(&path, &image, self.cancel)?;
             self.written.push(path);
             return Ok(());
         }
         let first = self.stream.is_none();
-        let stream = match &mut self.stream {
-            Some(stream) => stream,
-            None => self.stream.insert(Stream::start(&self.path, self.format, self.count, &self.playback, &image)?),
-        };
+        if first {
+            self.stream = Some(Stream::start(self, &image)?);
+        }
+        let stream = self.stream.as_mut().expect("started above");
         match stream {
             // A GIF's first palette is learnt from the first frame: it fits.
             Stream::Gif(gif) => gif.add(&image, first),
@@ -505,21 +509,26 @@ impl PendingFile {
     fn create(
         path: &Path,
         cancel: &'static AtomicBool,
-    ) -> Result<(PendingFile, BufWriter<CancellableFile>), OutputError> {
+    ) -> Result<(PendingFile, BufWriter<Cancellable<File>>), OutputError> {
         let mut unfinished = unfinished();
         let temp = temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
         unfinished.push(temp.path().to_owned());
         let file = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
         let pending =
             PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp), cancel };
-        Ok((pending, BufWriter::new(CancellableFile { file, cancel })))
+        Ok((pending, BufWriter::new(Cancellable { inner: file, cancel })))
+    }
+
+    /// Whether `cancel` was raised: the file is not to be put in place.
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::SeqCst)
     }
 
     /// `error`, or [`OutputError::Cancelled`] if the write failed because
     /// `cancel` was raised (encoders pass the writer's error on in their own
     /// words).
     fn failure(&self, error: OutputError) -> OutputError {
-        if self.cancel.load(Ordering::SeqCst) { OutputError::Cancelled { path: self.path.clone() } } else { error }
+        if self.cancelled() { OutputError::Cancelled { path: self.path.clone() } } else { error }
     }
 
     /// Puts the written file in place of the target, with the target's
@@ -528,7 +537,7 @@ impl PendingFile {
     fn commit(mut self) -> Result<(), OutputError> {
         let temp = self.temp.take().expect("a pending file is committed once");
         temp.as_file().sync_all().map_err(|e| io_error(&self.path, e))?;
-        if self.cancel.load(Ordering::SeqCst) {
+        if self.cancelled() {
             return Err(OutputError::Cancelled { path: self.path.clone() });
         }
         if let Ok(existing) = std::fs::metadata(&self.path) {
@@ -553,24 +562,25 @@ impl Drop for PendingFile {
 /// call still sees Ctrl-C within a few milliseconds.
 const CANCELLABLE_PIECE: usize = 1 << 20;
 
-/// A file whose writes fail once `cancel` is raised. It sits under the
-/// `BufWriter`, so the flag is read once per buffer's worth, not per byte.
-struct CancellableFile {
-    file: File,
+/// A file (or a pipe) whose writes fail once `cancel` is raised. It sits
+/// under a `BufWriter`, so the flag is read once per buffer's worth, not
+/// per byte.
+struct Cancellable<W> {
+    inner: W,
     cancel: &'static AtomicBool,
 }
 
-impl Write for CancellableFile {
+impl<W: Write> Write for Cancellable<W> {
     fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
         if self.cancel.load(Ordering::Relaxed) {
             // Not `ErrorKind::Interrupted`: `write_all` would retry it.
             return Err(io::Error::other("cancelled"));
         }
-        self.file.write(&bytes[..bytes.len().min(CANCELLABLE_PIECE)])
+        self.inner.write(&bytes[..bytes.len().min(CANCELLABLE_PIECE)])
     }
 
     fn flush(&mut self) -> io::Result<()> {
-        self.file.flush()
+        self.inner.flush()
     }
 }
 
@@ -723,6 +733,61 @@ mod tests {
         assert_eq!(std::fs::read_dir(dir.path()).expect("list").count(), 3, "no temporary file left");
     }
 
+    /// Frames 1 and 2 of an animation to `name` in `format`, with `cancel`
+    /// raised after the first: the error, and the files written.
+    fn cancelled_after_one_frame(
+        dir: &Path,
+        name: &str,
+        format: ImageFormat,
+        cancel: &'static AtomicBool,
+    ) -> (OutputError, Vec<PathBuf>) {
+        let frame = RgbImage::from_fn(400, 300, |x, y| image::Rgb([x as u8, y as u8, (x ^ y) as u8]));
+        let mut sink = FrameSink::new(&dir.join(name), format, 3, Playback::default(), cancel);
+        sink.add(1, frame.clone()).expect("the first frame is taken");
+        cancel.store(true, Ordering::SeqCst);
+        let error = sink.add(2, frame).err().or_else(|| sink.finish().err()).expect("cancelled");
+        (error, names_in(dir))
+    }
+
+    /// The names in `dir`, sorted.
+    fn names_in(dir: &Path) -> Vec<PathBuf> {
+        let mut names: Vec<PathBuf> =
+            std::fs::read_dir(dir).expect("list").map(|entry| entry.expect("entry").file_name().into()).collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn a_cancelled_animation_keeps_whole_numbered_frames_and_no_partial_file() {
+        static NUMBERED: AtomicBool = AtomicBool::new(false);
+        static GIF: AtomicBool = AtomicBool::new(false);
+        static APNG: AtomicBool = AtomicBool::new(false);
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (error, files) = cancelled_after_one_frame(dir.path(), "f.png", ImageFormat::Png, &NUMBERED);
+        assert!(matches!(&error, OutputError::Cancelled { path } if path.ends_with("f0002.png")), "{error:?}");
+        assert_eq!(files, [PathBuf::from("f0001.png")], "frame 1 stays, no part of frame 2");
+        image::open(dir.path().join("f0001.png")).expect("frame 1 is whole");
+        std::fs::remove_file(dir.path().join("f0001.png")).expect("removed");
+        for (name, format, cancel) in [("a.gif", ImageFormat::Gif, &GIF), ("a.apng", ImageFormat::Apng, &APNG)] {
+            let (error, files) = cancelled_after_one_frame(dir.path(), name, format, cancel);
+            assert!(matches!(&error, OutputError::Cancelled { path } if path.ends_with(name)), "{error:?}");
+            assert_eq!(files, Vec::<PathBuf>::new(), "no {name}, no temporary file");
+        }
+    }
+
+    #[test]
+    fn a_cancelled_video_stops_ffmpeg_and_leaves_no_file() {
+        static VIDEO: AtomicBool = AtomicBool::new(false);
+        let dir = tempfile::tempdir().expect("temp dir");
+        if video::check_ffmpeg(&dir.path().join("v.mp4")).is_err() {
+            eprintln!("ffmpeg is not installed: skipped");
+            return;
+        }
+        let (error, files) = cancelled_after_one_frame(dir.path(), "v.mp4", ImageFormat::Mp4, &VIDEO);
+        assert!(matches!(&error, OutputError::Cancelled { path } if path.ends_with("v.mp4")), "{error:?}");
+        assert_eq!(files, Vec::<PathBuf>::new(), "no video, no temporary file");
+    }
+
     #[test]
     fn io_errors_read_without_os_error_numbers() {
         let busy = io::Error::from_raw_os_error(26);
@@ -742,7 +807,7 @@ mod tests {
 
     /// Writes `frames` to a GIF at `path` through a [`FrameSink`].
     fn write_gif(path: &Path, frames: &[RgbImage]) -> Result<Vec<PathBuf>, OutputError> {
-        let mut sink = FrameSink::new(path, ImageFormat::Gif, frames.len(), Playback::default());
+        let mut sink = FrameSink::new(path, ImageFormat::Gif, frames.len(), Playback::default(), &NEVER_CANCELLED);
         for (k, frame) in frames.iter().enumerate() {
             sink.add(k + 1, frame.clone())?;
         }

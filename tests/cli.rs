@@ -6,6 +6,9 @@ use assert_cmd::Command;
 use predicates::prelude::*;
 use predicates::str::contains;
 
+mod common;
+use common::interrupt::{interrupt, is_temporary, names_in, wait_for_a_write, wait_for_files};
+
 /// A scene with one lit red sphere in the middle of the picture.
 const SPHERE: &str = "camera distance 10 angle 1 end
 ambient 0.2
@@ -458,37 +461,88 @@ fn flags_that_would_do_nothing_are_refused() {
         .stderr(contains("'--check' cannot be used with '--output <FILE>'"));
 }
 
-/// The names in `dir`, sorted.
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> =
-        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-    names.sort();
-    names
+/// Whether `ffmpeg` can be run (videos need it).
+fn has_ffmpeg() -> bool {
+    std::process::Command::new("ffmpeg").arg("-version").output().is_ok_and(|out| out.status.success())
 }
 
 #[test]
 fn an_interrupted_animation_leaves_no_temporary_file_and_the_old_output_intact() {
-    for signal in ["-INT", "-TERM"] {
-        let (dir, path) = scene(MOVING);
-        let out = dir.path().join("anim.gif");
-        std::fs::write(&out, b"the old animation").expect("old output");
-        let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"))
-            .arg(&path)
-            .args(["--width", "64", "--height", "48", "--anim", "1000000", "-o"])
-            .arg(&out)
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .expect("started");
-        // Wait until the GIF is being written, frame by frame, into its temporary file.
-        while !names_in(dir.path()).iter().any(|name| name.ends_with(".tmp")) {
-            std::thread::sleep(std::time::Duration::from_millis(20));
+    let videos: &[&str] = if has_ffmpeg() { &["anim.mp4"] } else { &[] };
+    for name in ["anim.gif"].iter().chain(videos) {
+        for signal in ["-INT", "-TERM"] {
+            let (dir, path) = scene(MOVING);
+            let out = dir.path().join(name);
+            std::fs::write(&out, b"the old animation").expect("old output");
+            let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"))
+                .arg(&path)
+                .args(["--width", "64", "--height", "48", "--anim", "1000000", "-o"])
+                .arg(&out)
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .expect("started");
+            // Wait until the file is being written, frame by frame, into its temporary file.
+            while !names_in(dir.path()).iter().any(|name| is_temporary(name)) {
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            }
+            let killed = std::process::Command::new("kill").arg(signal).arg(child.id().to_string()).status();
+            assert!(killed.expect("kill runs").success());
+            let output = child.wait_with_output().expect("ended");
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert_eq!(output.status.code(), Some(130), "{name} {signal}: {stderr}");
+            assert!(stderr.contains("rayrepl: interrupted: no file was written"), "{stderr}");
+            assert_eq!(names_in(dir.path()), [*name, "scene.ray"], "{signal}");
+            assert_eq!(std::fs::read(&out).expect("still there"), b"the old animation");
         }
-        let killed = std::process::Command::new("kill").arg(signal).arg(child.id().to_string()).status();
-        assert!(killed.expect("kill runs").success());
-        let status = child.wait().expect("ended");
-        assert_eq!(status.code(), Some(130), "{signal}");
-        assert_eq!(names_in(dir.path()), ["anim.gif", "scene.ray"], "{signal}");
-        assert_eq!(std::fs::read(&out).expect("still there"), b"the old animation");
+    }
+}
+
+#[test]
+fn ctrl_c_while_a_large_image_is_written_leaves_the_old_one_and_no_temporary_file() {
+    // Nothing to trace: the time goes into writing 8192x8192 pixels.
+    let (dir, path) = scene("camera distance 10 angle 1 end\nambient 0.2\n");
+    let out = dir.path().join("big.ppm");
+    std::fs::write(&out, b"the old image").expect("old output");
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"))
+        .arg(&path)
+        .args(["--width", "8192", "--height", "8192", "-o"])
+        .arg(&out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("started");
+    wait_for_a_write(dir.path());
+    interrupt(child.id());
+    let output = child.wait_with_output().expect("ended");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("rayrepl: interrupted: no file was written"), "{stderr}");
+    assert_eq!(names_in(dir.path()), ["big.ppm", "scene.ray"]);
+    assert_eq!(std::fs::read(&out).expect("still there"), b"the old image");
+}
+
+#[test]
+fn ctrl_c_during_numbered_frames_keeps_whole_frames_and_says_which() {
+    let (dir, path) = scene(MOVING);
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("rayrepl"))
+        .arg(&path)
+        .args(["--width", "320", "--height", "240", "--anim", "1000000", "-o"])
+        .arg(dir.path().join("f.png"))
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("started");
+    wait_for_files(dir.path(), ".png", 3);
+    interrupt(child.id());
+    let output = child.wait_with_output().expect("ended");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{stderr}");
+    let mut frames = names_in(dir.path());
+    assert_eq!(frames.pop().as_deref(), Some("scene.ray"), "no temporary file: {frames:?}");
+    let (first, last) = (dir.path().join(&frames[0]), dir.path().join(&frames[frames.len() - 1]));
+    let said = format!("rayrepl: interrupted: {} ... {} written before it stopped", first.display(), last.display());
+    assert!(stderr.contains(&said), "{said}\n{stderr}");
+    for (k, frame) in frames.iter().enumerate() {
+        assert_eq!(*frame, format!("f{:07}.png", k + 1));
+        assert_eq!(read_image(&dir.path().join(frame)).dimensions(), (320, 240), "{frame} is whole");
     }
 }
 

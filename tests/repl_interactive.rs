@@ -11,6 +11,9 @@ use expectrl::{Any, ControlCode, Eof, Expect, Session};
 use rayrepl::lang::Limits;
 use rayrepl::repl::{SessionOptions, run_typed};
 
+mod common;
+use common::interrupt::{names_in, wait_for_a_write, wait_for_files};
+
 /// A session on a terminal, its history kept under `data_home`.
 fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsSession {
     let mut command = Command::new(env!("CARGO_BIN_EXE_rayrepl"));
@@ -320,6 +323,51 @@ fn ctrl_c_stops_a_runaway_evaluation_and_keeps_the_session() {
     session.expect("ray> ").unwrap();
     session.send_line(":env").unwrap();
     session.expect("numbers:    keep = 7").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn ctrl_c_stops_the_writing_of_a_file_and_keeps_the_session() {
+    let (mut session, _home) = fresh(false);
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let big = dir.path().join("big.ppm");
+    session.send_line("let keep = 7").unwrap();
+    session.expect("keep = 7").unwrap();
+    // Nothing to trace: the time goes into writing 8192x8192 pixels.
+    session.send_line("camera distance 10 angle 1 end").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(format!(":save {} 8192 8192", big.display())).unwrap();
+    wait_for_a_write(dir.path());
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect(format!("writing `{}` was cancelled: the file is as it was before", big.display())).unwrap();
+    session.expect("the session is as it was").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("numbers:    keep = 7").unwrap();
+    assert_eq!(names_in(dir.path()), Vec::<String>::new(), "no image, no temporary file");
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn ctrl_c_stops_an_animation_and_says_which_frames_were_written() {
+    let (mut session, _home) = fresh(false);
+    let dir = tempfile::tempdir().expect("temporary directory");
+    session.send_line(":size 320 240").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line("put sphere center time - 2, 0, 0 radius 1 kd 0.8 ks 0 phong 10 color 255, 0, 0 end").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(format!(":anim 1000000 {}", dir.path().join("f.png").display())).unwrap();
+    wait_for_files(dir.path(), ".png", 3);
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("written before it stopped").unwrap();
+    session.expect("the session is as it was").unwrap();
+    session.send_line(":scene").unwrap();
+    session.expect("1 sphere").unwrap();
+    let frames = names_in(dir.path());
+    for (k, frame) in frames.iter().enumerate() {
+        assert_eq!(*frame, format!("f{:07}.png", k + 1), "no temporary file");
+        let image = image::open(dir.path().join(frame)).expect("a whole frame").to_rgb8();
+        assert_eq!(image.dimensions(), (320, 240));
+    }
     assert_eq!(leave(session), 0);
 }
 

@@ -8,6 +8,9 @@ use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
 use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, render};
 use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
 
+mod common;
+use common::interrupt::{interrupt, names_in, wait_for_a_write, wait_for_files};
+
 /// A texture that raises no warning.
 const TEX: &str = "kd 0.7 ks 0.3 phong 20 color 255, 80, 40";
 
@@ -820,16 +823,9 @@ mod binary {
 
 #[test]
 fn ctrl_c_stops_a_piped_script_with_status_130_and_says_where() {
-    use std::io::{BufRead, BufReader, Write};
-    use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let script = ":limits calls 100000000\nproc f(n) f(n + 1) end\nf(1)\nlet never = 1\n";
-    child.stdin.take().expect("stdin").write_all(script.as_bytes()).expect("the script is sent");
+    use std::io::{BufRead, BufReader};
+    use std::process::Command;
+    let mut child = piped_script(":limits calls 100000000\nproc f(n) f(n + 1) end\nf(1)\nlet never = 1\n");
     let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
     let mut line = String::new();
     while !line.contains("defined proc f(n)") {
@@ -847,4 +843,70 @@ fn ctrl_c_stops_a_piped_script_with_status_130_and_says_where() {
     let mut rest = String::new();
     std::io::Read::read_to_string(&mut stdout, &mut rest).expect("stdout is readable");
     assert!(!rest.contains("never"), "nothing after the interrupted line runs: {rest}");
+}
+
+/// The binary running `script` from a pipe left open, as a slow one would
+/// be, with its stdout and stderr piped.
+fn piped_script(script: &str) -> std::process::Child {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let stdin = child.stdin.as_mut().expect("stdin");
+    stdin.write_all(script.as_bytes()).expect("the script is sent");
+    child
+}
+
+/// Pipes `script` into the binary, sends SIGINT once `ready` returns, and
+/// gives the exit status, what was said on stdout and on stderr.
+fn interrupted_script(script: &str, ready: impl FnOnce()) -> (Option<i32>, String, String) {
+    let child = piped_script(script);
+    ready();
+    interrupt(child.id());
+    let output = child.wait_with_output().expect("the script ends");
+    let text = |bytes: &[u8]| String::from_utf8_lossy(bytes).into_owned();
+    (output.status.code(), text(&output.stdout), text(&output.stderr))
+}
+
+#[test]
+fn ctrl_c_while_a_script_saves_leaves_the_file_as_it_was() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let big = dir.path().join("big.ppm");
+    std::fs::write(&big, b"the old image").expect("old image");
+    // Nothing to trace: the time goes into writing 8192x8192 pixels.
+    let script = format!("camera distance 10 angle 1 end\nambient 0.2\n:save {} 8192 8192\n", big.display());
+    let (status, stdout, stderr) = interrupted_script(&script, || wait_for_a_write(dir.path()));
+    assert_eq!(status, Some(130), "{stderr}");
+    let said = format!("writing `{}` was cancelled: the file is as it was before", big.display());
+    assert!(stdout.contains(&said), "{stdout}");
+    assert!(stderr.contains("interrupted by Ctrl-C: the script stopped at line 3"), "{stderr}");
+    assert_eq!(names_in(dir.path()), ["big.ppm"], "no temporary file");
+    assert_eq!(std::fs::read(&big).expect("still there"), b"the old image");
+}
+
+#[test]
+fn ctrl_c_while_a_script_animates_keeps_whole_frames_and_says_which() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let script = format!(
+        ":size 320 240\ncamera distance 10 angle 1 end\nlight vector 0.5, 0, 0 intensity 0.8 end\n\
+         put sphere center time - 2, 0, 0 radius 1 kd 0.8 ks 0 phong 10 color 255, 0, 0 end\n\
+         :anim 1000000 {}\n",
+        dir.path().join("f.ppm").display()
+    );
+    let (status, stdout, stderr) = interrupted_script(&script, || wait_for_files(dir.path(), ".ppm", 3));
+    assert_eq!(status, Some(130), "{stderr}");
+    let frames = names_in(dir.path());
+    let (first, last) = (dir.path().join(&frames[0]), dir.path().join(&frames[frames.len() - 1]));
+    let said = format!("{} ... {} written before it stopped", first.display(), last.display());
+    assert!(stdout.contains(&said), "{said}\n{stdout}");
+    assert!(stderr.contains("interrupted by Ctrl-C: the script stopped at line 5"), "{stderr}");
+    for (k, frame) in frames.iter().enumerate() {
+        assert_eq!(*frame, format!("f{:07}.ppm", k + 1), "no temporary file");
+        let image = image::open(dir.path().join(frame)).expect("a whole frame").to_rgb8();
+        assert_eq!(image.dimensions(), (320, 240));
+    }
 }

@@ -1,18 +1,20 @@
 //! Animated PNG (APNG), encoded frame by frame as the frames arrive: every
 //! pixel exact, unlike a GIF's 256 colours.
 
+use std::fs::File;
 use std::io::BufWriter;
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use super::{CancellableFile, NEVER_CANCELLED, OutputError, PendingFile, format_error, io_error};
+use super::{Cancellable, OutputError, PendingFile, format_error, io_error};
 use crate::playback::{Loops, Playback};
 
 /// An animated PNG being written.
 pub(super) struct ApngStream {
     pending: PendingFile,
-    writer: png::Writer<BufWriter<CancellableFile>>,
+    writer: png::Writer<BufWriter<Cancellable<File>>>,
 }
 
 /// The denominator of APNG frame delays: a delay of 1/fps seconds is
@@ -22,15 +24,16 @@ const DELAY_NUMERATOR: u16 = 100;
 
 impl ApngStream {
     /// Starts an APNG at `path` of `frames` frames the size of `first`, played
-    /// as `playback` says.
+    /// as `playback` says, until `cancel` is raised.
     pub(super) fn start(
         path: &Path,
         first: &RgbImage,
         frames: u32,
         playback: &Playback,
+        cancel: &'static AtomicBool,
     ) -> Result<ApngStream, OutputError> {
-        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
-        let png_error = |e| png_encode_error(path, e);
+        let (pending, writer) = PendingFile::create(path, cancel)?;
+        let png_error = |e| pending.failure(png_encode_error(path, e));
         let mut encoder = png::Encoder::new(writer, first.width(), first.height());
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
@@ -52,14 +55,20 @@ impl ApngStream {
 
     /// Encodes the next frame.
     pub(super) fn add(&mut self, image: &RgbImage) -> Result<(), OutputError> {
-        self.writer.write_image_data(image.as_raw()).map_err(|e| png_encode_error(&self.pending.path, e))
+        self.writer.write_image_data(image.as_raw()).map_err(|e| self.failure(e))
     }
 
     /// Ends the APNG and puts it in place.
     pub(super) fn finish(self) -> Result<(), OutputError> {
         // Writes the end chunk, checks every frame came and flushes the file.
-        self.writer.finish().map_err(|e| png_encode_error(&self.pending.path, e))?;
-        self.pending.commit()
+        let pending = self.pending;
+        self.writer.finish().map_err(|e| pending.failure(png_encode_error(&pending.path, e)))?;
+        pending.commit()
+    }
+
+    /// The encoder's `error`, or [`OutputError::Cancelled`].
+    fn failure(&self, error: png::EncodingError) -> OutputError {
+        self.pending.failure(png_encode_error(&self.pending.path, error))
     }
 }
 

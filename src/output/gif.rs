@@ -1,13 +1,15 @@
 //! Animated GIF, encoded frame by frame as the frames arrive.
 
 use std::borrow::Cow;
+use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 use rayon::prelude::*;
 
-use super::{CancellableFile, NEVER_CANCELLED, OutputError, PendingFile, format_error, io_error};
+use super::{Cancellable, OutputError, PendingFile, format_error, io_error};
 use crate::playback::{Loops, Playback};
 
 /// An animated GIF being written.
@@ -17,7 +19,7 @@ use crate::playback::{Loops, Playback};
 /// gets a palette of its own, which the frames after it keep while it fits.
 pub(super) struct GifStream {
     pending: PendingFile,
-    encoder: gif::Encoder<BufWriter<CancellableFile>>,
+    encoder: gif::Encoder<BufWriter<Cancellable<File>>>,
     width: u16,
     height: u16,
     delay: u16,
@@ -64,8 +66,14 @@ const GIF_MISFIT_PIXELS: usize = 32;
 
 impl GifStream {
     /// Starts a GIF at `path` of frames the size of `first`, played as
-    /// `playback` says (its delays in steps of 10 ms, GIF's unit).
-    pub(super) fn start(path: &Path, first: &RgbImage, playback: &Playback) -> Result<GifStream, OutputError> {
+    /// `playback` says (its delays in steps of 10 ms, GIF's unit), until
+    /// `cancel` is raised.
+    pub(super) fn start(
+        path: &Path,
+        first: &RgbImage,
+        playback: &Playback,
+        cancel: &'static AtomicBool,
+    ) -> Result<GifStream, OutputError> {
         let too_large = || OutputError::Io {
             path: path.to_owned(),
             source: io::Error::new(io::ErrorKind::InvalidInput, "a GIF is at most 65535 pixels wide and high"),
@@ -73,8 +81,8 @@ impl GifStream {
         let width = u16::try_from(first.width()).map_err(|_| too_large())?;
         let height = u16::try_from(first.height()).map_err(|_| too_large())?;
         let palette = learn_palette(first);
-        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
-        let gif_error = |e| gif_encode_error(path, e);
+        let (pending, writer) = PendingFile::create(path, cancel)?;
+        let gif_error = |e| pending.failure(gif_encode_error(path, e));
         let mut encoder = gif::Encoder::new(writer, width, height, &palette.color_map_rgb()).map_err(gif_error)?;
         // Without the looping extension a GIF plays once; with it, the count is of repeats after the first play.
         match playback.loops.unwrap_or(Loops::Forever) {
@@ -113,14 +121,14 @@ impl GifStream {
         if !self.global {
             frame.palette = Some(self.palette.color_map_rgb());
         }
-        self.encoder.write_frame(&frame).map_err(|e| gif_encode_error(&self.pending.path, e))
+        self.encoder.write_frame(&frame).map_err(|e| self.pending.failure(gif_encode_error(&self.pending.path, e)))
     }
 
     /// Ends the GIF and puts it in place.
     pub(super) fn finish(self) -> Result<(), OutputError> {
-        let path = &self.pending.path;
-        let mut writer = self.encoder.into_inner().map_err(|e| gif_encode_error(path, e))?;
-        writer.flush().map_err(|e| io_error(path, e))?;
+        let (pending, path) = (&self.pending, &self.pending.path);
+        let mut writer = self.encoder.into_inner().map_err(|e| pending.failure(gif_encode_error(path, e)))?;
+        writer.flush().map_err(|e| pending.failure(io_error(path, e)))?;
         drop(writer);
         self.pending.commit()
     }

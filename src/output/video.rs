@@ -6,12 +6,14 @@
 
 use std::io::{self, Read, Write};
 use std::path::Path;
-use std::process::{Child, ChildStdin, Command, Stdio};
+use std::process::{Child, ChildStdin, Command, ExitStatus, Stdio};
+use std::sync::atomic::AtomicBool;
 use std::thread::JoinHandle;
+use std::time::Duration;
 
 use image::RgbImage;
 
-use super::{ImageFormat, NEVER_CANCELLED, OutputError, PendingFile, io_error};
+use super::{Cancellable, ImageFormat, OutputError, PendingFile, io_error};
 use crate::playback::{Loops, Playback};
 
 /// The program that encodes videos.
@@ -29,10 +31,12 @@ pub(super) fn check_ffmpeg(path: &Path) -> Result<(), OutputError> {
 
 /// A video being encoded by an `ffmpeg` process.
 pub(super) struct VideoStream {
+    /// Before `pending`: an unfinished ffmpeg is stopped before its file is
+    /// removed, or it could make the file again.
+    ffmpeg: Ffmpeg,
     /// The file ffmpeg writes: one play of the frames.
     pending: PendingFile,
     format: ImageFormat,
-    ffmpeg: Ffmpeg,
     /// How many plays the final file holds.
     plays: u32,
     width: u32,
@@ -43,14 +47,15 @@ impl VideoStream {
     /// Starts ffmpeg on a video at `path` in `format` (MP4 or WebM) of frames
     /// the size of `first`, played as `playback` says (a count of plays is
     /// written out in full; a video cannot loop forever, which
-    /// [`super::check_playback`] refuses before).
+    /// [`super::check_playback`] refuses before), until `cancel` is raised.
     pub(super) fn start(
         path: &Path,
         format: ImageFormat,
         first: &RgbImage,
         playback: &Playback,
+        cancel: &'static AtomicBool,
     ) -> Result<VideoStream, OutputError> {
-        let (pending, writer) = PendingFile::create(path, &NEVER_CANCELLED)?;
+        let (pending, writer) = PendingFile::create(path, cancel)?;
         // ffmpeg opens the file by name; the writer is not needed.
         drop(writer);
         let (width, height) = first.dimensions();
@@ -64,14 +69,14 @@ impl VideoStream {
             .arg(&pending.temp_path)
             .stdin(Stdio::piped());
         let mut child = command.spawn().map_err(|_| OutputError::NoFfmpeg { path: path.to_owned() })?;
-        let stdin = child.stdin.take();
+        let stdin = child.stdin.take().map(|inner| Cancellable { inner, cancel });
         let messages = child.stderr.take().map(read_all_in_background);
         let plays = match playback.loops {
             Some(Loops::Times(times)) => times,
             _ => 1,
         };
         let ffmpeg = Ffmpeg { child, stdin, messages };
-        Ok(VideoStream { pending, format, ffmpeg, plays, width, height })
+        Ok(VideoStream { ffmpeg, pending, format, plays, width, height })
     }
 
     /// Sends the next frame to ffmpeg.
@@ -83,6 +88,7 @@ impl VideoStream {
         let stdin = self.ffmpeg.stdin.as_mut().expect("frames come before finish");
         match stdin.write_all(image.as_raw()) {
             Ok(()) => Ok(()),
+            Err(_) if self.pending.cancelled() => Err(OutputError::Cancelled { path: self.pending.path.clone() }),
             // ffmpeg stopped: what it said is the reason.
             Err(_) => Err(self.ffmpeg.failure(&self.pending.path)),
         }
@@ -92,14 +98,14 @@ impl VideoStream {
     /// times.
     pub(super) fn finish(mut self) -> Result<(), OutputError> {
         drop(self.ffmpeg.stdin.take());
-        let status = self.ffmpeg.child.wait().map_err(|e| io_error(&self.pending.path, e))?;
+        let status = self.ffmpeg.wait(&self.pending)?;
         if !status.success() {
             return Err(self.ffmpeg.failure(&self.pending.path));
         }
         if self.plays == 1 {
             return self.pending.commit();
         }
-        let (repeated, writer) = PendingFile::create(&self.pending.path, &NEVER_CANCELLED)?;
+        let (repeated, writer) = PendingFile::create(&self.pending.path, self.pending.cancel)?;
         drop(writer);
         let mut command = ffmpeg_command();
         command
@@ -121,12 +127,30 @@ impl VideoStream {
 struct Ffmpeg {
     child: Child,
     /// Closed when the frames end.
-    stdin: Option<ChildStdin>,
+    stdin: Option<Cancellable<ChildStdin>>,
     /// What ffmpeg says on stderr, read as it comes so that it never blocks.
     messages: Option<JoinHandle<String>>,
 }
 
+/// How often a wait for ffmpeg to end looks at the cancel flag.
+const CANCEL_CHECK: Duration = Duration::from_millis(20);
+
 impl Ffmpeg {
+    /// Waits for ffmpeg to end the video it writes into `pending`, or for
+    /// `pending`'s cancel flag (encoding the last frames of a large video
+    /// takes a while).
+    fn wait(&mut self, pending: &PendingFile) -> Result<ExitStatus, OutputError> {
+        loop {
+            if let Some(status) = self.child.try_wait().map_err(|e| io_error(&pending.path, e))? {
+                return Ok(status);
+            }
+            if pending.cancelled() {
+                return Err(OutputError::Cancelled { path: pending.path.clone() });
+            }
+            std::thread::sleep(CANCEL_CHECK);
+        }
+    }
+
     /// Why ffmpeg failed on the video at `path`, in its own words, once it
     /// has ended.
     fn failure(&mut self, path: &Path) -> OutputError {
@@ -140,10 +164,10 @@ impl Ffmpeg {
 }
 
 impl Drop for Ffmpeg {
-    /// An unfinished video (cancelled, failed): ffmpeg is stopped before its
-    /// pending file is removed.
+    /// An unfinished video (cancelled, failed): ffmpeg, if still running, is
+    /// stopped.
     fn drop(&mut self) {
-        if self.stdin.is_some() {
+        if let Ok(None) = self.child.try_wait() {
             let _ = self.child.kill();
             let _ = self.child.wait();
         }

@@ -320,7 +320,7 @@ fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> C
     let size = Size { width: session.settings().width, height: session.settings().height };
     show_scene_warnings(session, console, size, true);
     let started = Instant::now();
-    let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback);
+    let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback, cancel_flag(console.cancel));
     let rendered = render_frames(session, frames, animation.timeline, size, console, &mut |frame, image| {
         sink.add(frame, image).map_err(write_failure)
     });

@@ -463,7 +463,9 @@ Example:
   Computes the scene N times with time = 1, 2, ..., N and writes the frames.
   FILE's ending picks the format: .gif (256 colours), .apng (exact), .mp4
   or .webm (video, made by the ffmpeg program), otherwise numbered images
-  (spin.png gives spin0001.png, spin0002.png, ...).
+  (spin.png gives spin0001.png, spin0002.png, ...). Ctrl-C stops it, in
+  the middle of a frame too: the numbered images written stay, each whole,
+  and are named; a .gif, .apng or video is not written.
 Options, as on the command line:
   --fps F              frames a second, 0.01 to 100 (default 25)
   --loop N|forever     plays in all (default: forever; a video once)

@@ -42,6 +42,7 @@ use std::process::ExitCode;
 use crate::lang::{Diagnostic, Limits};
 use crate::lint::{Allowed, Picture};
 
+pub(crate) use cancel::{CancelSwitch, cancel_flag};
 pub use interactive::{ReplError, run_interactive, run_typed};
 pub(crate) use preview::Preview;
 pub use rendering::RenderSettings;

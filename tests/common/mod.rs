@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod cases;
+pub mod interrupt;
 pub mod limited;
 pub mod programs;
 pub mod scenes;
