@@ -127,6 +127,48 @@ let x = 1 +
     assert_eq!(run.out, "put 1 sphere (1 object in the scene)\nx = 3\n");
 }
 
+/// Runs `script` as [`run_with`] does, read one byte at a time: no input is
+/// read ahead of the one running, so each is parsed on its own.
+fn run_unbuffered(script: &str, options: &SessionOptions) -> Run {
+    let script = script.replace("$T", TEX);
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let code = run_script(std::io::BufReader::with_capacity(1, script.as_bytes()), &mut out, &mut err, options);
+    Run {
+        code,
+        out: String::from_utf8(out).expect("output is text"),
+        err: String::from_utf8(err).expect("errors are text"),
+    }
+}
+
+#[test]
+fn inputs_read_ahead_run_as_inputs_read_one_at_a_time() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("session.ray");
+    let scripts = [
+        // Each line is finished, but together two of them make one item.
+        "let x = 1\n+ 2\nlet y = 3\n".to_string(),
+        "let a = 1\nlet b = oops\nlet c = 3\n".to_string(),
+        "let a = 1\nlet = 2\nlet c = 3\n".to_string(),
+        "let a = 1 $\nlet b = 2\n".to_string(),
+        "let a = 1\nend\nlet c = (1\n".to_string(),
+        format!(
+            "{SCENE}proc p(n)\n  put sphere center 0, 0, 0 radius n $T end\nend\np(1) p(2)\n\
+             let x = (1 +\n2) # two lines\n# a comment\n:show p\n:list\nobject o = sphere center 0, 0, 0 radius x $T end\n\
+             put o\n:write {}\nlet y = nowhere\nput sphere center 0, 0, 0 radius\n",
+            file.display()
+        ),
+    ];
+    for script in &scripts {
+        for options in [SessionOptions::default(), SessionOptions { keep_going: true, ..SessionOptions::default() }] {
+            let ahead = run_with(script, &options);
+            let written = std::fs::read_to_string(&file).unwrap_or_default();
+            let alone = run_unbuffered(script, &options);
+            assert_eq!((ahead.code, &ahead.out, &ahead.err), (alone.code, &alone.out, &alone.err), "{script}");
+            assert_eq!(written, std::fs::read_to_string(&file).unwrap_or_default(), "{script}");
+        }
+    }
+}
+
 #[test]
 fn every_kind_of_failing_input_leaves_the_session_as_it_was() {
     let setup = format!(

@@ -17,9 +17,10 @@ use lalrpop_util::{ParseError, lalrpop_mod};
 
 use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
-use super::lexer::{Lexer, Token};
+use super::lexer::{Lexer, Spanned, Token};
 use super::source::{SourceId, Span};
-use context::{Read, Tracked};
+use super::words::Word;
+use context::Tracked;
 use errors::Mode;
 
 lalrpop_mod!(
@@ -49,10 +50,35 @@ fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic
 
 /// Parses `text` from `tokens`, its tokens.
 fn parse_tokens(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked) -> Result<Program, Diagnostic> {
-    let parsed = grammar::ItemsParser::new().parse(source, &mut tokens);
+    let parsed = grammar::ItemsParser::new().parse(Sources::One(source), &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),
         Err(error) => Err(errors::syntax_error(source, text, mode, tokens.context(), error)),
+    }
+}
+
+/// What the byte offsets of a parse point into: one source text, or the
+/// texts of several entries read as one (each from where it starts, with
+/// its source), so that every span names its own text.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Sources<'s> {
+    /// One text, with its source.
+    One(SourceId),
+    /// Where each entry starts, in order; the first starts at 0.
+    Many(&'s [(usize, SourceId)]),
+}
+
+impl Sources<'_> {
+    /// The span of the bytes `start..end`, in the text where `start` is.
+    pub(crate) fn span(self, start: usize, end: usize) -> Span {
+        match self {
+            Sources::One(source) => Span::new(source, start, end),
+            Sources::Many(starts) => {
+                let index = starts.partition_point(|&(offset, _)| offset <= start).saturating_sub(1);
+                let (offset, source) = starts[index];
+                Span::new(source, start - offset, end - offset)
+            }
+        }
     }
 }
 
@@ -86,7 +112,7 @@ pub enum EntryState {
 /// at the end of the text means only that more is needed.
 pub fn entry_state(text: &str) -> EntryState {
     let source = SourceId::default();
-    match grammar::ItemsParser::new().parse(source, Lexer::new(source, text)) {
+    match grammar::ItemsParser::new().parse(Sources::One(source), Lexer::new(source, text)) {
         Ok(_) => EntryState::Complete,
         Err(ParseError::UnrecognizedEof { .. }) => EntryState::Unfinished,
         Err(_) => EntryState::Broken,
@@ -104,45 +130,34 @@ pub fn entry_state(text: &str) -> EntryState {
 /// lexing error, or with an `end` or `)` that closes nothing, is complete:
 /// submitting it shows the error at once instead of waiting for more lines.
 pub fn is_incomplete(text: &str) -> bool {
-    Entry::read(text).is_incomplete()
+    read_tokens(text).0
 }
 
 /// One entry of the session whose tokens were read to see whether it is
 /// finished ([`is_incomplete`]), and kept for the parser: a script's input
 /// is lexed once.
-pub struct Entry<'t> {
-    text: &'t str,
+pub struct Entry {
+    text: String,
     incomplete: bool,
     /// The tokens of the whole text, unless reading stopped early (a lexing
     /// error, a stray closer): the parser then reads the text itself.
-    tokens: Option<Vec<Read>>,
+    tokens: Option<Vec<Spanned>>,
 }
 
-impl<'t> Entry<'t> {
+impl Entry {
     /// Reads the tokens of `text`.
-    pub fn read(text: &'t str) -> Entry<'t> {
-        let complete = Entry { text, incomplete: false, tokens: None };
-        let mut tokens = Tracked::new(SourceId::default(), text);
-        // Tokens take a few bytes each: one allocation instead of growing.
-        let mut read = Vec::with_capacity(text.len() / 2);
-        while let Some(token) = tokens.next_read() {
-            let Ok(token) = token else {
-                return complete;
-            };
-            if tokens.context().stray_closer {
-                return complete;
-            }
-            read.push(token);
-        }
-        let context = tokens.context();
-        let last = read.last().map(|(((_, token, _), _), _)| token);
-        let incomplete = !context.stray_closer
-            && (!context.open.is_empty() || !context.parens.is_empty() || last.is_some_and(needs_more));
-        Entry { text, incomplete, tokens: Some(read) }
+    pub fn read(text: String) -> Entry {
+        let (incomplete, tokens) = read_tokens(&text);
+        Entry { text, incomplete, tokens }
     }
 
     /// The entry's text.
-    pub fn text(&self) -> &'t str {
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The entry's text, given back to add a line to it.
+    pub fn into_text(self) -> String {
         self.text
     }
 
@@ -150,14 +165,87 @@ impl<'t> Entry<'t> {
     pub fn is_incomplete(&self) -> bool {
         self.incomplete
     }
+}
 
-    /// Parses the entry as [`parse_items`] does, from the tokens read.
-    pub fn parse(self, source: SourceId) -> Result<Program, Diagnostic> {
-        match self.tokens {
-            Some(read) => parse_tokens(source, self.text, Mode::Session, Tracked::replay(source, read)),
-            None => parse_items(source, self.text),
+/// Whether `text` is unfinished, and its tokens unless reading stopped early
+/// (a lexing error, a stray closer). Counting the open constructs and
+/// parentheses is enough here; the parser's fuller record of them
+/// ([`Tracked`]) serves its errors, and an entry that does not parse is
+/// read again that way.
+fn read_tokens(text: &str) -> (bool, Option<Vec<Spanned>>) {
+    let mut lexer = Lexer::new(SourceId::default(), text);
+    // Tokens take a few bytes each: one allocation instead of growing.
+    let mut read = Vec::with_capacity(text.len() / 2);
+    let (mut constructs, mut parens) = (0_usize, 0_usize);
+    while let Some(token) = lexer.next_word() {
+        let Ok((spanned, word)) = token else {
+            return (false, None);
+        };
+        let stray_closer = match spanned.1 {
+            Token::End => constructs.checked_sub(1).map(|left| constructs = left).is_none(),
+            Token::RParen => parens.checked_sub(1).map(|left| parens = left).is_none(),
+            Token::LParen => {
+                parens += 1;
+                false
+            }
+            _ => {
+                constructs += usize::from(word.is_some_and(Word::opens));
+                false
+            }
+        };
+        if stray_closer {
+            return (false, None);
         }
+        read.push(spanned);
     }
+    let last = read.last().map(|(_, token, _)| token);
+    let incomplete = constructs > 0 || parens > 0 || last.is_some_and(needs_more);
+    (incomplete, Some(read))
+}
+
+/// Parses each of the finished `entries`, whose texts are the sources
+/// `sources`, as [`parse_items`] does. Entries that came together are
+/// parsed in one run of the parser, as one text: a parse has a cost of its
+/// own (its stacks start empty). When that fails (a syntax error, or an
+/// item reaching from one entry into the next) each is parsed on its own,
+/// which says what is wrong where. The entries' tokens are used up.
+pub fn parse_entries(entries: &mut [Entry], sources: &[SourceId]) -> Vec<Result<Program, Diagnostic>> {
+    match parse_together(entries, sources) {
+        Some(programs) => programs.into_iter().map(Ok).collect(),
+        None => entries.iter().zip(sources).map(|(entry, &source)| parse_items(source, &entry.text)).collect(),
+    }
+}
+
+/// The programs of `entries` parsed as one text, the entries one line
+/// after the other; `None` if that text does not parse into items that
+/// each lie inside one entry.
+fn parse_together(entries: &mut [Entry], sources: &[SourceId]) -> Option<Vec<Program>> {
+    let mut starts = Vec::with_capacity(entries.len());
+    let mut tokens = Vec::with_capacity(entries.len());
+    let mut offset = 0;
+    for (entry, &source) in entries.iter_mut().zip(sources) {
+        starts.push((offset, source));
+        tokens.push((offset, entry.tokens.take()?));
+        offset += entry.text.len() + 1;
+    }
+    let shifted = tokens.into_iter().flat_map(|(offset, read)| {
+        read.into_iter().map(move |(start, token, end)| Ok((start + offset, token, end + offset)))
+    });
+    let items = grammar::ItemsParser::new().parse(Sources::Many(&starts), shifted).ok()?;
+    // How many items each entry has, the items being in the entries' order.
+    let mut counts = vec![0; entries.len()];
+    let mut owner = 0;
+    for item in &items {
+        let span = item.span();
+        owner += sources.get(owner..)?.iter().position(|&source| source == span.source)?;
+        if span.end as usize > entries[owner].text.len() {
+            return None;
+        }
+        counts[owner] += 1;
+    }
+    let mut items = items.into_iter();
+    let programs = counts.into_iter().map(|count| Program { items: items.by_ref().take(count).collect() }).collect();
+    Some(programs)
 }
 
 /// Whether an input cannot end with `token`.
@@ -201,20 +289,41 @@ mod tests {
         assert_eq!(entry_state(""), EntryState::Complete);
     }
 
+    /// `parse_entries` of `texts` (ids 3, 4, ...) printed, and the same for
+    /// `parse_items` of each text.
+    fn together_and_alone(texts: &[&str]) -> (String, String) {
+        let sources: Vec<SourceId> = (3..).map(SourceId).take(texts.len()).collect();
+        let mut entries: Vec<Entry> = texts.iter().map(|text| Entry::read(text.to_string())).collect();
+        let together = parse_entries(&mut entries, &sources);
+        let alone: Vec<_> = texts.iter().zip(&sources).map(|(text, &source)| parse_items(source, text)).collect();
+        (format!("{together:?}"), format!("{alone:?}"))
+    }
+
     #[test]
-    fn an_entry_parses_from_its_tokens_as_its_text_does() {
+    fn entries_parse_together_as_each_alone() {
         let texts = [
             "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end",
             "let x = (1 +\n 2) let y = x",
-            "proc p(a)\n  put a\n",
-            "proc p(a)\n  if a < 1 then\n    put b\n  end\nend end",
-            "let = 2",
-            "let x = 1 $",
-            "end",
+            "# a comment",
+            "proc p(a)\n  if a < 1 then\n    put b\n  end\nend",
+            "p(1)",
         ];
-        for text in texts {
-            let parsed = Entry::read(text).parse(SourceId(3));
-            assert_eq!(format!("{parsed:?}"), format!("{:?}", parse_items(SourceId(3), text)), "{text}");
+        let (together, alone) = together_and_alone(&texts);
+        assert_eq!(together, alone);
+    }
+
+    #[test]
+    fn entries_that_do_not_parse_together_parse_alone() {
+        let cases: [&[&str]; 4] = [
+            // Each is finished, but together they make one item.
+            &["let x = 1", "+ 2"],
+            &["let x = 1", "let = 2", "let y = 3"],
+            &["let x = 1 $", "let y = 2"],
+            &["let x = 1", "end"],
+        ];
+        for texts in cases {
+            let (together, alone) = together_and_alone(texts);
+            assert_eq!(together, alone, "{texts:?}");
         }
     }
 
