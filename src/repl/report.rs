@@ -1,5 +1,7 @@
 //! The short confirmations printed after an accepted input.
 
+use std::fmt::{self, Display};
+
 use crate::lang::ast::{InstrKind, Item};
 /// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
 pub(crate) use crate::lang::eval::format_number as number;
@@ -21,13 +23,13 @@ pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<Strin
     let before = accepted.counts_before;
     if after.lights > before.lights {
         lines.push(format!(
-            "{} ({} in the scene)",
-            counted(after.lights - before.lights, "light") + " added",
-            counted(after.lights, "light")
+            "{} added ({} in the scene)",
+            Counted(after.lights - before.lights, "light"),
+            Counted(after.lights, "light")
         ));
     }
     if objects(&after) > objects(&before) {
-        lines.push(format!("put {} ({} in the scene)", added(&before, &after), counted(objects(&after), "object")));
+        lines.push(format!("put {} ({} in the scene)", added(&before, &after), Counted(objects(&after), "object")));
     } else if has_call(accepted) {
         lines.push("nothing was put".to_string());
     }
@@ -113,10 +115,19 @@ fn added(before: &Counts, after: &Counts) -> String {
 
 /// `count` and `noun`, plural when it is not 1: "1 sphere", "2 boxes".
 pub(crate) fn counted(count: usize, noun: &str) -> String {
-    match (count, noun) {
-        (1, _) => format!("1 {noun}"),
-        (_, "box") => format!("{count} boxes"),
-        _ => format!("{count} {noun}s"),
+    Counted(count, noun).to_string()
+}
+
+/// [`counted`], formatted straight into the line that shows it.
+struct Counted<'n>(usize, &'n str);
+
+impl Display for Counted<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match *self {
+            Counted(1, noun) => write!(f, "1 {noun}"),
+            Counted(count, "box") => write!(f, "{count} boxes"),
+            Counted(count, noun) => write!(f, "{count} {noun}s"),
+        }
     }
 }
 
@@ -133,5 +144,7 @@ mod tests {
         let after = Counts { spheres: 2, planes: 1, boxes: 3, lights: 0 };
         assert_eq!(added(&before, &after), "2 spheres, 1 plane and 3 boxes");
         assert_eq!(added(&before, &Counts { boxes: 1, ..before }), "1 box");
+        assert_eq!(added(&before, &Counts { spheres: 1, boxes: 2, ..before }), "1 sphere and 2 boxes");
+        assert_eq!(added(&after, &after), "nothing");
     }
 }
