@@ -58,25 +58,28 @@ fn parse_tokens(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked) -
 }
 
 /// What the byte offsets of a parse point into: one source text, or the
-/// texts of several entries read as one (each from where it starts, with
-/// its source), so that every span names its own text.
+/// texts of several entries read as one, so that every span names its own
+/// text.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Sources<'s> {
     /// One text, with its source.
     One(SourceId),
-    /// Where each entry starts, in order; the first starts at 0.
-    Many(&'s [(usize, SourceId)]),
+    /// The texts of `sources`, the byte `b` of the text at index `i` read
+    /// at the offset `i << shift | b` (every text is shorter than
+    /// `1 << shift`): a shift finds the text of an offset.
+    Many { sources: &'s [SourceId], shift: u32 },
 }
 
 impl Sources<'_> {
-    /// The span of the bytes `start..end`, in the text where `start` is.
+    /// The span of the bytes `start..end`, in the text where `start` is (an
+    /// `end` in a later text lies past the end of that one).
     pub(crate) fn span(self, start: usize, end: usize) -> Span {
         match self {
             Sources::One(source) => Span::new(source, start, end),
-            Sources::Many(starts) => {
-                let index = starts.partition_point(|&(offset, _)| offset <= start).saturating_sub(1);
-                let (offset, source) = starts[index];
-                Span::new(source, start - offset, end - offset)
+            Sources::Many { sources, shift } => {
+                let index = start >> shift;
+                let base = index << shift;
+                Span::new(sources[index], start - base, end - base)
             }
         }
     }
@@ -220,18 +223,20 @@ pub fn parse_entries(entries: &mut [Entry], sources: &[SourceId]) -> Vec<Result<
 /// after the other; `None` if that text does not parse into items that
 /// each lie inside one entry.
 fn parse_together(entries: &mut [Entry], sources: &[SourceId]) -> Option<Vec<Program>> {
-    let mut starts = Vec::with_capacity(entries.len());
-    let mut tokens = Vec::with_capacity(entries.len());
-    let mut offset = 0;
-    for (entry, &source) in entries.iter_mut().zip(sources) {
-        starts.push((offset, source));
-        tokens.push((offset, entry.tokens.take()?));
-        offset += entry.text.len() + 1;
+    let longest = entries.iter().map(|entry| entry.text.len()).max()?;
+    let shift = (longest + 1).next_power_of_two().trailing_zeros();
+    // Every offset, the ends of items across texts too, must fit a span.
+    if shift >= u32::BITS || entries.len() > (u32::MAX >> shift) as usize {
+        return None;
     }
-    let shifted = tokens.into_iter().flat_map(|(offset, read)| {
-        read.into_iter().map(move |(start, token, end)| Ok((start + offset, token, end + offset)))
+    let mut tokens = Vec::with_capacity(entries.len());
+    for (index, entry) in entries.iter_mut().enumerate() {
+        tokens.push((index << shift, entry.tokens.take()?));
+    }
+    let shifted = tokens.into_iter().flat_map(|(base, read)| {
+        read.into_iter().map(move |(start, token, end)| Ok((base + start, token, base + end)))
     });
-    let items = grammar::ItemsParser::new().parse(Sources::Many(&starts), shifted).ok()?;
+    let items = grammar::ItemsParser::new().parse(Sources::Many { sources, shift }, shifted).ok()?;
     // How many items each entry has, the items being in the entries' order.
     let mut counts = vec![0; entries.len()];
     let mut owner = 0;
