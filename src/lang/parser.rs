@@ -50,7 +50,7 @@ fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic
 
 /// Parses `text` from `tokens`, its tokens.
 fn parse_tokens(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked) -> Result<Program, Diagnostic> {
-    let parsed = grammar::ItemsParser::new().parse(Sources::One(source), &mut tokens);
+    let parsed = grammar::ItemsParser::new().parse(&Sources::One(source), &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),
         Err(error) => Err(errors::syntax_error(source, text, mode, tokens.context(), error)),
@@ -73,8 +73,8 @@ pub(crate) enum Sources<'s> {
 impl Sources<'_> {
     /// The span of the bytes `start..end`, in the text where `start` is (an
     /// `end` in a later text lies past the end of that one).
-    pub(crate) fn span(self, start: usize, end: usize) -> Span {
-        match self {
+    pub(crate) fn span(&self, start: usize, end: usize) -> Span {
+        match *self {
             Sources::One(source) => Span::new(source, start, end),
             Sources::Many { sources, shift } => {
                 let index = start >> shift;
@@ -115,7 +115,7 @@ pub enum EntryState {
 /// at the end of the text means only that more is needed.
 pub fn entry_state(text: &str) -> EntryState {
     let source = SourceId::default();
-    match grammar::ItemsParser::new().parse(Sources::One(source), Lexer::new(source, text)) {
+    match grammar::ItemsParser::new().parse(&Sources::One(source), Lexer::new(source, text)) {
         Ok(_) => EntryState::Complete,
         Err(ParseError::UnrecognizedEof { .. }) => EntryState::Unfinished,
         Err(_) => EntryState::Broken,
@@ -236,7 +236,7 @@ fn parse_together(entries: &mut [Entry], sources: &[SourceId]) -> Option<Vec<Pro
     let shifted = tokens.into_iter().flat_map(|(base, read)| {
         read.into_iter().map(move |(start, token, end)| Ok((base + start, token, base + end)))
     });
-    let items = grammar::ItemsParser::new().parse(Sources::Many { sources, shift }, shifted).ok()?;
+    let items = grammar::ItemsParser::new().parse(&Sources::Many { sources, shift }, shifted).ok()?;
     // How many items each entry has, the items being in the entries' order.
     let mut counts = vec![0; entries.len()];
     let mut owner = 0;
