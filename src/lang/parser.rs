@@ -133,25 +133,39 @@ pub fn entry_state(text: &str) -> EntryState {
 /// lexing error, or with an `end` or `)` that closes nothing, is complete:
 /// submitting it shows the error at once instead of waiting for more lines.
 pub fn is_incomplete(text: &str) -> bool {
-    read_tokens(text).0
+    Entry::read(text.to_string()).is_incomplete()
 }
 
 /// One entry of the session whose tokens were read to see whether it is
 /// finished ([`is_incomplete`]), and kept for the parser: a script's input
-/// is lexed once.
+/// is lexed once, and a line added to it is lexed alone.
 pub struct Entry {
     text: String,
-    incomplete: bool,
     /// The tokens of the whole text, unless reading stopped early (a lexing
     /// error, a stray closer): the parser then reads the text itself.
     tokens: Option<Vec<Spanned>>,
+    /// How many constructs and parentheses the tokens leave open.
+    constructs: usize,
+    parens: usize,
 }
 
 impl Entry {
     /// Reads the tokens of `text`.
     pub fn read(text: String) -> Entry {
-        let (incomplete, tokens) = read_tokens(&text);
-        Entry { text, incomplete, tokens }
+        // Tokens take a few bytes each: one allocation instead of growing.
+        let tokens = Some(Vec::with_capacity(text.len() / 2));
+        let mut entry = Entry { text, tokens, constructs: 0, parens: 0 };
+        entry.read_from(0);
+        entry
+    }
+
+    /// Adds `line` to the text and reads its tokens: no token spans two
+    /// lines, so those before are the same.
+    pub fn add_line(&mut self, line: &str) {
+        self.text.push('\n');
+        let start = self.text.len();
+        self.text.push_str(line);
+        self.read_from(start);
     }
 
     /// The entry's text.
@@ -159,51 +173,44 @@ impl Entry {
         &self.text
     }
 
-    /// The entry's text, given back to add a line to it.
-    pub fn into_text(self) -> String {
-        self.text
-    }
-
     /// Whether the entry is unfinished, as [`is_incomplete`] says.
     pub fn is_incomplete(&self) -> bool {
-        self.incomplete
+        let last = self.tokens.as_ref().and_then(|tokens| tokens.last()).map(|(_, token, _)| token);
+        self.tokens.is_some() && (self.constructs > 0 || self.parens > 0 || last.is_some_and(needs_more))
     }
-}
 
-/// Whether `text` is unfinished, and its tokens unless reading stopped early
-/// (a lexing error, a stray closer). Counting the open constructs and
-/// parentheses is enough here; the parser's fuller record of them
-/// ([`Tracked`]) serves its errors, and an entry that does not parse is
-/// read again that way.
-fn read_tokens(text: &str) -> (bool, Option<Vec<Spanned>>) {
-    let mut lexer = Lexer::new(SourceId::default(), text);
-    // Tokens take a few bytes each: one allocation instead of growing.
-    let mut read = Vec::with_capacity(text.len() / 2);
-    let (mut constructs, mut parens) = (0_usize, 0_usize);
-    while let Some(token) = lexer.next_word() {
-        let Ok((spanned, word)) = token else {
-            return (false, None);
-        };
-        let stray_closer = match spanned.1 {
-            Token::End => constructs.checked_sub(1).map(|left| constructs = left).is_none(),
-            Token::RParen => parens.checked_sub(1).map(|left| parens = left).is_none(),
-            Token::LParen => {
-                parens += 1;
-                false
+    /// Reads the tokens from byte `start` (where a line starts) on, unless
+    /// reading stopped before (a lexing error, a stray closer). Counting the
+    /// open constructs and parentheses is enough here; the parser's fuller
+    /// record of them ([`Tracked`]) serves its errors, and an entry that
+    /// does not parse is read again that way.
+    fn read_from(&mut self, start: usize) {
+        let Some(tokens) = &mut self.tokens else { return };
+        let mut lexer = Lexer::from_line(SourceId::default(), &self.text, start);
+        while let Some(token) = lexer.next_word() {
+            let Ok((spanned, word)) = token else {
+                self.tokens = None;
+                return;
+            };
+            let stray_closer = match spanned.1 {
+                Token::End => self.constructs.checked_sub(1).map(|left| self.constructs = left).is_none(),
+                Token::RParen => self.parens.checked_sub(1).map(|left| self.parens = left).is_none(),
+                Token::LParen => {
+                    self.parens += 1;
+                    false
+                }
+                _ => {
+                    self.constructs += usize::from(word.is_some_and(Word::opens));
+                    false
+                }
+            };
+            if stray_closer {
+                self.tokens = None;
+                return;
             }
-            _ => {
-                constructs += usize::from(word.is_some_and(Word::opens));
-                false
-            }
-        };
-        if stray_closer {
-            return (false, None);
+            tokens.push(spanned);
         }
-        read.push(spanned);
     }
-    let last = read.last().map(|(_, token, _)| token);
-    let incomplete = constructs > 0 || parens > 0 || last.is_some_and(needs_more);
-    (incomplete, Some(read))
 }
 
 /// Parses each of the finished `entries`, whose texts are the sources
@@ -329,6 +336,27 @@ mod tests {
         for texts in cases {
             let (together, alone) = together_and_alone(texts);
             assert_eq!(together, alone, "{texts:?}");
+        }
+    }
+
+    #[test]
+    fn an_entry_read_line_by_line_reads_as_read_whole() {
+        let texts = [
+            "proc p(a)\n  put a # (\n  let x = (1 +\n 2)\nend",
+            "let x = (\n1 $\n)",
+            "proc p()\nend end\nlet y",
+            "let x = 1\n\u{feff}let y = 2",
+            "let x =\n\n  # nothing yet\n3",
+        ];
+        for text in texts {
+            let mut lines = text.split('\n');
+            let mut entry = Entry::read(lines.next().unwrap_or_default().to_string());
+            for line in lines {
+                entry.add_line(line);
+                let whole = Entry::read(entry.text().to_string());
+                let read = |entry: &Entry| (entry.is_incomplete(), format!("{:?}", entry.tokens));
+                assert_eq!(read(&entry), read(&whole), "{}", entry.text());
+            }
         }
     }
 

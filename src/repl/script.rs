@@ -134,7 +134,7 @@ impl Script<'_, '_> {
     fn run(&mut self, input: impl BufRead) {
         let mut lines = Lines::new(input);
         let mut ready = ReadAhead::default();
-        let mut pending = String::new();
+        let mut pending: Option<Entry> = None;
         let mut first_line = 0;
         let mut number = 0;
         while let Some(line) = lines.next_line() {
@@ -147,21 +147,24 @@ impl Script<'_, '_> {
                 return;
             };
             let line = line.strip_suffix('\r').unwrap_or(line);
-            if pending.is_empty() {
-                if is_command(line) {
+            let entry = match pending.take() {
+                Some(mut entry) => {
+                    entry.add_line(line);
+                    entry
+                }
+                None if is_command(line) => {
                     if self.run_ready(&mut ready) == Step::Stop || self.command(line, number) == Step::Stop {
                         return;
                     }
                     continue;
                 }
-                first_line = number;
-            } else {
-                pending.push('\n');
-            }
-            pending.push_str(line);
-            let entry = Entry::read(std::mem::take(&mut pending));
+                None => {
+                    first_line = number;
+                    Entry::read(line.to_string())
+                }
+            };
             if entry.is_incomplete() {
-                pending = entry.into_text();
+                pending = Some(entry);
             } else if !entry.text().trim().is_empty() {
                 ready.push(entry, first_line);
             }
@@ -174,9 +177,9 @@ impl Script<'_, '_> {
         if self.run_ready(&mut ready) == Step::Stop {
             return;
         }
-        if !pending.trim().is_empty() {
+        if let Some(entry) = pending {
             // Unfinished at the end: the parser says what is missing.
-            ready.push(Entry::read(pending), first_line);
+            ready.push(entry, first_line);
             self.run_ready(&mut ready);
         }
     }
