@@ -96,6 +96,14 @@ pair(1, 2)
 }
 
 #[test]
+fn more_than_four_definitions_in_one_input_are_listed_on_one_line() {
+    let four = run("let a = 1 let b = 2 object o = sphere center 0, 0, 0 radius a $T end ambient 0.5\n");
+    assert_eq!(four.out, "a = 1\nb = 2\nobject o = sphere\nambient light: 0.5\n");
+    let five = run("camera distance 2 angle 1 end ambient 0.5 let a = 1 let b = 2 proc p() end p()\n");
+    assert_eq!(five.out, "defined the camera, the ambient light, a, b, proc p\nnothing was put\n");
+}
+
+#[test]
 fn a_new_camera_or_ambient_replaces_the_old_one_and_lights_add_up() {
     let run = run("\
 camera distance 10 angle 0.8 end

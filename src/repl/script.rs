@@ -1,6 +1,9 @@
 //! Scripts on standard input: `cat script | rayrepl` runs items and commands
 //! line by line, without prompts or previews. Lines accumulate while an input
-//! is unfinished; diagnostics carry the script's own line numbers.
+//! is unfinished; diagnostics carry the script's own line numbers. Finished
+//! inputs whose lines are already in the reader's buffer are parsed together,
+//! then run and answered one by one; the script never waits for a line
+//! before it has answered every input read.
 
 use std::io::BufRead;
 
