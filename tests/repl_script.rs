@@ -869,6 +869,26 @@ mod binary {
 }
 
 #[test]
+fn answers_and_errors_to_one_stream_come_in_the_order_of_the_inputs() {
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let (script, both) = (dir.path().join("script.ray"), dir.path().join("both.txt"));
+    std::fs::write(&script, "let a = 1\nlet b = nowhere\nprint a\nlet c = 3\n").expect("write the script");
+    let output = std::fs::File::create(&both).expect("create the output");
+    let status = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .arg("--keep-going")
+        .stdin(std::fs::File::open(&script).expect("open the script"))
+        .stdout(Stdio::from(output.try_clone().expect("the output again")))
+        .stderr(Stdio::from(output))
+        .status()
+        .expect("the binary runs");
+    assert_eq!(status.code(), Some(1));
+    let both = std::fs::read_to_string(&both).expect("read the output");
+    let at = |text: &str| both.find(text).unwrap_or_else(|| panic!("{text} in {both}"));
+    assert!(at("a = 1") < at("nowhere") && at("nowhere") < at(":3: a = 1") && at(":3: a = 1") < at("c = 3"), "{both}");
+}
+
+#[test]
 fn ctrl_c_stops_a_piped_script_with_status_130_and_says_where() {
     use std::io::{BufRead, BufReader, Write};
     use std::process::{Command, Stdio};
