@@ -99,6 +99,14 @@ pair(1, 2)
 }
 
 #[test]
+fn more_than_four_definitions_in_one_input_are_listed_on_one_line() {
+    let four = run("let a = 1 let b = 2 object o = sphere center 0, 0, 0 radius a $T end ambient 0.5\n");
+    assert_eq!(four.out, "a = 1\nb = 2\nobject o = sphere\nambient light: 0.5\n");
+    let five = run("camera distance 2 angle 1 end ambient 0.5 let a = 1 let b = 2 proc p() end p()\n");
+    assert_eq!(five.out, "defined the camera, the ambient light, a, b, proc p\nnothing was put\n");
+}
+
+#[test]
 fn a_new_camera_or_ambient_replaces_the_old_one_and_lights_add_up() {
     let run = run("\
 camera distance 10 angle 0.8 end
@@ -128,6 +136,48 @@ let x = 1 +
 ");
     assert_eq!(run.code, 0, "{}", run.err);
     assert_eq!(run.out, "put 1 sphere (1 object in the scene)\nx = 3\n");
+}
+
+/// Runs `script` as [`run_with`] does, read one byte at a time: no input is
+/// read ahead of the one running, so each is parsed on its own.
+fn run_unbuffered(script: &str, options: &SessionOptions) -> Run {
+    let script = script.replace("$T", TEX);
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let code = run_script(std::io::BufReader::with_capacity(1, script.as_bytes()), &mut out, &mut err, options);
+    Run {
+        code,
+        out: String::from_utf8(out).expect("output is text"),
+        err: String::from_utf8(err).expect("errors are text"),
+    }
+}
+
+#[test]
+fn inputs_read_ahead_run_as_inputs_read_one_at_a_time() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let file = dir.path().join("session.ray");
+    let scripts = [
+        // Each line is finished, but together two of them make one item.
+        "let x = 1\n+ 2\nlet y = 3\n".to_string(),
+        "let a = 1\nlet b = oops\nlet c = 3\n".to_string(),
+        "let a = 1\nlet = 2\nlet c = 3\n".to_string(),
+        "let a = 1 $\nlet b = 2\n".to_string(),
+        "let a = 1\nend\nlet c = (1\n".to_string(),
+        format!(
+            "{SCENE}proc p(n)\n  put sphere center 0, 0, 0 radius n $T end\nend\np(1) p(2)\n\
+             let x = (1 +\n2) # two lines\n# a comment\n:show p\n:list\nobject o = sphere center 0, 0, 0 radius x $T end\n\
+             put o\n:write {}\nlet y = nowhere\nput sphere center 0, 0, 0 radius\n",
+            file.display()
+        ),
+    ];
+    for script in &scripts {
+        for options in [SessionOptions::default(), SessionOptions { keep_going: true, ..SessionOptions::default() }] {
+            let ahead = run_with(script, &options);
+            let written = std::fs::read_to_string(&file).unwrap_or_default();
+            let alone = run_unbuffered(script, &options);
+            assert_eq!((ahead.code, &ahead.out, &ahead.err), (alone.code, &alone.out, &alone.err), "{script}");
+            assert_eq!(written, std::fs::read_to_string(&file).unwrap_or_default(), "{script}");
+        }
+    }
 }
 
 #[test]
@@ -819,6 +869,26 @@ mod binary {
         std::fs::write(&file, "let r = 4\n").expect("write the scene");
         rayrepl().arg("-i").arg(&file).write_stdin("let s = r * 2\n").assert().success().stdout(contains("s = 8\n"));
     }
+}
+
+#[test]
+fn answers_and_errors_to_one_stream_come_in_the_order_of_the_inputs() {
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let (script, both) = (dir.path().join("script.ray"), dir.path().join("both.txt"));
+    std::fs::write(&script, "let a = 1\nlet b = nowhere\nprint a\nlet c = 3\n").expect("write the script");
+    let output = std::fs::File::create(&both).expect("create the output");
+    let status = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .arg("--keep-going")
+        .stdin(std::fs::File::open(&script).expect("open the script"))
+        .stdout(Stdio::from(output.try_clone().expect("the output again")))
+        .stderr(Stdio::from(output))
+        .status()
+        .expect("the binary runs");
+    assert_eq!(status.code(), Some(1));
+    let both = std::fs::read_to_string(&both).expect("read the output");
+    let at = |text: &str| both.find(text).unwrap_or_else(|| panic!("{text} in {both}"));
+    assert!(at("a = 1") < at("nowhere") && at("nowhere") < at(":3: a = 1") && at(":3: a = 1") < at("c = 3"), "{both}");
 }
 
 #[test]

@@ -37,7 +37,7 @@ use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
 
 pub use origins::{Call, CameraOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans};
-pub use print::{PRINT_LIMIT, PrintLine, PrintLog, format_number};
+pub use print::{Number, PRINT_LIMIT, PrintLine, PrintLog, format_number};
 
 use super::ast::{Item, ProcDef, Program};
 use super::diagnostic::{Diagnostic, Note};

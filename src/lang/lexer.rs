@@ -253,6 +253,15 @@ impl<'a> Lexer<'a> {
         Lexer { text, pos, source, keywords, names: HashMap::default(), line_start: 0, failed: false }
     }
 
+    /// A lexer over `text` from byte `start`, where a line starts, on: the
+    /// tokens from there that [`Lexer::new`] would read.
+    pub fn from_line(source: SourceId, text: &'a str, start: usize) -> Lexer<'a> {
+        if start == 0 {
+            return Lexer::new(source, text);
+        }
+        Lexer { pos: start, line_start: start, ..Lexer::new(source, text) }
+    }
+
     /// Where the line of the last token read starts, as a byte offset.
     pub fn line_start(&self) -> usize {
         self.line_start

@@ -13,5 +13,5 @@ pub mod words;
 
 pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};
-pub use parser::{Entry, EntryState, entry_state, is_incomplete, parse_file, parse_items};
+pub use parser::{Entry, EntryState, entry_state, is_incomplete, parse_entries, parse_file, parse_items};
 pub use source::{SourceFile, SourceId, SourceMap, Span};

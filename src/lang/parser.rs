@@ -17,9 +17,10 @@ use lalrpop_util::{ParseError, lalrpop_mod};
 
 use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
-use super::lexer::{Lexer, Token};
+use super::lexer::{Lexer, Spanned, Token};
 use super::source::{SourceId, Span};
-use context::{Read, Tracked};
+use super::words::Word;
+use context::Tracked;
 use errors::Mode;
 
 lalrpop_mod!(
@@ -49,10 +50,38 @@ fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic
 
 /// Parses `text` from `tokens`, its tokens.
 fn parse_tokens(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked) -> Result<Program, Diagnostic> {
-    let parsed = grammar::ItemsParser::new().parse(source, &mut tokens);
+    let parsed = grammar::ItemsParser::new().parse(&Sources::One(source), &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),
         Err(error) => Err(errors::syntax_error(source, text, mode, tokens.context(), error)),
+    }
+}
+
+/// What the byte offsets of a parse point into: one source text, or the
+/// texts of several entries read as one, so that every span names its own
+/// text.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Sources<'s> {
+    /// One text, with its source.
+    One(SourceId),
+    /// The texts of `sources`, the byte `b` of the text at index `i` read
+    /// at the offset `i << shift | b` (every text is shorter than
+    /// `1 << shift`): a shift finds the text of an offset.
+    Many { sources: &'s [SourceId], shift: u32 },
+}
+
+impl Sources<'_> {
+    /// The span of the bytes `start..end`, in the text where `start` is (an
+    /// `end` in a later text lies past the end of that one).
+    pub(crate) fn span(&self, start: usize, end: usize) -> Span {
+        match *self {
+            Sources::One(source) => Span::new(source, start, end),
+            Sources::Many { sources, shift } => {
+                let index = start >> shift;
+                let base = index << shift;
+                Span::new(sources[index], start - base, end - base)
+            }
+        }
     }
 }
 
@@ -86,7 +115,7 @@ pub enum EntryState {
 /// at the end of the text means only that more is needed.
 pub fn entry_state(text: &str) -> EntryState {
     let source = SourceId::default();
-    match grammar::ItemsParser::new().parse(source, Lexer::new(source, text)) {
+    match grammar::ItemsParser::new().parse(&Sources::One(source), Lexer::new(source, text)) {
         Ok(_) => EntryState::Complete,
         Err(ParseError::UnrecognizedEof { .. }) => EntryState::Unfinished,
         Err(_) => EntryState::Broken,
@@ -104,60 +133,131 @@ pub fn entry_state(text: &str) -> EntryState {
 /// lexing error, or with an `end` or `)` that closes nothing, is complete:
 /// submitting it shows the error at once instead of waiting for more lines.
 pub fn is_incomplete(text: &str) -> bool {
-    Entry::read(text).is_incomplete()
+    Entry::read(text.to_string()).is_incomplete()
 }
 
 /// One entry of the session whose tokens were read to see whether it is
 /// finished ([`is_incomplete`]), and kept for the parser: a script's input
-/// is lexed once.
-pub struct Entry<'t> {
-    text: &'t str,
-    incomplete: bool,
+/// is lexed once, and a line added to it is lexed alone.
+pub struct Entry {
+    text: String,
     /// The tokens of the whole text, unless reading stopped early (a lexing
     /// error, a stray closer): the parser then reads the text itself.
-    tokens: Option<Vec<Read>>,
+    tokens: Option<Vec<Spanned>>,
+    /// How many constructs and parentheses the tokens leave open.
+    constructs: usize,
+    parens: usize,
 }
 
-impl<'t> Entry<'t> {
+impl Entry {
     /// Reads the tokens of `text`.
-    pub fn read(text: &'t str) -> Entry<'t> {
-        let complete = Entry { text, incomplete: false, tokens: None };
-        let mut tokens = Tracked::new(SourceId::default(), text);
+    pub fn read(text: String) -> Entry {
         // Tokens take a few bytes each: one allocation instead of growing.
-        let mut read = Vec::with_capacity(text.len() / 2);
-        while let Some(token) = tokens.next_read() {
-            let Ok(token) = token else {
-                return complete;
-            };
-            if tokens.context().stray_closer {
-                return complete;
-            }
-            read.push(token);
-        }
-        let context = tokens.context();
-        let last = read.last().map(|(((_, token, _), _), _)| token);
-        let incomplete = !context.stray_closer
-            && (!context.open.is_empty() || !context.parens.is_empty() || last.is_some_and(needs_more));
-        Entry { text, incomplete, tokens: Some(read) }
+        let tokens = Some(Vec::with_capacity(text.len() / 2));
+        let mut entry = Entry { text, tokens, constructs: 0, parens: 0 };
+        entry.read_from(0);
+        entry
+    }
+
+    /// Adds `line` to the text and reads its tokens: no token spans two
+    /// lines, so those before are the same.
+    pub fn add_line(&mut self, line: &str) {
+        self.text.push('\n');
+        let start = self.text.len();
+        self.text.push_str(line);
+        self.read_from(start);
     }
 
     /// The entry's text.
-    pub fn text(&self) -> &'t str {
-        self.text
+    pub fn text(&self) -> &str {
+        &self.text
     }
 
     /// Whether the entry is unfinished, as [`is_incomplete`] says.
     pub fn is_incomplete(&self) -> bool {
-        self.incomplete
+        let last = self.tokens.as_ref().and_then(|tokens| tokens.last()).map(|(_, token, _)| token);
+        self.tokens.is_some() && (self.constructs > 0 || self.parens > 0 || last.is_some_and(needs_more))
     }
 
-    /// Parses the entry as [`parse_items`] does, from the tokens read.
-    pub fn parse(self, source: SourceId) -> Result<Program, Diagnostic> {
-        match self.tokens {
-            Some(read) => parse_tokens(source, self.text, Mode::Session, Tracked::replay(source, read)),
-            None => parse_items(source, self.text),
+    /// Reads the tokens from byte `start` (where a line starts) on, unless
+    /// reading stopped before (a lexing error, a stray closer). Counting the
+    /// open constructs and parentheses is enough here; the parser's fuller
+    /// record of them ([`Tracked`]) serves its errors, and an entry that
+    /// does not parse is read again that way.
+    fn read_from(&mut self, start: usize) {
+        let Some(tokens) = &mut self.tokens else { return };
+        let mut lexer = Lexer::from_line(SourceId::default(), &self.text, start);
+        while let Some(token) = lexer.next_word() {
+            let Ok((spanned, word)) = token else {
+                self.tokens = None;
+                return;
+            };
+            let stray_closer = match spanned.1 {
+                Token::End => self.constructs.checked_sub(1).map(|left| self.constructs = left).is_none(),
+                Token::RParen => self.parens.checked_sub(1).map(|left| self.parens = left).is_none(),
+                Token::LParen => {
+                    self.parens += 1;
+                    false
+                }
+                _ => {
+                    self.constructs += usize::from(word.is_some_and(Word::opens));
+                    false
+                }
+            };
+            if stray_closer {
+                self.tokens = None;
+                return;
+            }
+            tokens.push(spanned);
         }
     }
+}
+
+/// Parses each of the finished `entries`, whose texts are the sources
+/// `sources`, as [`parse_items`] does. Entries that came together are
+/// parsed in one run of the parser, as one text: a parse has a cost of its
+/// own (its stacks start empty). When that fails (a syntax error, or an
+/// item reaching from one entry into the next) each is parsed on its own,
+/// which says what is wrong where. The entries' tokens are used up.
+pub fn parse_entries(entries: &mut [Entry], sources: &[SourceId]) -> Vec<Result<Program, Diagnostic>> {
+    match parse_together(entries, sources) {
+        Some(programs) => programs.into_iter().map(Ok).collect(),
+        None => entries.iter().zip(sources).map(|(entry, &source)| parse_items(source, &entry.text)).collect(),
+    }
+}
+
+/// The programs of `entries` parsed as one text, the entries one line
+/// after the other; `None` if that text does not parse into items that
+/// each lie inside one entry.
+fn parse_together(entries: &mut [Entry], sources: &[SourceId]) -> Option<Vec<Program>> {
+    let longest = entries.iter().map(|entry| entry.text.len()).max()?;
+    let shift = (longest + 1).next_power_of_two().trailing_zeros();
+    // Every offset, the ends of items across texts too, must fit a span.
+    if shift >= u32::BITS || entries.len() > (u32::MAX >> shift) as usize {
+        return None;
+    }
+    let mut tokens = Vec::with_capacity(entries.len());
+    for (index, entry) in entries.iter_mut().enumerate() {
+        tokens.push((index << shift, entry.tokens.take()?));
+    }
+    let shifted = tokens.into_iter().flat_map(|(base, read)| {
+        read.into_iter().map(move |(start, token, end)| Ok((base + start, token, base + end)))
+    });
+    let items = grammar::ItemsParser::new().parse(&Sources::Many { sources, shift }, shifted).ok()?;
+    // How many items each entry has, the items being in the entries' order.
+    let mut counts = vec![0; entries.len()];
+    let mut owner = 0;
+    for item in &items {
+        let span = item.span();
+        owner += sources.get(owner..)?.iter().position(|&source| source == span.source)?;
+        if span.end as usize > entries[owner].text.len() {
+            return None;
+        }
+        counts[owner] += 1;
+    }
+    let mut items = items.into_iter();
+    let programs = counts.into_iter().map(|count| Program { items: items.by_ref().take(count).collect() }).collect();
+    Some(programs)
 }
 
 /// Whether an input cannot end with `token`.
@@ -201,20 +301,62 @@ mod tests {
         assert_eq!(entry_state(""), EntryState::Complete);
     }
 
+    /// `parse_entries` of `texts` (ids 3, 4, ...) printed, and the same for
+    /// `parse_items` of each text.
+    fn together_and_alone(texts: &[&str]) -> (String, String) {
+        let sources: Vec<SourceId> = (3..).map(SourceId).take(texts.len()).collect();
+        let mut entries: Vec<Entry> = texts.iter().map(|text| Entry::read(text.to_string())).collect();
+        let together = parse_entries(&mut entries, &sources);
+        let alone: Vec<_> = texts.iter().zip(&sources).map(|(text, &source)| parse_items(source, text)).collect();
+        (format!("{together:?}"), format!("{alone:?}"))
+    }
+
     #[test]
-    fn an_entry_parses_from_its_tokens_as_its_text_does() {
+    fn entries_parse_together_as_each_alone() {
         let texts = [
             "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end",
             "let x = (1 +\n 2) let y = x",
-            "proc p(a)\n  put a\n",
-            "proc p(a)\n  if a < 1 then\n    put b\n  end\nend end",
-            "let = 2",
-            "let x = 1 $",
-            "end",
+            "# a comment",
+            "proc p(a)\n  if a < 1 then\n    put b\n  end\nend",
+            "p(1)",
+        ];
+        let (together, alone) = together_and_alone(&texts);
+        assert_eq!(together, alone);
+    }
+
+    #[test]
+    fn entries_that_do_not_parse_together_parse_alone() {
+        let cases: [&[&str]; 4] = [
+            // Each is finished, but together they make one item.
+            &["let x = 1", "+ 2"],
+            &["let x = 1", "let = 2", "let y = 3"],
+            &["let x = 1 $", "let y = 2"],
+            &["let x = 1", "end"],
+        ];
+        for texts in cases {
+            let (together, alone) = together_and_alone(texts);
+            assert_eq!(together, alone, "{texts:?}");
+        }
+    }
+
+    #[test]
+    fn an_entry_read_line_by_line_reads_as_read_whole() {
+        let texts = [
+            "proc p(a)\n  put a # (\n  let x = (1 +\n 2)\nend",
+            "let x = (\n1 $\n)",
+            "proc p()\nend end\nlet y",
+            "let x = 1\n\u{feff}let y = 2",
+            "let x =\n\n  # nothing yet\n3",
         ];
         for text in texts {
-            let parsed = Entry::read(text).parse(SourceId(3));
-            assert_eq!(format!("{parsed:?}"), format!("{:?}", parse_items(SourceId(3), text)), "{text}");
+            let mut lines = text.split('\n');
+            let mut entry = Entry::read(lines.next().unwrap_or_default().to_string());
+            for line in lines {
+                entry.add_line(line);
+                let whole = Entry::read(entry.text().to_string());
+                let read = |entry: &Entry| (entry.is_incomplete(), format!("{:?}", entry.tokens));
+                assert_eq!(read(&entry), read(&whole), "{}", entry.text());
+            }
         }
     }
 

@@ -452,9 +452,7 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
         console.diagnostic(warning, session.sources());
     }
     console.say(format!("loaded {}", path.display()));
-    for line in report::confirmations(&accepted, session) {
-        console.say(line);
-    }
+    report::confirm(&accepted, session, console);
     Ok(Flow::Continue)
 }
 

@@ -124,9 +124,7 @@ pub(crate) fn report_input(
             for warning in &accepted.warnings {
                 console.diagnostic(warning, session.sources());
             }
-            for line in report::confirmations(&accepted, session) {
-                console.say(line);
-            }
+            report::confirm(&accepted, session, console);
             lessons::check_input(session, console);
             Ok(())
         }

@@ -1,37 +1,47 @@
 //! The short confirmations printed after an accepted input.
 
+use std::fmt::{self, Display};
+
 use crate::lang::ast::{InstrKind, Item};
+use crate::lang::eval::Number;
 /// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
 pub(crate) use crate::lang::eval::format_number as number;
 use crate::scene::Counts;
 
+use super::console::Console;
 use super::session::{Accepted, Session};
 
 /// Above this many definitions in one input, they are listed on one line.
 const MAX_DEFINITION_LINES: usize = 4;
 
-/// The lines confirming what an accepted input did, for example
-/// `r = 2` or `put 1 sphere (3 objects in the scene)`.
-pub(crate) fn confirmations(accepted: &Accepted, session: &Session) -> Vec<String> {
-    let mut lines = definitions(accepted, session);
-    if lines.len() > MAX_DEFINITION_LINES {
-        lines = vec![format!("defined {}", definition_names(accepted).join(", "))];
+/// Says the lines confirming what an accepted input did, for example
+/// `r = 2` or `put 1 sphere (3 objects in the scene)`, each formatted
+/// straight into the console's line.
+pub(crate) fn confirm(accepted: &Accepted, session: &Session, console: &mut Console) {
+    let items = &accepted.program.items;
+    if items.iter().filter(|item| defines(item)).count() > MAX_DEFINITION_LINES {
+        console.say(format_args!("defined {}", definition_names(accepted).join(", ")));
+    } else {
+        say_definitions(accepted, session, console);
     }
     let after = session.counts();
     let before = accepted.counts_before;
     if after.lights > before.lights {
-        lines.push(format!(
-            "{} ({} in the scene)",
-            counted(after.lights - before.lights, "light") + " added",
-            counted(after.lights, "light")
+        console.say(format_args!(
+            "{} added ({} in the scene)",
+            Counted(after.lights - before.lights, "light"),
+            Counted(after.lights, "light")
         ));
     }
     if objects(&after) > objects(&before) {
-        lines.push(format!("put {} ({} in the scene)", added(&before, &after), counted(objects(&after), "object")));
+        console.say(format_args!(
+            "put {} ({} in the scene)",
+            added(&before, &after),
+            Counted(objects(&after), "object")
+        ));
     } else if has_call(accepted) {
-        lines.push("nothing was put".to_string());
+        console.say("nothing was put");
     }
-    lines
 }
 
 /// How many primitives `counts` holds.
@@ -39,39 +49,46 @@ pub(crate) fn objects(counts: &Counts) -> usize {
     counts.spheres + counts.planes + counts.boxes
 }
 
-fn definitions(accepted: &Accepted, session: &Session) -> Vec<String> {
+/// Whether `item` defines something that [`say_definitions`] confirms.
+fn defines(item: &Item) -> bool {
+    match item {
+        Item::Camera(_) | Item::Ambient(_) | Item::Proc(_) => true,
+        Item::Instr(instr) => matches!(instr.kind, InstrKind::Let(..) | InstrKind::Object(..)),
+        Item::Light(_) => false,
+    }
+}
+
+fn say_definitions(accepted: &Accepted, session: &Session, console: &mut Console) {
     let scene = session.scene();
-    let mut lines = Vec::new();
     for item in &accepted.program.items {
         match item {
-            Item::Camera(_) => lines.push(format!(
+            Item::Camera(_) => console.say(format_args!(
                 "camera: distance {}, angle {}",
-                number(scene.camera.distance),
-                number(scene.camera.angle)
+                Number(scene.camera.distance),
+                Number(scene.camera.angle)
             )),
-            Item::Ambient(_) => lines.push(format!("ambient light: {}", number(scene.ambient))),
+            Item::Ambient(_) => console.say(format_args!("ambient light: {}", Number(scene.ambient))),
             Item::Proc(proc_def) => {
                 let name = &*proc_def.name.name;
                 let known = accepted.redefined.iter().any(|before| &**before == name);
                 let verb = if known { "redefined" } else { "defined" };
                 let params: Vec<&str> = proc_def.params.iter().map(|p| &*p.name).collect();
-                lines.push(format!("{verb} proc {name}({})", params.join(", ")));
+                console.say(format_args!("{verb} proc {name}({})", params.join(", ")));
             }
             Item::Instr(instr) => match &instr.kind {
-                InstrKind::Let(name, _) => lines.push(match session.global_number(&name.name) {
-                    Some(value) => format!("{} = {}", name.name, number(value)),
-                    None => format!("{} defined", name.name),
-                }),
+                InstrKind::Let(name, _) => match session.global_number(&name.name) {
+                    Some(value) => console.say(format_args!("{} = {}", name.name, Number(value))),
+                    None => console.say(format_args!("{} defined", name.name)),
+                },
                 InstrKind::Object(name, _) => {
                     let what = session.describe_object(&name.name).unwrap_or_else(|| "object".to_string());
-                    lines.push(format!("object {} = {what}", name.name));
+                    console.say(format_args!("object {} = {what}", name.name));
                 }
                 InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) | InstrKind::Print(_) => {}
             },
             Item::Light(_) => {}
         }
     }
-    lines
 }
 
 fn definition_names(accepted: &Accepted) -> Vec<String> {
@@ -113,10 +130,19 @@ fn added(before: &Counts, after: &Counts) -> String {
 
 /// `count` and `noun`, plural when it is not 1: "1 sphere", "2 boxes".
 pub(crate) fn counted(count: usize, noun: &str) -> String {
-    match (count, noun) {
-        (1, _) => format!("1 {noun}"),
-        (_, "box") => format!("{count} boxes"),
-        _ => format!("{count} {noun}s"),
+    Counted(count, noun).to_string()
+}
+
+/// [`counted`], formatted straight into the line that shows it.
+struct Counted<'n>(usize, &'n str);
+
+impl Display for Counted<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match *self {
+            Counted(1, noun) => write!(f, "1 {noun}"),
+            Counted(count, "box") => write!(f, "{count} boxes"),
+            Counted(count, noun) => write!(f, "{count} {noun}s"),
+        }
     }
 }
 
@@ -133,5 +159,7 @@ mod tests {
         let after = Counts { spheres: 2, planes: 1, boxes: 3, lights: 0 };
         assert_eq!(added(&before, &after), "2 spheres, 1 plane and 3 boxes");
         assert_eq!(added(&before, &Counts { boxes: 1, ..before }), "1 box");
+        assert_eq!(added(&before, &Counts { spheres: 1, boxes: 2, ..before }), "1 sphere and 2 boxes");
+        assert_eq!(added(&after, &after), "nothing");
     }
 }

@@ -1,12 +1,16 @@
 //! Scripts on standard input: `cat script | rayrepl` runs items and commands
 //! line by line, without prompts or previews. Lines accumulate while an input
-//! is unfinished; diagnostics carry the script's own line numbers.
+//! is unfinished; diagnostics carry the script's own line numbers. Finished
+//! inputs whose lines are already in the reader's buffer are parsed together,
+//! then run and answered one by one; the script never waits for a line
+//! before it has answered every input read.
 
 use std::io::BufRead;
 
 use anstream::stream::RawStream;
 
-use crate::lang::Entry;
+use crate::lang::ast::Program;
+use crate::lang::{Diagnostic, Entry, SourceId, parse_entries};
 
 use super::cancel::{ArmedSwitch, CancelSwitch};
 use super::commands::{self, Flow, is_command};
@@ -14,9 +18,15 @@ use super::console::Console;
 use super::session::Session;
 use super::{SessionOptions, new_session, report_input};
 use crate::output::INTERRUPTED_EXIT_CODE;
+use lines::{Line, Lines};
+
+mod lines;
 
 /// The name scripts' diagnostics show.
 const SCRIPT_NAME: &str = "<stdin>";
+
+/// How many finished inputs a script reads ahead before running them.
+const MOST_READ_AHEAD: usize = 256;
 
 /// Runs the script read from `input`, writing messages to `out` and
 /// diagnostics to `err` (with colours only where the stream is a terminal
@@ -90,6 +100,20 @@ fn run_in(session: &mut Session, console: &mut Console, input: impl BufRead, opt
     }
 }
 
+/// Finished inputs read ahead of the one running, with their first lines.
+#[derive(Default)]
+struct ReadAhead {
+    entries: Vec<Entry>,
+    first_lines: Vec<usize>,
+}
+
+impl ReadAhead {
+    fn push(&mut self, entry: Entry, first_line: usize) {
+        self.entries.push(entry);
+        self.first_lines.push(first_line);
+    }
+}
+
 /// Whether the script goes on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Step {
@@ -111,52 +135,76 @@ struct Script<'s, 'c> {
 
 impl Script<'_, '_> {
     fn run(&mut self, input: impl BufRead) {
-        let mut pending = String::new();
+        let mut lines = Lines::new(input);
+        let mut ready = ReadAhead::default();
+        let mut pending: Option<Entry> = None;
         let mut first_line = 0;
-        for (index, line) in input.lines().enumerate() {
-            let number = index + 1;
-            let Ok(line) = line else {
-                self.console.error(format!("line {number} of the script cannot be read as text"));
-                self.errors += 1;
+        let mut number = 0;
+        while let Some(line) = lines.next_line() {
+            number += 1;
+            let Ok(Line { text: line, next_ready }) = line else {
+                if self.run_ready(&mut ready) == Step::Next {
+                    self.console.error(format!("line {number} of the script cannot be read as text"));
+                    self.errors += 1;
+                }
                 return;
             };
-            let line = line.strip_suffix('\r').unwrap_or(&line);
-            if pending.is_empty() {
-                if is_command(line) {
-                    if self.command(line, number) == Step::Stop {
+            let line = line.strip_suffix('\r').unwrap_or(line);
+            let entry = match pending.take() {
+                Some(mut entry) => {
+                    entry.add_line(line);
+                    entry
+                }
+                None if is_command(line) => {
+                    if self.run_ready(&mut ready) == Step::Stop || self.command(line, number) == Step::Stop {
                         return;
                     }
                     continue;
                 }
-                first_line = number;
-            } else {
-                pending.push('\n');
-            }
-            pending.push_str(line);
-            let entry = Entry::read(&pending);
+                None => {
+                    first_line = number;
+                    Entry::read(line.to_string())
+                }
+            };
             if entry.is_incomplete() {
-                continue;
+                pending = Some(entry);
+            } else if !entry.text().trim().is_empty() {
+                ready.push(entry, first_line);
             }
-            let step = self.input(entry, first_line);
-            pending.clear();
-            if step == Step::Stop {
+            // Run what is finished before a read that may wait for the writer.
+            let waits = !next_ready || ready.entries.len() >= MOST_READ_AHEAD;
+            if waits && self.run_ready(&mut ready) == Step::Stop {
                 return;
             }
         }
-        if !pending.trim().is_empty() {
+        if self.run_ready(&mut ready) == Step::Stop {
+            return;
+        }
+        if let Some(entry) = pending {
             // Unfinished at the end: the parser says what is missing.
-            self.input(Entry::read(&pending), first_line);
+            ready.push(entry, first_line);
+            self.run_ready(&mut ready);
         }
     }
 
-    fn input(&mut self, entry: Entry, first_line: usize) -> Step {
-        let text = entry.text();
-        if text.trim().is_empty() {
-            return Step::Next;
+    /// Runs the finished inputs read ahead, in order, parsed together.
+    fn run_ready(&mut self, ready: &mut ReadAhead) -> Step {
+        let sources: Vec<SourceId> = (ready.entries.iter().zip(&ready.first_lines))
+            .map(|(entry, first_line)| self.session.add_source(SCRIPT_NAME, entry.text(), first_line.saturating_sub(1)))
+            .collect();
+        let parsed = parse_entries(&mut ready.entries, &sources);
+        let inputs = ready.entries.drain(..).zip(ready.first_lines.drain(..)).zip(sources.into_iter().zip(parsed));
+        for ((entry, first_line), (source, parsed)) in inputs {
+            if self.input(entry.text(), source, parsed, first_line) == Step::Stop {
+                return Step::Stop;
+            }
         }
+        Step::Next
+    }
+
+    fn input(&mut self, text: &str, source: SourceId, parsed: Result<Program, Diagnostic>, first_line: usize) -> Step {
         let armed = self.console.cancel.map(|switch| switch.arm());
-        let line_offset = first_line.saturating_sub(1);
-        let accepted = self.session.submit_entry(SCRIPT_NAME, entry, line_offset);
+        let accepted = self.session.submit_program(source, parsed);
         let result = report_input(self.session, self.console, text, accepted);
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;

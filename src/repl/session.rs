@@ -13,7 +13,7 @@ use image::RgbImage;
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Entry, Interpreter, Limits, SourceId, SourceMap, Span, parse_items};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items};
 use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
@@ -166,34 +166,28 @@ impl Session {
     /// `line_offset` is the number of lines before it in its script. On
     /// error the session is unchanged (SPEC 7).
     pub(crate) fn submit(&mut self, name: &str, text: &str, line_offset: usize) -> Result<Accepted, Diagnostic> {
-        self.submit_parsed(name, text, line_offset, |source| parse_items(source, text))
+        let source = self.add_source(name, text, line_offset);
+        self.submit_program(source, parse_items(source, text))
     }
 
-    /// Runs one input as [`Session::submit`] does, parsed from the tokens
-    /// read to see that it was finished.
-    pub(crate) fn submit_entry(
-        &mut self,
-        name: &str,
-        entry: Entry,
-        line_offset: usize,
-    ) -> Result<Accepted, Diagnostic> {
-        self.submit_parsed(name, entry.text(), line_offset, |source| entry.parse(source))
+    /// Adds the text of an input about to be parsed to the source map, as
+    /// [`Session::submit`] does; `name` and `line_offset` as there.
+    pub(crate) fn add_source(&mut self, name: &str, text: &str, line_offset: usize) -> SourceId {
+        self.sources.add(name, text, line_offset)
     }
 
-    /// Runs the input `text`, which `parse` parses given its source.
-    fn submit_parsed(
+    /// Runs one input whose text is `source` (see [`Session::add_source`]),
+    /// parsed into `parsed`, as [`Session::submit`] does.
+    pub(crate) fn submit_program(
         &mut self,
-        name: &str,
-        text: &str,
-        line_offset: usize,
-        parse: impl FnOnce(SourceId) -> Result<Program, Diagnostic>,
+        source: SourceId,
+        parsed: Result<Program, Diagnostic>,
     ) -> Result<Accepted, Diagnostic> {
-        let text: Arc<str> = Arc::from(text);
-        let source = self.sources.add(name, Arc::clone(&text), line_offset);
-        let mut program = parse(source)?;
+        let mut program = parsed?;
         // An input holds one item or a few: the room the parser left for
         // more would be most of a long script's memory.
         program.items.shrink_to_fit();
+        let text = Arc::clone(&self.sources.get(source).text);
         self.run(Input { text, loaded_from: None, program: Rc::new(program) })
     }
 

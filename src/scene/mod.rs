@@ -155,17 +155,24 @@ impl Counts {
     /// The primitives counted, in words: "nothing", "1 sphere", "2 spheres,
     /// 1 plane and 3 boxes" (kinds with none are left out; lights too).
     pub fn primitives_in_words(&self) -> String {
-        let parts: Vec<String> =
-            [(self.spheres, "sphere", "spheres"), (self.planes, "plane", "planes"), (self.boxes, "box", "boxes")]
-                .into_iter()
-                .filter(|(count, _, _)| *count > 0)
-                .map(|(count, one, many)| format!("{count} {}", if count == 1 { one } else { many }))
-                .collect();
-        match parts.as_slice() {
-            [] => "nothing".to_string(),
-            [one] => one.clone(),
-            [init @ .., last] => format!("{} and {last}", init.join(", ")),
+        use std::fmt::Write as _;
+        let kinds =
+            [(self.spheres, "sphere", "spheres"), (self.planes, "plane", "planes"), (self.boxes, "box", "boxes")];
+        let present = kinds.iter().filter(|(count, _, _)| *count > 0).count();
+        if present == 0 {
+            return "nothing".to_string();
         }
+        // Written into one string: a confirmation of every `put` says this.
+        let mut words = String::new();
+        for (index, (count, one, many)) in kinds.into_iter().filter(|(count, _, _)| *count > 0).enumerate() {
+            let separator = match present - index {
+                _ if index == 0 => "",
+                1 => " and ",
+                _ => ", ",
+            };
+            let _ = write!(words, "{separator}{count} {}", if count == 1 { one } else { many });
+        }
+        words
     }
 }
 

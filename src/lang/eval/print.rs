@@ -7,6 +7,8 @@
 //! are counted, so a `print` in a procedure called a million times neither
 //! floods the terminal nor fills memory.
 
+use std::fmt;
+
 use super::Interpreter;
 use super::errors::EvalResult;
 use super::value::Kind;
@@ -150,15 +152,25 @@ fn describe_object(primitives: &[Primitive]) -> String {
 /// A number the way a learner writes it: `3`, `0.75`, `-1.570796` (six
 /// decimals at most, trailing zeros dropped; tiny numbers in `1e-9` form).
 pub fn format_number(value: f64) -> String {
-    if value == value.trunc() && value.abs() < 1e15 {
-        // Exact as an integer, which formats faster than the float; `-0`
-        // keeps its sign, as `{:.0}` writes it.
-        let integer = value as i64;
-        return if integer == 0 && value.is_sign_negative() { "-0".to_string() } else { integer.to_string() };
+    Number(value).to_string()
+}
+
+/// [`format_number`], formatted straight into the text that shows it.
+pub struct Number(pub f64);
+
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        let Number(value) = *self;
+        if value == value.trunc() && value.abs() < 1e15 {
+            // Exact as an integer, which formats faster than the float; `-0`
+            // keeps its sign, as `{:.0}` writes it.
+            let integer = value as i64;
+            return if integer == 0 && value.is_sign_negative() { f.write_str("-0") } else { write!(f, "{integer}") };
+        }
+        let text = format!("{value:.6}");
+        let text = text.trim_end_matches('0').trim_end_matches('.');
+        if text == "0" || text == "-0" { write!(f, "{value:e}") } else { f.write_str(text) }
     }
-    let text = format!("{value:.6}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "0" || text == "-0" { format!("{value:e}") } else { text.to_string() }
 }
 
 #[cfg(test)]

@@ -277,17 +277,9 @@ impl Context {
 /// A token as the lexer read it, with where its line starts.
 pub(super) type Read = (WordToken, usize);
 
-/// Where [`Tracked`] takes its tokens from.
-enum Tokens<'t> {
-    /// The lexer, reading the text.
-    Lexed(Lexer<'t>),
-    /// Tokens the lexer read before, from the start of the text to its end.
-    Replayed(std::vec::IntoIter<Read>),
-}
-
 /// The lexer's tokens, as the parser reads them, recorded in a [`Context`].
 pub(super) struct Tracked<'t> {
-    tokens: Tokens<'t>,
+    lexer: Lexer<'t>,
     source: SourceId,
     context: Context,
 }
@@ -295,13 +287,7 @@ pub(super) struct Tracked<'t> {
 impl<'t> Tracked<'t> {
     /// The tokens of `text`, whose spans name `source`.
     pub(super) fn new(source: SourceId, text: &'t str) -> Tracked<'t> {
-        Tracked { tokens: Tokens::Lexed(Lexer::new(source, text)), source, context: Context::default() }
-    }
-
-    /// The tokens `read` before from a whole text, handed out again, their
-    /// spans naming `source`.
-    pub(super) fn replay(source: SourceId, read: Vec<Read>) -> Tracked<'static> {
-        Tracked { tokens: Tokens::Replayed(read.into_iter()), source, context: Context::default() }
+        Tracked { lexer: Lexer::new(source, text), source, context: Context::default() }
     }
 
     /// What the tokens before the last one handed out leave open (all of
@@ -314,10 +300,7 @@ impl<'t> Tracked<'t> {
     /// starts.
     pub(super) fn next_read(&mut self) -> Option<Result<Read, Box<Diagnostic>>> {
         self.context.count_handed();
-        let read = match &mut self.tokens {
-            Tokens::Lexed(lexer) => lexer.next_word()?.map(|word_token| (word_token, lexer.line_start())),
-            Tokens::Replayed(read) => Ok(read.next()?),
-        };
+        let read = self.lexer.next_word()?.map(|word_token| (word_token, self.lexer.line_start()));
         if let Ok((((start, token, end), word), line_start)) = &read {
             let span = Span::new(self.source, *start, *end);
             self.context.hand(Handed { span, class: Class::of(token), word: *word, line_start: *line_start });
