@@ -11,8 +11,7 @@ mod wide;
 use glam::{DMat3, DVec3, UVec3};
 use rayon::prelude::*;
 
-pub(crate) use self::wide::PACKET;
-use self::wide::{PacketRays, WideBvh, WideRay};
+use self::wide::{WideBvh, WideRay};
 use super::intersect::{Aabb, Bounded, BoxShape, Ray};
 
 /// Up to this many objects a tree costs more than it saves: on the solar
@@ -137,36 +136,25 @@ impl SharedFrame {
     /// [`Bvh::closest_hit`] through the frame; `tree` was built in the frame.
     fn closest_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> (f64, u32) {
         let (local, inv) = self.local_ray(ray);
-        tree.closest_hit(&local, t_max, |start, count, best| self.test_boxes(start, count, ray, inv, best))
+        tree.closest_hit(&local, t_max, |start, count, best| {
+            for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
+                let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
+                let k = (start + k) as u32;
+                if goes_before(t, k, *best) {
+                    *best = (t, k);
+                }
+            }
+        })
     }
 
     /// [`Bvh::any_hit`] through the frame.
     fn any_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> bool {
         let (local, inv) = self.local_ray(ray);
-        tree.any_hit(&local, t_max, |start, count| self.any_box_hit(start, count, ray, inv, t_max))
-    }
-
-    /// Tests the boxes `start .. start + count` against `ray` (whose
-    /// direction in the frame has the inverse `inv`), keeping the nearest
-    /// hit in `best`.
-    #[inline(always)]
-    fn test_boxes(&self, start: usize, count: usize, ray: &Ray, inv: DVec3, best: &mut (f64, u32)) {
-        for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
-            let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
-            let k = (start + k) as u32;
-            if goes_before(t, k, *best) {
-                *best = (t, k);
-            }
-        }
-    }
-
-    /// Whether `ray` hits one of the boxes `start .. start + count` before
-    /// `t_max` (`inv` as for [`SharedFrame::test_boxes`]).
-    #[inline(always)]
-    fn any_box_hit(&self, start: usize, count: usize, ray: &Ray, inv: DVec3, t_max: f64) -> bool {
-        self.boxes[start..start + count]
-            .iter()
-            .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
+        tree.any_hit(&local, t_max, |start, count| {
+            self.boxes[start..start + count]
+                .iter()
+                .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
+        })
     }
 }
 
@@ -323,86 +311,15 @@ impl Bvh {
             return shared.any_hit(&self.wide, ray, t_max);
         }
         let wide_ray = WideRay::new(ray.origin.into(), ray.dir.into());
-        self.wide
-            .any_hit(&wide_ray, t_max, |start, count| any_object_hit(&self.objects[start..start + count], ray, t_max))
-    }
-
-    /// [`Bvh::closest_hit`] for each of `rays` (at most [`PACKET`]) into
-    /// `hits`: the tree walked by all of them together (a flat list ray by
-    /// ray).
-    pub fn closest_hits(&self, rays: &[Ray], t_max: f64, hits: &mut [(f64, u32)]) {
-        let Some((packet, inverses)) = self.packet(rays, (1 << rays.len()) - 1) else {
-            for (ray, hit) in rays.iter().zip(hits) {
-                *hit = self.closest_hit(ray, t_max);
-            }
-            return;
-        };
-        let found = match &self.shared {
-            Some(shared) => self.wide.closest_hits(&packet, t_max, |start, count, r, best| {
-                shared.test_boxes(start, count, &rays[r], inverses[r], best);
-            }),
-            None => self.wide.closest_hits(&packet, t_max, |start, count, r, best| {
-                test_range(&self.objects[start..start + count], start, &rays[r], best);
-            }),
-        };
-        hits.copy_from_slice(&found[..rays.len()]);
-    }
-
-    /// [`Bvh::any_hit`] for each of `rays` (at most [`PACKET`]) not yet
-    /// `blocked`, setting `blocked` for those that hit something: as one
-    /// packet or ray by ray, as [`Bvh::closest_hits`].
-    pub fn any_hits(&self, rays: &[Ray], t_max: f64, blocked: &mut [bool]) {
-        let open = blocked.iter().enumerate().fold(0, |lanes, (r, &b)| lanes | u32::from(!b) << r);
-        if open == 0 {
-            return;
-        }
-        let Some((packet, inverses)) = self.packet(rays, open) else {
-            for (ray, blocked) in rays.iter().zip(blocked) {
-                *blocked = *blocked || self.any_hit(ray, t_max);
-            }
-            return;
-        };
-        let hit = match &self.shared {
-            Some(shared) => self.wide.any_hits(&packet, t_max, |start, count, r| {
-                shared.any_box_hit(start, count, &rays[r], inverses[r], t_max)
-            }),
-            None => self.wide.any_hits(&packet, t_max, |start, count, r| {
-                any_object_hit(&self.objects[start..start + count], &rays[r], t_max)
-            }),
-        };
-        for (r, blocked) in blocked.iter_mut().enumerate() {
-            *blocked = *blocked || hit >> r & 1 == 1;
-        }
-    }
-
-    /// The rays of `lanes` among `rays` as one packet for the tree's walks
-    /// (turned into the shared frame, if any, with the inverses of their
-    /// directions there), if there is a tree.
-    #[inline(always)]
-    fn packet(&self, rays: &[Ray], lanes: u32) -> Option<(PacketRays, [DVec3; PACKET])> {
-        if self.is_flat() || rays.is_empty() {
-            return None;
-        }
-        let prepared: [(WideRay, DVec3); PACKET] = std::array::from_fn(|r| {
-            let ray = &rays[r.min(rays.len() - 1)];
-            match &self.shared {
-                Some(shared) => shared.local_ray(ray),
-                None => (WideRay::new(ray.origin.into(), ray.dir.into()), DVec3::ZERO),
-            }
-        });
-        Some((PacketRays::new(prepared.map(|(wide, _)| wide), lanes), prepared.map(|(_, inverse)| inverse)))
+        self.wide.any_hit(&wide_ray, t_max, |start, count| {
+            self.objects[start..start + count].iter().any(|o| o.hit(ray) < t_max)
+        })
     }
 
     /// The depth of the tree (1 for a single node, 0 without a tree).
     pub fn depth(&self) -> usize {
         self.wide.depth()
     }
-}
-
-/// Whether `ray` hits one of `objects` before `t_max`.
-#[inline(always)]
-fn any_object_hit(objects: &[Bounded], ray: &Ray, t_max: f64) -> bool {
-    objects.iter().any(|o| o.hit(ray) < t_max)
 }
 
 /// Tests `objects` (whose first one has index `first`), keeping the nearest

@@ -15,7 +15,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::bvh::{self, Bvh, PACKET};
+use super::bvh::{self, Bvh};
 use super::camera::{PrimaryRays, Screen};
 use super::intersect::{Aabb, Bounded, PlaneShape, Ray, ShapeClass};
 use crate::scene::{Camera, Material, Primitive, Scene, Shape};
@@ -146,24 +146,7 @@ impl Geometry {
     /// earlier plane before a later one.
     #[inline(always)]
     fn closest_hit(&self, ray: &Ray, t_max: f64) -> Option<GeometryHit> {
-        self.nearer_plane(ray, self.bvh.closest_hit(ray, t_max))
-    }
-
-    /// [`Geometry::closest_hit`] for each of `rays` (at most [`PACKET`]),
-    /// into `hits`.
-    #[inline(always)]
-    fn closest_hits(&self, rays: &[Ray], t_max: f64, hits: &mut [Option<GeometryHit>]) {
-        let mut bounded = [(0.0, 0); PACKET];
-        self.bvh.closest_hits(rays, t_max, &mut bounded[..rays.len()]);
-        for ((ray, &found), hit) in rays.iter().zip(&bounded).zip(hits) {
-            *hit = self.nearer_plane(ray, found);
-        }
-    }
-
-    /// The nearest of the bounded object's hit `(t, index)` (`index`
-    /// `u32::MAX` for none) and the planes' hits.
-    #[inline(always)]
-    fn nearer_plane(&self, ray: &Ray, (mut t, index): (f64, u32)) -> Option<GeometryHit> {
+        let (mut t, index) = self.bvh.closest_hit(ray, t_max);
         let mut object = (index != u32::MAX).then_some(ObjectId::Bounded(index));
         let mut before = bvh::nearer_than(t);
         for (k, plane) in self.planes.iter().enumerate() {
@@ -318,13 +301,6 @@ impl SceneGeometry {
         &self.static_part
     }
 
-    /// Whether the static part has a tree: camera rays are then traced in
-    /// packets ([`SceneGeometry::closest_hits`]); through a flat list, one
-    /// by one.
-    pub fn has_tree(&self) -> bool {
-        !self.static_part.bvh.is_flat()
-    }
-
     /// The geometry of [`Scene::timed_primitives`].
     pub fn timed(&self) -> &Geometry {
         &self.timed
@@ -335,37 +311,12 @@ impl SceneGeometry {
     /// the answer does not depend on threads.
     #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
-        match &self.merged {
-            Some(merged) => self.merged_surface(merged, ray, merged.closest_hit(ray, f64::INFINITY)),
-            None => self.with_timed(ray, self.static_part.closest_hit(ray, f64::INFINITY)),
+        if let Some(merged) = &self.merged {
+            return merged
+                .closest_hit(ray, f64::INFINITY)
+                .map(|h| merged.surface(ray, h, h.object.in_second(&self.static_part)));
         }
-    }
-
-    /// [`SceneGeometry::closest_hit`] for each of `rays` (at most
-    /// [`PACKET`]) into `hits`, the static part's (or the merged list's)
-    /// tree walked by all of them together.
-    pub fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<SurfaceHit>]) {
-        let mut found = [None; PACKET];
-        let part = self.merged.as_ref().unwrap_or(&self.static_part);
-        part.closest_hits(rays, f64::INFINITY, &mut found[..rays.len()]);
-        for ((ray, found), hit) in rays.iter().zip(found).zip(hits) {
-            *hit = match &self.merged {
-                Some(merged) => self.merged_surface(merged, ray, found),
-                None => self.with_timed(ray, found),
-            };
-        }
-    }
-
-    /// The surface of `hit`, found in `merged`.
-    #[inline(always)]
-    fn merged_surface(&self, merged: &Geometry, ray: &Ray, hit: Option<GeometryHit>) -> Option<SurfaceHit> {
-        hit.map(|h| merged.surface(ray, h, h.object.in_second(&self.static_part)))
-    }
-
-    /// The surface of the nearest of the static part's hit `static_hit`
-    /// and the timed part's.
-    #[inline(always)]
-    fn with_timed(&self, ray: &Ray, static_hit: Option<GeometryHit>) -> Option<SurfaceHit> {
+        let static_hit = self.static_part.closest_hit(ray, f64::INFINITY);
         if self.timed.is_empty() {
             return static_hit.map(|h| self.static_part.surface(ray, h, false));
         }
@@ -404,21 +355,6 @@ impl SceneGeometry {
         match &self.merged {
             Some(merged) => merged.bvh.any_hit(ray, f64::INFINITY),
             None => self.static_part.bvh.any_hit(ray, f64::INFINITY) || self.timed.bvh.any_hit(ray, f64::INFINITY),
-        }
-    }
-
-    /// [`SceneGeometry::blocked`] for each of `rays` (at most [`PACKET`])
-    /// not yet `blocked`, setting `blocked` for those that are.
-    pub fn blocked_all(&self, rays: &[Ray], planes: &[PlaneShape], blocked: &mut [bool]) {
-        for (ray, blocked) in rays.iter().zip(blocked.iter_mut()) {
-            *blocked = *blocked || planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift);
-        }
-        match &self.merged {
-            Some(merged) => merged.bvh.any_hits(rays, f64::INFINITY, blocked),
-            None => {
-                self.static_part.bvh.any_hits(rays, f64::INFINITY, blocked);
-                self.timed.bvh.any_hits(rays, f64::INFINITY, blocked);
-            }
         }
     }
 

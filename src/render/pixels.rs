@@ -10,13 +10,10 @@ use std::sync::atomic::Ordering;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::bvh::PACKET;
 use super::camera::{PrimaryRays, sample_offsets};
 use super::geometry::SceneGeometry;
-use super::geometry::SurfaceHit;
-use super::intersect::Ray;
 use super::options::{Cancelled, RayCounts, RenderControl, RenderOptions};
-use super::shade::{Lighting, PathObserver, Tracer, offset_origin};
+use super::shade::{Lighting, PathObserver, Tracer};
 use crate::scene::Scene;
 
 /// Side of a square tile, in pixels; also the height of a band.
@@ -121,18 +118,14 @@ impl<'a> Pass<'a> {
                 return Err(Cancelled);
             }
             let right = (left + TILE).min(self.width);
-            if self.geometry.has_tree() {
-                self.tile_in_packets(&mut tracer, (top, rows), (left, right), pixels, flags, observers);
-            } else {
-                for row in 0..rows {
-                    for i in left..right {
-                        let index = row as usize * self.width as usize + i as usize;
-                        if flags.is_some_and(|f| !f[index]) {
-                            continue;
-                        }
-                        let rgb = self.pixel(&mut tracer, i, top + row, &mut observers[index]);
-                        pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
+            for row in 0..rows {
+                for i in left..right {
+                    let index = row as usize * self.width as usize + i as usize;
+                    if flags.is_some_and(|f| !f[index]) {
+                        continue;
                     }
+                    let rgb = self.pixel(&mut tracer, i, top + row, &mut observers[index]);
+                    pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
                 }
             }
             if let (Some(progress), true) = (self.control.progress, self.reports_progress) {
@@ -141,106 +134,6 @@ impl<'a> Pass<'a> {
             left = right;
         }
         Ok(tracer.counts)
-    }
-
-    /// The tile of the band (`top`, `rows` rows) between columns `left` and
-    /// `right` (excluded), as [`Pass::band`] renders it, in blocks of
-    /// [`PACKET`] pixels (4 x 2, or 8 x 1 in a band of one row) whose camera
-    /// rays find their closest hits as one packet, sample by sample.
-    fn tile_in_packets<O: PathObserver>(
-        &self,
-        tracer: &mut Tracer,
-        (top, rows): (u32, u32),
-        (left, right): (u32, u32),
-        pixels: &mut [u8],
-        flags: Option<&[bool]>,
-        observers: &mut [O],
-    ) {
-        // A band holds at least one row.
-        let block_rows = rows.min(2);
-        let block_columns = PACKET as u32 / block_rows;
-        for first_row in (0..rows).step_by(block_rows as usize) {
-            for first_column in (left..right).step_by(block_columns as usize) {
-                // The pixels of the block to render: (column, row, index).
-                let mut block = [(0, 0, 0); PACKET];
-                let mut len = 0;
-                for row in first_row..(first_row + block_rows).min(rows) {
-                    for i in first_column..(first_column + block_columns).min(right) {
-                        let index = row as usize * self.width as usize + i as usize;
-                        if flags.is_none_or(|f| f[index]) {
-                            block[len] = (i, top + row, index);
-                            len += 1;
-                        }
-                    }
-                }
-                let block = &block[..len];
-                let sums = self.block_sums(tracer, block, observers);
-                for (&(_, _, index), &sum) in block.iter().zip(&sums) {
-                    pixels[index * 3..index * 3 + 3].copy_from_slice(&self.bytes(sum));
-                }
-            }
-        }
-    }
-
-    /// The sums of the samples' colours of each pixel of `block` (column,
-    /// row, index in `observers`), each sample's camera rays traced as one
-    /// packet.
-    #[inline(always)]
-    fn block_sums<O: PathObserver>(
-        &self,
-        tracer: &mut Tracer,
-        block: &[(u32, u32, usize)],
-        observers: &mut [O],
-    ) -> [DVec3; PACKET] {
-        let mut sums = [DVec3::ZERO; PACKET];
-        let mut rays = [Ray::new(DVec3::ZERO, DVec3::ZERO); PACKET];
-        let mut hits = [None; PACKET];
-        for &offset in &self.offsets {
-            for (ray, &(i, j, _)) in rays.iter_mut().zip(block) {
-                *ray = self.rays.ray(i, j, offset);
-            }
-            let (rays, hits) = (&rays[..block.len()], &mut hits[..block.len()]);
-            self.geometry.closest_hits(rays, hits);
-            let blocked = if O::WANTS_BLOCKER { None } else { self.shadows(hits) };
-            for (k, (((ray, hit), &(_, _, index)), sum)) in
-                rays.iter().zip(hits.iter()).zip(block).zip(&mut sums).enumerate()
-            {
-                tracer.first_blocked = blocked.map(|b| b[k]);
-                *sum += tracer.trace_from(ray, *hit, &mut observers[index]);
-            }
-        }
-        sums
-    }
-
-    /// For each of `hits`, which lights' shadow rays are blocked (bit `j`
-    /// for light `j`), each light's rays traced as one packet; `None` with
-    /// more lights than bits.
-    fn shadows(&self, hits: &[Option<SurfaceHit>]) -> Option<[u64; PACKET]> {
-        let lighting = &self.lighting;
-        if lighting.lights.len() > 64 {
-            return None;
-        }
-        let mut masks = [0u64; PACKET];
-        for (j, (light, planes)) in lighting.lights.iter().zip(&lighting.blocking_planes).enumerate() {
-            let mut rays = [Ray::new(DVec3::ZERO, light.direction); PACKET];
-            let mut blocked = [true; PACKET];
-            for ((hit, ray), blocked) in hits.iter().zip(&mut rays).zip(&mut blocked) {
-                let Some(hit) = hit else { continue };
-                if lighting.skips.back_facing_light && hit.normal.dot(light.direction) <= 0.0 {
-                    continue;
-                }
-                ray.origin = offset_origin(hit.point, hit.normal, hit.t);
-                *blocked = false;
-            }
-            let traced: [bool; PACKET] = std::array::from_fn(|k| !blocked[k]);
-            self.geometry.blocked_all(&rays[..hits.len()], planes, &mut blocked[..hits.len()]);
-            for k in 0..hits.len() {
-                if traced[k] && blocked[k] {
-                    masks[k] |= 1 << j;
-                }
-            }
-        }
-        Some(masks)
     }
 
     /// The bytes of pixel `(i, j)` alone, its paths watched by `observer`
@@ -257,12 +150,6 @@ impl<'a> Pass<'a> {
         for &offset in &self.offsets {
             sum += tracer.trace(&self.rays.ray(i, j, offset), observer);
         }
-        self.bytes(sum)
-    }
-
-    /// The bytes of a pixel whose samples' colours add up to `sum`.
-    #[inline]
-    fn bytes(&self, sum: DVec3) -> [u8; 3] {
         let mean = if self.offsets.len() == 1 { sum } else { sum / self.offsets.len() as f64 };
         to_bytes(mean)
     }

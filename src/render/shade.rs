@@ -106,9 +106,6 @@ pub(crate) struct Tracer<'a> {
     /// The levels of the path being traced (a buffer kept for reuse; at
     /// most `depth + 1` long).
     levels: Vec<Level>,
-    /// Which lights' shadow rays from the camera ray's hit are blocked (bit
-    /// `j` for light `j`), when a packet already answered them.
-    pub first_blocked: Option<u64>,
 }
 
 /// One level of a path: the local colour and the weight `ks` of the
@@ -122,7 +119,7 @@ struct Level {
 impl<'a> Tracer<'a> {
     /// A tracer over `geometry` with the image constants `lighting`.
     pub fn new(geometry: &'a SceneGeometry, lighting: &'a Lighting<'a>) -> Tracer<'a> {
-        Tracer { geometry, lighting, counts: RayCounts::default(), levels: Vec::with_capacity(8), first_blocked: None }
+        Tracer { geometry, lighting, counts: RayCounts::default(), levels: Vec::with_capacity(8) }
     }
 
     /// SPEC 6: the colour seen along a camera ray, each component in [0, 1].
@@ -135,18 +132,12 @@ impl<'a> Tracer<'a> {
     /// reflection term is dropped. (A loop, not recursion: measured faster.)
     #[inline(always)]
     pub fn trace<O: PathObserver>(&mut self, primary: &Ray, observer: &mut O) -> DVec3 {
-        self.trace_from(primary, self.geometry.closest_hit(primary), observer)
-    }
-
-    /// [`Tracer::trace`] with the camera ray's closest hit already found
-    /// (`first`; by a packet of camera rays).
-    #[inline(always)]
-    pub fn trace_from<O: PathObserver>(&mut self, primary: &Ray, first: Option<SurfaceHit>, observer: &mut O) -> DVec3 {
         self.counts.primary += 1;
         let mut levels = std::mem::take(&mut self.levels);
         levels.clear();
-        let (mut ray, mut weight, mut found) = (*primary, 1.0, first);
+        let (mut ray, mut weight) = (*primary, 1.0);
         loop {
+            let found = self.geometry.closest_hit(&ray);
             observer.hit(&ray, found.as_ref(), weight);
             let Some(hit) = found else { break };
             // Shadow and mirror rays start at P moved off the surface.
@@ -163,9 +154,7 @@ impl<'a> Tracer<'a> {
             self.counts.reflection += 1;
             weight *= ks;
             ray = reflected(&ray, &hit, origin);
-            found = self.geometry.closest_hit(&ray);
         }
-        self.first_blocked = None;
         let colour = levels.iter().enumerate().rev().fold(DVec3::ZERO, |next, (depth, level)| {
             let colour = clamp_unit(level.local + next * level.ks);
             observer.level_colour(depth, colour);
@@ -185,8 +174,7 @@ impl<'a> Tracer<'a> {
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
         observer.ambient(c);
-        let known = self.first_blocked.take();
-        for (j, (light, planes)) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes).enumerate() {
+        for (light, planes) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes) {
             let l = light.direction;
             let n_dot_l = n.dot(l);
             // Only lights with N·L > 0 count: for the others the shadow ray
@@ -195,14 +183,7 @@ impl<'a> Tracer<'a> {
                 observer.light(LightTerm::FacingAway);
                 continue;
             }
-            let visible = match known {
-                Some(blocked) => {
-                    self.counts.shadow += 1;
-                    blocked >> j & 1 == 0
-                }
-                None => self.visible(&Ray::new(origin, l), planes, observer),
-            };
-            let lit = visible && n_dot_l > 0.0;
+            let lit = self.visible(&Ray::new(origin, l), planes, observer) && n_dot_l > 0.0;
             if !lit {
                 // Built only for an observer that reads it: the unit
                 // observer's render does not pay for it.

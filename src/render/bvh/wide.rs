@@ -15,14 +15,9 @@
 //! x86_64 the walks are also compiled for AVX2 and AVX-512 and chosen at
 //! run time ([`Isa`]).
 
-mod packet;
-
 use std::mem::MaybeUninit;
 
 use super::{Aabb, Node, STACK_SIZE, reach_past};
-
-pub(crate) use self::packet::PACKET;
-pub(super) use self::packet::PacketRays;
 
 /// Children per node.
 const WIDTH: usize = 8;
@@ -239,15 +234,15 @@ fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
     (entry, lanes_at_most(&entry, &exit))
 }
 
-/// The bit mask of the lanes where `a <= b` (`N` a multiple of 4).
+/// The bit mask of the lanes where `a <= b`.
 #[inline(always)]
-fn lanes_at_most<const N: usize>(a: &[f32; N], b: &[f32; N]) -> u32 {
+fn lanes_at_most(a: &[f32; WIDTH], b: &[f32; WIDTH]) -> u32 {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_cmple_ps, _mm_loadu_ps, _mm_movemask_ps};
         // LLVM builds this mask lane by lane from the portable loop; one
         // SSE compare and move-mask per 4 lanes is much cheaper.
-        (0..N / 4).fold(0, |mask, c| {
+        (0..WIDTH / 4).fold(0, |mask, c| {
             let (a, b) = (&a[4 * c..4 * c + 4], &b[4 * c..4 * c + 4]);
             // SAFETY: SSE is part of the x86_64 baseline, and each load
             // reads 4 f32 of a slice of 4 (no alignment needed).
@@ -257,7 +252,7 @@ fn lanes_at_most<const N: usize>(a: &[f32; N], b: &[f32; N]) -> u32 {
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
-        (0..N).fold(0, |mask, i| mask | u32::from(a[i] <= b[i]) << i)
+        (0..WIDTH).fold(0, |mask, i| mask | u32::from(a[i] <= b[i]) << i)
     }
 }
 
@@ -277,35 +272,22 @@ const ROOT: Pending = Pending { child: 0, count: 0, entry: 0.0 };
 /// `WIDTH - 1` of them, and the tree is shallower than the binary one.
 const WIDE_STACK_SIZE: usize = (WIDTH - 1) * STACK_SIZE + 1;
 
-/// What the stack keeps sorted by: the distance at which the ray (or the
-/// nearest ray of a packet) enters a waiting child's box.
-trait Entry: Copy {
-    fn entry(&self) -> f32;
-}
-
-impl Entry for Pending {
-    #[inline(always)]
-    fn entry(&self) -> f32 {
-        self.entry
-    }
-}
-
 /// The traversal stack, left uninitialised: zeroing it took a fifth of the
 /// instructions of a render.
-struct Stack<T> {
-    items: [MaybeUninit<T>; WIDE_STACK_SIZE],
+struct Stack {
+    items: [MaybeUninit<Pending>; WIDE_STACK_SIZE],
     len: usize,
 }
 
-impl<T: Copy> Stack<T> {
+impl Stack {
     #[inline(always)]
-    fn new() -> Stack<T> {
+    fn new() -> Stack {
         Stack { items: [const { MaybeUninit::uninit() }; WIDE_STACK_SIZE], len: 0 }
     }
 
     /// The item at `k < len`.
     #[inline(always)]
-    fn get(&self, k: usize) -> T {
+    fn get(&self, k: usize) -> Pending {
         debug_assert!(k < self.len);
         // SAFETY: every item below `len` was written (`new`, `push`,
         // `push_sorted`), and the callers pass `k < len`.
@@ -313,7 +295,7 @@ impl<T: Copy> Stack<T> {
     }
 
     #[inline(always)]
-    fn pop(&mut self) -> Option<T> {
+    fn pop(&mut self) -> Option<Pending> {
         let top = self.len.checked_sub(1)?;
         let item = self.get(top);
         self.len = top;
@@ -321,19 +303,17 @@ impl<T: Copy> Stack<T> {
     }
 
     #[inline(always)]
-    fn push(&mut self, item: T) {
+    fn push(&mut self, item: Pending) {
         self.items[self.len].write(item);
         self.len += 1;
     }
-}
 
-impl<T: Entry> Stack<T> {
     /// Pushes `item` among the items from `first` up, which are kept in
     /// decreasing entry distance (the nearest on top).
     #[inline(always)]
-    fn push_sorted(&mut self, first: usize, item: T) {
+    fn push_sorted(&mut self, first: usize, item: Pending) {
         let mut at = self.len;
-        while at > first && self.get(at - 1).entry() < item.entry() {
+        while at > first && self.get(at - 1).entry < item.entry {
             self.items[at] = self.items[at - 1];
             at -= 1;
         }
@@ -633,70 +613,27 @@ mod tests {
         (best, bvh.objects().iter().any(|o| o.hit(ray) < t_max))
     }
 
-    /// A random origin, half the time on an object's corner or pole: in the
-    /// planes of the node boxes.
-    fn random_origin(objects: &[Bounded], random: &mut Random) -> DVec3 {
-        match (random.next() * 2.0) as i32 {
-            0 => match objects[((random.next() + 1.0) * 0.5 * objects.len() as f64) as usize] {
-                Bounded::Box(b) => b.center + b.to_local.transpose() * b.half,
-                Bounded::Sphere(s) => s.center + DVec3::new(0.0, s.radius, 0.0),
-            },
-            _ => random.vector() * 12.0,
-        }
-    }
-
     /// Checks random rays through `objects`, some starting on the objects'
     /// faces and corners, against [`brute_force`] with every compiled form.
     fn check_against_brute_force(objects: &[Bounded], random: &mut Random) {
         let (bvh, _) = Bvh::build(objects);
         assert!(!bvh.is_flat());
         for _ in 0..3000 {
-            let ray = Ray::new(random_origin(objects, random), random.direction());
+            let origin = match (random.next() * 2.0) as i32 {
+                // On a box's corner or a sphere's pole: origins in the planes of the node boxes.
+                0 => match objects[((random.next() + 1.0) * 0.5 * objects.len() as f64) as usize] {
+                    Bounded::Box(b) => b.center + b.to_local.transpose() * b.half,
+                    Bounded::Sphere(s) => s.center + DVec3::new(0.0, s.radius, 0.0),
+                },
+                _ => random.vector() * 12.0,
+            };
+            let ray = Ray::new(origin, random.direction());
             let t_max = if random.next() < 0.0 { f64::INFINITY } else { 8.0 * (random.next() + 1.0) };
             let expected = brute_force(&bvh, &ray, t_max);
             for isa in Isa::available() {
                 let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
                 let found = (tree.closest_hit(&ray, t_max), tree.any_hit(&ray, t_max));
                 assert_eq!(found, expected, "{isa:?} {ray:?} t_max {t_max}");
-            }
-        }
-        for _ in 0..600 {
-            check_packet(&bvh, &packet_of_rays(objects, random), random);
-        }
-    }
-
-    /// Up to [`PACKET`] rays, as a packet of them would be: from one origin
-    /// along close directions (camera rays, now and then with signs that
-    /// differ), or from close origins along one direction (shadow rays).
-    fn packet_of_rays(objects: &[Bounded], random: &mut Random) -> Vec<Ray> {
-        let len = 1 + ((random.next() + 1.0) * 0.5 * PACKET as f64) as usize % PACKET;
-        let (origin, dir) = (random_origin(objects, random), random.direction());
-        let spread = 0.05 * (random.next() + 1.0);
-        (0..len)
-            .map(|_| {
-                if random.next() < 0.0 {
-                    Ray::new(origin, (dir + random.vector() * spread).normalize())
-                } else {
-                    Ray::new(origin + random.vector() * spread * 10.0, dir)
-                }
-            })
-            .collect()
-    }
-
-    /// Checks the packet queries of every compiled form on `rays` against
-    /// [`brute_force`] ray by ray, any hit with some rays already blocked.
-    fn check_packet(bvh: &Bvh, rays: &[Ray], random: &mut Random) {
-        let t_max = if random.next() < 0.0 { f64::INFINITY } else { 8.0 * (random.next() + 1.0) };
-        let given: Vec<bool> = rays.iter().map(|_| random.next() < -0.8).collect();
-        for isa in Isa::available() {
-            let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
-            let mut hits = vec![(0.0, 0); rays.len()];
-            tree.closest_hits(rays, t_max, &mut hits);
-            let mut blocked = given.clone();
-            tree.any_hits(rays, t_max, &mut blocked);
-            for (r, ray) in rays.iter().enumerate() {
-                let (closest, any) = brute_force(bvh, ray, t_max);
-                assert_eq!((hits[r], blocked[r]), (closest, any || given[r]), "{isa:?} {ray:?} t_max {t_max}");
             }
         }
     }
