@@ -347,7 +347,10 @@ impl SceneGeometry {
     /// Such a plane stops the ray exactly when its origin is on the seen
     /// side (`n·S > d`): moving towards the plane from there, it meets it at
     /// `t = (n·S - d) / -(n·V) > 0` (SPEC 4). One dot product per plane.
-    #[inline]
+    ///
+    /// Always inlined: called, it loaded the shadow ray that the shading
+    /// loop had just stored, in other widths, which stalls store forwarding.
+    #[inline(always)]
     pub fn blocked(&self, ray: &Ray, planes: &[PlaneShape]) -> bool {
         if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift) {
             return true;
