@@ -152,7 +152,7 @@ pub struct Entry {
 impl Entry {
     /// Reads the tokens of `text`.
     pub fn read(text: String) -> Entry {
-        // Tokens take a few bytes each: one allocation instead of growing.
+        // About a token for two bytes of text: one allocation instead of growing.
         let tokens = Some(Vec::with_capacity(text.len() / 2));
         let mut entry = Entry { text, tokens, constructs: 0, parens: 0 };
         entry.read_from(0);

@@ -150,6 +150,8 @@ impl Script<'_, '_> {
                 return;
             };
             let line = line.strip_suffix('\r').unwrap_or(line);
+            // Ctrl-C while a long line is lexed stops the script here.
+            let armed = self.console.cancel.map(|switch| switch.arm());
             let entry = match pending.take() {
                 Some(mut entry) => {
                     entry.add_line(line);
@@ -166,6 +168,9 @@ impl Script<'_, '_> {
                     Entry::read(line.to_string())
                 }
             };
+            if self.stopped_by_ctrl_c(armed, number) {
+                return;
+            }
             if entry.is_incomplete() {
                 pending = Some(entry);
             } else if !entry.text().trim().is_empty() {
@@ -188,11 +193,17 @@ impl Script<'_, '_> {
     }
 
     /// Runs the finished inputs read ahead, in order, parsed together.
+    /// Ctrl-C during the parse stops the script at the first of them.
     fn run_ready(&mut self, ready: &mut ReadAhead) -> Step {
+        let Some(&first_line) = ready.first_lines.first() else { return Step::Next };
+        let armed = self.console.cancel.map(|switch| switch.arm());
         let sources: Vec<SourceId> = (ready.entries.iter().zip(&ready.first_lines))
             .map(|(entry, first_line)| self.session.add_source(SCRIPT_NAME, entry.text(), first_line.saturating_sub(1)))
             .collect();
         let parsed = parse_entries(&mut ready.entries, &sources);
+        if self.stopped_by_ctrl_c(armed, first_line) {
+            return Step::Stop;
+        }
         let inputs = ready.entries.drain(..).zip(ready.first_lines.drain(..)).zip(sources.into_iter().zip(parsed));
         for ((entry, first_line), (source, parsed)) in inputs {
             if self.input(entry.text(), source, parsed, first_line) == Step::Stop {
