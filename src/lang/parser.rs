@@ -45,11 +45,7 @@ pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> 
 /// Runs the generated parser over the tokens, recording what they open so
 /// that a syntax error can say what is not closed.
 fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic> {
-    parse_tokens(source, text, mode, Tracked::new(source, text))
-}
-
-/// Parses `text` from `tokens`, its tokens.
-fn parse_tokens(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked) -> Result<Program, Diagnostic> {
+    let mut tokens = Tracked::new(source, text);
     let parsed = grammar::ItemsParser::new().parse(&Sources::One(source), &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),

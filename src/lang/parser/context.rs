@@ -10,7 +10,7 @@
 //! one whose `end` is missing.
 
 use crate::lang::diagnostic::Diagnostic;
-use crate::lang::lexer::{Lexer, Spanned, Token, WordToken};
+use crate::lang::lexer::{Lexer, Spanned, Token};
 use crate::lang::source::{SourceId, Span};
 use crate::lang::words::{Role, Word};
 
@@ -274,9 +274,6 @@ impl Context {
     }
 }
 
-/// A token as the lexer read it, with where its line starts.
-pub(super) type Read = (WordToken, usize);
-
 /// The lexer's tokens, as the parser reads them, recorded in a [`Context`].
 pub(super) struct Tracked<'t> {
     lexer: Lexer<'t>,
@@ -295,25 +292,23 @@ impl<'t> Tracked<'t> {
     pub(super) fn context(&self) -> &Context {
         &self.context
     }
-
-    /// The next token with its row of the words table and where its line
-    /// starts.
-    pub(super) fn next_read(&mut self) -> Option<Result<Read, Box<Diagnostic>>> {
-        self.context.count_handed();
-        let read = self.lexer.next_word()?.map(|word_token| (word_token, self.lexer.line_start()));
-        if let Ok((((start, token, end), word), line_start)) = &read {
-            let span = Span::new(self.source, *start, *end);
-            self.context.hand(Handed { span, class: Class::of(token), word: *word, line_start: *line_start });
-        }
-        Some(read)
-    }
 }
 
 impl Iterator for Tracked<'_> {
     type Item = Result<Spanned, Box<Diagnostic>>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        Some(self.next_read()?.map(|((spanned, _), _)| spanned))
+        self.context.count_handed();
+        let result = match self.lexer.next_word()? {
+            Ok(((start, token, end), word)) => {
+                let span = Span::new(self.source, start, end);
+                let line_start = self.lexer.line_start();
+                self.context.hand(Handed { span, class: Class::of(&token), word, line_start });
+                Ok((start, token, end))
+            }
+            Err(error) => Err(error),
+        };
+        Some(result)
     }
 }
 
