@@ -65,6 +65,10 @@ pub struct Bvh {
     /// When every object is a box with the same axes (a rotated grid of
     /// boxes): a compact copy for faster traversal.
     shared: Option<Box<SharedFrame>>,
+    /// Where each object (tree order) stood among the objects given to
+    /// [`Bvh::build`], for ties ([`goes_before`]); empty for a flat list,
+    /// whose order is that one.
+    put_order: Vec<u32>,
 }
 
 /// Boxes that all have the same axes, seen in their common frame.
@@ -134,13 +138,13 @@ impl SharedFrame {
     }
 
     /// [`Bvh::closest_hit`] through the frame; `tree` was built in the frame.
-    fn closest_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> (f64, u32) {
+    fn closest_hit(&self, tree: &WideBvh, put_order: &[u32], ray: &Ray, t_max: f64) -> (f64, u32) {
         let (local, inv) = self.local_ray(ray);
         tree.closest_hit(&local, t_max, |start, count, best| {
             for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
                 let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
                 let k = (start + k) as u32;
-                if goes_before(t, k, *best) {
+                if goes_before(t, k, *best, put_order) {
                     *best = (t, k);
                 }
             }
@@ -203,7 +207,8 @@ impl Bvh {
     pub fn build(objects: &[Bounded]) -> (Bvh, Vec<u32>) {
         if objects.len() <= BRUTE_FORCE_MAX {
             let order = (0..objects.len() as u32).collect();
-            return (Bvh { wide: WideBvh::default(), objects: objects.to_vec(), shared: None }, order);
+            let flat = Bvh { wide: WideBvh::default(), objects: objects.to_vec(), shared: None, put_order: Vec::new() };
+            return (flat, order);
         }
         // Boxes that share their axes are grouped in their common frame,
         // where they are axis-aligned: far tighter nodes than their world
@@ -230,7 +235,7 @@ impl Bvh {
             Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds)),
             None => WideBvh::collapse(&nodes, |k| nodes[k].bounds),
         };
-        (Bvh { wide, objects, shared }, order)
+        (Bvh { wide, objects, shared, put_order: order.clone() }, order)
     }
 
     /// Whether this is a flat list (no tree: at most [`BRUTE_FORCE_MAX`]
@@ -245,6 +250,7 @@ impl Bvh {
             wide: WideBvh::default(),
             objects: a.objects.iter().chain(&b.objects).copied().collect(),
             shared: None,
+            put_order: Vec::new(),
         })
     }
 
@@ -269,7 +275,7 @@ impl Bvh {
     pub fn closest_hit(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
         if self.is_flat() {
             let mut best = (t_max, u32::MAX);
-            test_range(&self.objects, 0, ray, &mut best);
+            test_range(&self.objects, 0, &[], ray, &mut best);
             return best;
         }
         self.closest_hit_in_tree(ray, t_max)
@@ -278,11 +284,11 @@ impl Bvh {
     /// [`Bvh::closest_hit`] when there is a tree.
     fn closest_hit_in_tree(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
         if let Some(shared) = &self.shared {
-            return shared.closest_hit(&self.wide, ray, t_max);
+            return shared.closest_hit(&self.wide, &self.put_order, ray, t_max);
         }
         let wide_ray = WideRay::new(ray.origin.into(), ray.dir.into());
         self.wide.closest_hit(&wide_ray, t_max, |start, count, best| {
-            test_range(&self.objects[start..start + count], start, ray, best);
+            test_range(&self.objects[start..start + count], start, &self.put_order, ray, best);
         })
     }
 
@@ -323,16 +329,16 @@ impl Bvh {
 }
 
 /// Tests `objects` (whose first one has index `first`), keeping the nearest
-/// hit in `best`.
+/// hit in `best`; `put_order` as [`Bvh::put_order`].
 #[inline(always)]
-fn test_range(objects: &[Bounded], first: usize, ray: &Ray, best: &mut (f64, u32)) {
+fn test_range(objects: &[Bounded], first: usize, put_order: &[u32], ray: &Ray, best: &mut (f64, u32)) {
     // [`goes_before`] with its two bounds kept across the objects: a miss
     // (the usual answer) costs two comparisons.
     let (mut low, mut high) = (nearer_than(best.0), reach_past(best.0));
     for (k, object) in objects.iter().enumerate() {
         let t = object.hit(ray);
         let k = (first + k) as u32;
-        if t < low || (t <= high && k < best.1 && t < f64::INFINITY) {
+        if t < low || (t <= high && t < f64::INFINITY && put_before(put_order, k, best.1)) {
             *best = (t, k);
             (low, high) = (nearer_than(t), reach_past(t));
         }
@@ -341,8 +347,8 @@ fn test_range(objects: &[Bounded], first: usize, ray: &Ray, best: &mut (f64, u32
 
 /// Hits whose distances differ by less than this fraction of them are at
 /// one distance: faces that coincide (two boxes sharing a face) are then
-/// told apart by the order of the objects, not by the rounding of their
-/// distances, which changes with the scene's units (SPEC 6: the same
+/// told apart by the order in which the objects were put, not by the
+/// rounding of their distances, which changes with the scene's units (SPEC 6: the same
 /// pixels at every scale). A billionth, as the offset of secondary rays.
 const SAME_DISTANCE: f64 = 1e-9;
 
@@ -355,10 +361,22 @@ pub(crate) fn reach_past(t: f64) -> f64 {
 
 /// Whether a hit at `t` of object `k` goes before `best` (distance, object;
 /// `u32::MAX` for none yet): nearer by more than [`SAME_DISTANCE`], or at
-/// the same distance and earlier in order.
+/// the same distance and put before it (`put_order` as [`Bvh::put_order`]).
+/// The tree's order plays no part, so any tree gives the same picture.
 #[inline(always)]
-pub(crate) fn goes_before(t: f64, k: u32, best: (f64, u32)) -> bool {
-    t < nearer_than(best.0) || (t <= reach_past(best.0) && k < best.1 && t < f64::INFINITY)
+fn goes_before(t: f64, k: u32, best: (f64, u32), put_order: &[u32]) -> bool {
+    t < nearer_than(best.0) || (t <= reach_past(best.0) && t < f64::INFINITY && put_before(put_order, k, best.1))
+}
+
+/// Whether object `k` was put before object `other` (`u32::MAX`: none yet,
+/// which every object goes before); both in tree order, `put_order` as
+/// [`Bvh::put_order`]. Only hits at the same distance ask it.
+#[inline(always)]
+fn put_before(put_order: &[u32], k: u32, other: u32) -> bool {
+    match put_order {
+        [] => k < other,
+        order => other == u32::MAX || order[k as usize] < order[other as usize],
+    }
 }
 
 /// The distance under which a hit is nearer than one at `t` by more than

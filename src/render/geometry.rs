@@ -141,9 +141,9 @@ impl Geometry {
     }
 
     /// The nearest hit with `0 < t < t_max`, if any (up to the BVH's
-    /// tolerance past `t_max`). Of hits at the same distance (see
-    /// [`bvh::goes_before`]), a sphere or a box goes before a plane, and an
-    /// earlier plane before a later one.
+    /// tolerance past `t_max`). Of hits at the same distance (within
+    /// [`bvh::reach_past`]), a sphere or a box goes before a plane, and an
+    /// earlier object before a later one.
     #[inline(always)]
     fn closest_hit(&self, ray: &Ray, t_max: f64) -> Option<GeometryHit> {
         let (mut t, index) = self.bvh.closest_hit(ray, t_max);

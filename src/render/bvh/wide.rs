@@ -609,7 +609,7 @@ mod tests {
     /// every compiled form of the walks must match.
     fn brute_force(bvh: &Bvh, ray: &Ray, t_max: f64) -> ((f64, u32), bool) {
         let mut best = (t_max, u32::MAX);
-        test_range(bvh.objects(), 0, ray, &mut best);
+        test_range(bvh.objects(), 0, &bvh.put_order, ray, &mut best);
         (best, bvh.objects().iter().any(|o| o.hit(ray) < t_max))
     }
 
