@@ -9,9 +9,9 @@
 //! could still keep. Bounds are padded and rounded outwards to f32 for the
 //! same reason: a node test on the f32 ray never loses an f64 hit.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use rayrepl::render::Ray;
-use rayrepl::render::intersect::{Bounded, PlaneShape, ShapeClass};
+use rayrepl::render::intersect::{Bounded, BoxShape, PlaneShape, ShapeClass};
 use rayrepl::scene::{Material, Scene};
 
 use crate::embree::{
@@ -79,6 +79,85 @@ pub struct Objects {
     /// the scene's reach, far above the distance between the f32 and the f64
     /// ray anywhere in the scene.
     pad: f64,
+    /// When every object is a box with the same axes (a rotated grid of
+    /// boxes): those axes as rows (`BoxShape::to_local`) and each box's
+    /// centre and half sizes. Embree then builds and traverses in that
+    /// frame, where the boxes are axis-aligned and their bounds tight, as
+    /// rayrepl's `bvh::SharedFrame` does; the f64 test is
+    /// `BoxShape::hit_in_frame`, the same arithmetic as `BoxShape::hit`.
+    frame: Option<(DMat3, Vec<(DVec3, DVec3)>)>,
+}
+
+impl Objects {
+    /// The objects `list` with bounds padded by `pad`, in their common
+    /// frame when they share one.
+    fn new(list: Vec<Bounded>, pad: f64) -> Objects {
+        let to_local = match list.first() {
+            Some(Bounded::Box(b)) => Some(b.to_local),
+            _ => None,
+        };
+        let shared = to_local.filter(|&axes| list.iter().all(|o| matches!(o, Bounded::Box(b) if b.to_local == axes)));
+        let frame = shared.map(|axes| {
+            let boxes = list
+                .iter()
+                .map(|o| match o {
+                    Bounded::Box(b) => (b.center, b.half),
+                    Bounded::Sphere(_) => unreachable!("a shared frame holds only boxes"),
+                })
+                .collect();
+            (axes, boxes)
+        });
+        Objects { list, pad, frame }
+    }
+
+    /// Whether Embree works in the boxes' common frame.
+    pub fn in_frame(&self) -> bool {
+        self.frame.is_some()
+    }
+
+    /// The ray as Embree traverses it (in the common frame if there is
+    /// one), and `1 / direction` in that frame (for
+    /// `BoxShape::hit_in_frame`).
+    #[inline(always)]
+    pub fn traversed(&self, ray: &Ray) -> (Ray, DVec3) {
+        match &self.frame {
+            Some((to_local, _)) => {
+                let d = *to_local * ray.dir;
+                (Ray::new(*to_local * ray.origin, d), d.recip())
+            }
+            None => (*ray, DVec3::ZERO),
+        }
+    }
+
+    /// rayrepl's f64 test of object `k`: the distance of its nearest hit
+    /// with `t > 0` along `ray`, or infinity; `inv` is from
+    /// [`Objects::traversed`].
+    #[inline(always)]
+    fn hit(&self, k: usize, ray: &Ray, inv: DVec3) -> f64 {
+        match &self.frame {
+            Some((to_local, boxes)) => {
+                let (center, half) = boxes[k];
+                BoxShape::hit_in_frame(*to_local, center, half, ray.origin, inv)
+            }
+            None => self.list[k].hit(ray),
+        }
+    }
+
+    /// The box Embree builds over for object `k`: in the common frame if
+    /// there is one, else in the world.
+    fn bounds(&self, k: usize) -> (DVec3, DVec3) {
+        match &self.frame {
+            Some((to_local, boxes)) => {
+                let (center, half) = boxes[k];
+                let c = *to_local * center;
+                (c - half, c + half)
+            }
+            None => {
+                let b = self.list[k].bounds();
+                (b.min, b.max)
+            }
+        }
+    }
 }
 
 /// An intersection query: Embree's context first, then the f64 rays and
@@ -88,6 +167,8 @@ pub struct Query {
     context: RtcIntersectContext,
     /// The f64 rays, by Embree ray id.
     pub rays: [Ray; LANES],
+    /// `1 / direction` of each ray in the objects' common frame, if any.
+    pub inv: [DVec3; LANES],
     /// The best hit of each ray so far: distance and object index (scene
     /// order), `(INFINITY, u32::MAX)` for none.
     pub best: [(f64, u32); LANES],
@@ -100,6 +181,7 @@ impl Query {
         Box::new(Query {
             context: RtcIntersectContext::new(coherent),
             rays: [ray; LANES],
+            inv: [DVec3::ZERO; LANES],
             best: [(f64::INFINITY, u32::MAX); LANES],
         })
     }
@@ -175,7 +257,7 @@ impl Parts {
                 bounds.min.abs().max(bounds.max.abs()).max_element()
             })
             .fold(camera_distance.abs(), f64::max);
-        Parts { objects: Objects { list, pad: 1e-6 * reach }, materials, planes, plane_materials }
+        Parts { objects: Objects::new(list, 1e-6 * reach), materials, planes, plane_materials }
     }
 }
 
@@ -204,9 +286,10 @@ impl<'a> Geometry<'a> {
     /// box before a plane, an earlier object before a later one.
     #[inline]
     pub fn closest_hit(&self, query: &mut Query, ray: &Ray) -> Option<SurfaceHit> {
-        query.rays[0] = *ray;
+        let (traversed, inv) = self.objects.traversed(ray);
+        (query.rays[0], query.inv[0]) = (*ray, inv);
         query.best[0] = (f64::INFINITY, u32::MAX);
-        let mut rayhit = RtcRayHit { ray: f32_ray(ray, 0), ..RtcRayHit::default() };
+        let mut rayhit = RtcRayHit { ray: f32_ray(&traversed, 0), ..RtcRayHit::default() };
         rayhit.hit.geom_id = INVALID_ID;
         self.scene.intersect1(query.context(), &mut rayhit);
         let (t, index) = query.best[0];
@@ -252,8 +335,9 @@ impl<'a> Geometry<'a> {
         if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift) {
             return true;
         }
-        query.rays[0] = *ray;
-        let mut shadow = f32_ray(ray, 0);
+        let (traversed, inv) = self.objects.traversed(ray);
+        (query.rays[0], query.inv[0]) = (*ray, inv);
+        let mut shadow = f32_ray(&traversed, 0);
         self.scene.occluded1(query.context(), &mut shadow);
         shadow.tfar == f32::NEG_INFINITY
     }
@@ -284,11 +368,11 @@ unsafe extern "C" fn bounds(args: *const BoundsArguments) {
     unsafe {
         let args = &*args;
         let objects = &*(args.user as *const Objects);
-        let b = objects.list[args.prim_id as usize].bounds();
+        let (min, max) = objects.bounds(args.prim_id as usize);
         let out = &mut *args.bounds;
         for axis in 0..3 {
-            out.lower[axis] = round_down(b.min[axis] - objects.pad);
-            out.upper[axis] = round_up(b.max[axis] + objects.pad);
+            out.lower[axis] = round_down(min[axis] - objects.pad);
+            out.upper[axis] = round_up(max[axis] + objects.pad);
         }
     }
 }
@@ -307,13 +391,12 @@ unsafe extern "C" fn intersect(args: *const IntersectArguments) {
         let objects = &*(args.user as *const Objects);
         let query = &mut *(args.context as *mut Query);
         let (n, k) = (args.n as usize, args.prim_id);
-        let object = &objects.list[k as usize];
         for lane in 0..n {
             if *args.valid.add(lane) == 0 {
                 continue;
             }
             let id = *(args.rayhit.add(ray_field(ID, n, lane)) as *const u32) as usize;
-            let t = object.hit(&query.rays[id]);
+            let t = objects.hit(k as usize, &query.rays[id], query.inv[id]);
             if goes_before(t, k, query.best[id]) {
                 query.best[id] = (t, k);
                 *args.rayhit.add(ray_field(TFAR, n, lane)) = culling_distance(t);
@@ -333,14 +416,13 @@ unsafe extern "C" fn occluded(args: *const OccludedArguments) {
         let args = &*args;
         let objects = &*(args.user as *const Objects);
         let query = &*(args.context as *const Query);
-        let n = args.n as usize;
-        let object = &objects.list[args.prim_id as usize];
+        let (n, k) = (args.n as usize, args.prim_id as usize);
         for lane in 0..n {
             if *args.valid.add(lane) == 0 {
                 continue;
             }
             let id = *(args.ray.add(ray_field(ID, n, lane)) as *const u32) as usize;
-            if object.hit(&query.rays[id]) < f64::INFINITY {
+            if objects.hit(k, &query.rays[id], query.inv[id]) < f64::INFINITY {
                 *args.ray.add(ray_field(TFAR, n, lane)) = f32::NEG_INFINITY;
             }
         }

@@ -127,11 +127,12 @@ fn run(options: &Options) -> Result<(), String> {
     let committed = commit_start.elapsed();
     let built = build_start.elapsed();
     eprintln!(
-        "evaluate {:.3} s, build {:.3} s (rtcCommitScene {:.3} s, {} objects, {} planes, quality {:?})",
+        "evaluate {:.3} s, build {:.3} s (rtcCommitScene {:.3} s, {} objects{}, {} planes, quality {:?})",
         evaluated.as_secs_f64(),
         built.as_secs_f64(),
         committed.as_secs_f64(),
         parts.objects.list.len(),
+        if parts.objects.in_frame() { " in their common frame" } else { "" },
         parts.planes.len(),
         options.quality,
     );

@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Side by side: rayrepl and the Embree-based renderer of benches/embree on
+# the three benchmark scenes, in one run, on this machine.
+#
+#   benches/embree/run.sh            # 5 timed runs of each program per scene
+#   RUNS=9 benches/embree/run.sh     # 9
+#
+# For each scene it renders once with both, checks that the images are
+# byte-identical (cmp; if not, counts the pixels that differ) and that the
+# ray counts agree, then times both alternately (rayrepl, Embree, rayrepl,
+# ...), RUNS runs each, and prints the median (and min-max) of the render
+# and BVH build times each program prints, with the ratio rayrepl / Embree
+# (below 1: rayrepl is faster).
+#
+# Needs Embree 3 (Debian: apt-get install -y libembree-dev).
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+RUNS=${RUNS:-5}
+THREADS=${THREADS:-2}
+OUT=${OUT:-$(mktemp -d)}
+cd "$ROOT"
+
+cargo build --release --quiet
+cargo build --release --quiet --manifest-path benches/embree/Cargo.toml
+RAYREPL=target/release/rayrepl
+EMBREE=benches/embree/target/release/embree-render
+
+# scene width height
+SCENES=(
+  "sponge4 1920 1080"
+  "spheres100k 800 600"
+  "solar 1920 1080"
+)
+
+# The median and the range of the numbers on stdin: "median (min-max)".
+stats() {
+  sort -g | awk '{ v[NR] = $1 } END {
+    m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
+    printf "%.3f (%.3f-%.3f)\n", m, v[1], v[NR] }'
+}
+
+# The median alone of the numbers on stdin.
+median() { stats | cut -d' ' -f1; }
+
+# Field extractors for the printouts of both programs.
+render_time() { sed -n 's/.* rays in \([0-9.]*\) s.*/\1/p' "$1"; }
+build_time() { sed -n 's/^evaluate [0-9.]* s, build \([0-9.]*\) s.*/\1/p' "$1"; }
+commit_time() { sed -n 's/.*rtcCommitScene \([0-9.]*\) s.*/\1/p' "$1"; }
+rays() { sed -n 's/^frames 1: \([0-9]*\) primary, \([0-9]*\) shadow, \([0-9]*\) reflection.*/\1 \2 \3/p' "$1"; }
+
+# Pixels that differ between two PPM images of the same size (same header).
+differing_pixels() {
+  local header
+  header=$(head -c 64 "$1" | awk 'BEGIN { RS = "\n" } NR <= 3 { n += length($0) + 1 } END { print n }')
+  cmp -l "$1" "$2" | awk -v h="$header" '{ p[int(($1 - 1 - h) / 3)] = 1 } END { print length(p) }'
+}
+
+printf '%s\n' "rayrepl $(git rev-parse --short HEAD), $RUNS runs each, $THREADS threads, outputs in $OUT"
+TABLE=()
+for entry in "${SCENES[@]}"; do
+  read -r name width height <<<"$entry"
+  scene=benches/scenes/$name.ray
+  args=(--width "$width" --height "$height" --threads "$THREADS")
+  "$RAYREPL" "$scene" "${args[@]}" -o "$OUT/$name-rayrepl.ppm" --stats -q 2>"$OUT/$name-rayrepl.check"
+  "$EMBREE" "$scene" "${args[@]}" -o "$OUT/$name-embree.ppm" 2>"$OUT/$name-embree.check"
+  if cmp -s "$OUT/$name-rayrepl.ppm" "$OUT/$name-embree.ppm"; then
+    same="identical"
+  else
+    same="$(differing_pixels "$OUT/$name-rayrepl.ppm" "$OUT/$name-embree.ppm") pixels differ"
+  fi
+  rays_rayrepl=$(rays "$OUT/$name-rayrepl.check")
+  rays_embree=$(rays "$OUT/$name-embree.check")
+  if [[ "$rays_rayrepl" != "$rays_embree" ]]; then
+    echo "$name: ray counts differ: rayrepl $rays_rayrepl, Embree $rays_embree" >&2
+    exit 1
+  fi
+  isa=$(sed -n 's/^isa: //p' "$OUT/$name-embree.check")
+  : >"$OUT/$name-rayrepl.log"
+  : >"$OUT/$name-embree.log"
+  for _ in $(seq "$RUNS"); do
+    "$RAYREPL" "$scene" "${args[@]}" -o "$OUT/$name-rayrepl.ppm" --stats -q 2>>"$OUT/$name-rayrepl.log"
+    "$EMBREE" "$scene" "${args[@]}" -o "$OUT/$name-embree.ppm" 2>>"$OUT/$name-embree.log"
+  done
+  r_render=$(render_time "$OUT/$name-rayrepl.log" | stats)
+  e_render=$(render_time "$OUT/$name-embree.log" | stats)
+  r_build=$(build_time "$OUT/$name-rayrepl.log" | stats)
+  e_build=$(build_time "$OUT/$name-embree.log" | stats)
+  e_commit=$(commit_time "$OUT/$name-embree.log" | stats)
+  total=$(echo "$rays_rayrepl" | awk '{ print $1 + $2 + $3 }')
+  per_thread() { awk -v n="$total" -v t="${1%% *}" -v k="$THREADS" 'BEGIN { printf "%.2f", n / t / 1e6 / k }'; }
+  ratio() { awk -v a="${1%% *}" -v b="${2%% *}" 'BEGIN { printf "%.2f", a / b }'; }
+  echo
+  echo "$name ${width}x${height}: $rays_rayrepl rays (primary shadow reflection), same counts; images $same"
+  echo "  render  rayrepl $r_render s, Embree $e_render s, rayrepl/Embree $(ratio "$r_render" "$e_render")"
+  echo "  build   rayrepl $r_build s, Embree $e_build s (rtcCommitScene $e_commit s), rayrepl/Embree $(ratio "$r_build" "$e_build")"
+  echo "  Mrays/s per thread: rayrepl $(per_thread "$r_render"), Embree $(per_thread "$e_render") ($isa)"
+  TABLE+=("| $name ${width}x${height} | ${r_render%% *} | ${e_render%% *} | $(ratio "$r_render" "$e_render") | ${r_build%% *} | ${e_build%% *} | $(ratio "$r_build" "$e_build") | $(per_thread "$r_render") / $(per_thread "$e_render") | $same |")
+done
+echo
+echo "| scene | render rayrepl (s) | render Embree (s) | ratio | build rayrepl (s) | build Embree (s) | ratio | Mrays/s per thread rayrepl / Embree | images |"
+echo "|---|---|---|---|---|---|---|---|---|"
+printf '%s\n' "${TABLE[@]}"
