@@ -100,6 +100,12 @@ pub struct RtcRayHit16 {
     pub hit: RtcHit16,
 }
 
+/// The `valid` mask of a packet of 16 rays: -1 for a ray to trace, 0 for
+/// none; Embree reads it with aligned vector loads (64 bytes).
+#[derive(Debug, Clone, Copy, Default)]
+#[repr(C, align(64))]
+pub struct Valid16(pub [c_int; 16]);
+
 /// `struct RTCIntersectContext` (without `instStackSize` and
 /// `minWidthDistanceFactor`, absent from this build).
 #[derive(Debug, Clone, Copy)]
@@ -208,8 +214,8 @@ unsafe extern "C" {
     fn rtcSetGeometryOccludedFunction(geometry: Geometry, occluded: unsafe extern "C" fn(*const OccludedArguments));
     fn rtcIntersect1(scene: Scene, context: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
     fn rtcOccluded1(scene: Scene, context: *mut RtcIntersectContext, ray: *mut RtcRay);
-    fn rtcIntersect16(valid: *const c_int, scene: Scene, context: *mut RtcIntersectContext, rayhit: *mut RtcRayHit16);
-    fn rtcOccluded16(valid: *const c_int, scene: Scene, context: *mut RtcIntersectContext, ray: *mut RtcRay16);
+    fn rtcIntersect16(valid: *const Valid16, scene: Scene, context: *mut RtcIntersectContext, rayhit: *mut RtcRayHit16);
+    fn rtcOccluded16(valid: *const Valid16, scene: Scene, context: *mut RtcIntersectContext, ray: *mut RtcRay16);
 }
 
 /// An Embree device (its thread pool and its chosen ISA).
@@ -329,17 +335,17 @@ impl<'a, T: Sync> EmbreeScene<'a, T> {
 
     /// `rtcIntersect16` over the lanes whose `valid` is -1.
     #[inline]
-    pub fn intersect16(&self, valid: &[c_int; 16], context: &mut RtcIntersectContext, rayhit: &mut RtcRayHit16) {
-        // SAFETY: as for `intersect1`; `valid` holds 16 ints and the packet
-        // has Embree's 64-byte alignment (its type's).
-        unsafe { rtcIntersect16(valid.as_ptr(), self.scene, context, rayhit) }
+    pub fn intersect16(&self, valid: &Valid16, context: &mut RtcIntersectContext, rayhit: &mut RtcRayHit16) {
+        // SAFETY: as for `intersect1`; `valid` and the packet have Embree's
+        // 64-byte alignment (their types').
+        unsafe { rtcIntersect16(valid, self.scene, context, rayhit) }
     }
 
     /// `rtcOccluded16` over the lanes whose `valid` is -1.
     #[inline]
-    pub fn occluded16(&self, valid: &[c_int; 16], context: &mut RtcIntersectContext, ray: &mut RtcRay16) {
+    pub fn occluded16(&self, valid: &Valid16, context: &mut RtcIntersectContext, ray: &mut RtcRay16) {
         // SAFETY: as for `intersect16`.
-        unsafe { rtcOccluded16(valid.as_ptr(), self.scene, context, ray) }
+        unsafe { rtcOccluded16(valid, self.scene, context, ray) }
     }
 }
 

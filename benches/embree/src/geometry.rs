@@ -16,7 +16,8 @@ use rayrepl::scene::{Material, Scene};
 
 use crate::embree::{
     BoundsArguments, BuildQuality, EmbreeDevice, EmbreeScene, GEOM_ID, ID, INVALID_ID, IntersectArguments,
-    OccludedArguments, PRIM_ID, RtcIntersectContext, RtcRay, RtcRayHit, TFAR, UserCallbacks, ray_field,
+    OccludedArguments, PRIM_ID, RtcHit16, RtcIntersectContext, RtcRay, RtcRay16, RtcRayHit, RtcRayHit16, TFAR,
+    UserCallbacks, Valid16, ray_field,
 };
 
 /// Rays a [`Query`] holds: one for single rays, sixteen for a packet.
@@ -276,11 +277,6 @@ impl<'a> Geometry<'a> {
         })
     }
 
-    /// Embree's scene.
-    pub fn scene(&self) -> &EmbreeScene<'a, Objects> {
-        &self.scene
-    }
-
     /// rayrepl's `Geometry::closest_hit` and `SceneGeometry::closest_hit`:
     /// the nearest hit with `t > 0`; of hits at one distance, a sphere or a
     /// box before a plane, an earlier object before a later one.
@@ -294,6 +290,77 @@ impl<'a> Geometry<'a> {
         self.scene.intersect1(query.context(), &mut rayhit);
         let (t, index) = query.best[0];
         self.resolve(ray, t, index)
+    }
+
+    /// [`Geometry::closest_hit`] for up to 16 rays at once
+    /// (`rtcIntersect16`): `rays[i]` for each lane `i` with `valid[i]`; the
+    /// others' answers are `None`.
+    pub fn closest_hits16(
+        &self,
+        query: &mut Query,
+        rays: &[Ray; LANES],
+        valid: &[bool; LANES],
+    ) -> [Option<SurfaceHit>; LANES] {
+        let mut packet = packet16();
+        let mut mask = Valid16::default();
+        for lane in 0..LANES {
+            if !valid[lane] {
+                continue;
+            }
+            mask.0[lane] = -1;
+            let (traversed, inv) = self.objects.traversed(&rays[lane]);
+            (query.rays[lane], query.inv[lane]) = (rays[lane], inv);
+            query.best[lane] = (f64::INFINITY, u32::MAX);
+            set_lane(&mut packet.ray, lane, &traversed);
+        }
+        self.scene.intersect16(&mask, query.context(), &mut packet);
+        std::array::from_fn(|lane| {
+            if !valid[lane] {
+                return None;
+            }
+            let (t, index) = query.best[lane];
+            self.resolve(&rays[lane], t, index)
+        })
+    }
+
+    /// [`Geometry::blocked`] for up to 16 shadow rays along one light's
+    /// direction, whose blocking planes are `planes` (`rtcOccluded16`): for
+    /// each lane `i` with `valid[i]`, whether `rays[i]` is blocked.
+    pub fn blocked16(
+        &self,
+        query: &mut Query,
+        rays: &[Ray; LANES],
+        valid: &[bool; LANES],
+        planes: &[PlaneShape],
+    ) -> [bool; LANES] {
+        let mut blocked = [false; LANES];
+        let mut packet = packet16().ray;
+        let mut mask = Valid16::default();
+        let mut any = false;
+        for lane in 0..LANES {
+            if !valid[lane] {
+                continue;
+            }
+            let ray = &rays[lane];
+            if planes.iter().any(|p| p.normal.dot(ray.origin) > p.shift) {
+                blocked[lane] = true;
+                continue;
+            }
+            mask.0[lane] = -1;
+            any = true;
+            let (traversed, inv) = self.objects.traversed(ray);
+            (query.rays[lane], query.inv[lane]) = (*ray, inv);
+            set_lane(&mut packet, lane, &traversed);
+        }
+        if any {
+            self.scene.occluded16(&mask, query.context(), &mut packet);
+            for lane in 0..LANES {
+                if mask.0[lane] != 0 && packet.tfar[lane] == f32::NEG_INFINITY {
+                    blocked[lane] = true;
+                }
+            }
+        }
+        blocked
     }
 
     /// The closest hit, given the best sphere or box hit `(t, index)`
@@ -357,6 +424,45 @@ pub fn f32_ray(ray: &Ray, id: u32) -> RtcRay {
         id,
         flags: 0,
     }
+}
+
+/// An empty packet of 16 rays and hits.
+fn packet16() -> RtcRayHit16 {
+    RtcRayHit16 {
+        ray: RtcRay16 {
+            org_x: [0.0; LANES],
+            org_y: [0.0; LANES],
+            org_z: [0.0; LANES],
+            tnear: [0.0; LANES],
+            dir_x: [0.0; LANES],
+            dir_y: [0.0; LANES],
+            dir_z: [0.0; LANES],
+            time: [0.0; LANES],
+            tfar: [f32::INFINITY; LANES],
+            mask: [u32::MAX; LANES],
+            id: std::array::from_fn(|lane| lane as u32),
+            flags: [0; LANES],
+        },
+        hit: RtcHit16 {
+            ng_x: [0.0; LANES],
+            ng_y: [0.0; LANES],
+            ng_z: [0.0; LANES],
+            u: [0.0; LANES],
+            v: [0.0; LANES],
+            prim_id: [INVALID_ID; LANES],
+            geom_id: [INVALID_ID; LANES],
+            inst_id: [[INVALID_ID; LANES]; 1],
+        },
+    }
+}
+
+/// Puts the f32 form of `ray` in lane `lane` of `packet` (id = lane).
+#[inline(always)]
+fn set_lane(packet: &mut RtcRay16, lane: usize, ray: &Ray) {
+    let r = f32_ray(ray, lane as u32);
+    (packet.org_x[lane], packet.org_y[lane], packet.org_z[lane]) = (r.org[0], r.org[1], r.org[2]);
+    (packet.dir_x[lane], packet.dir_y[lane], packet.dir_z[lane]) = (r.dir[0], r.dir[1], r.dir[2]);
+    (packet.tnear[lane], packet.tfar[lane], packet.id[lane]) = (r.tnear, r.tfar, r.id);
 }
 
 /// Embree's bounds callback: the object's box, grown by the padding and

@@ -35,11 +35,12 @@ struct Options {
     threads: usize,
     depth: u32,
     quality: BuildQuality,
+    packets: bool,
     verbose: bool,
 }
 
 const USAGE: &str = "usage: embree-render SCENE.ray --width W --height H -o OUT.ppm [--threads N] \
-                     [--quality low|medium|high] [--depth N] [--verbose]";
+                     [--quality low|medium|high] [--packets] [--depth N] [--verbose]";
 
 fn main() -> ExitCode {
     let options = match parse_args(std::env::args().skip(1)) {
@@ -68,6 +69,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Options, String>
         threads: 2,
         depth: 5,
         quality: BuildQuality::Medium,
+        packets: false,
         verbose: false,
     };
     while let Some(arg) = args.next() {
@@ -87,6 +89,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Options, String>
                 }
             }
             "--verbose" => options.verbose = true,
+            "--packets" => options.packets = true,
             _ if arg.starts_with('-') => return Err(format!("unknown flag {arg}")),
             _ if options.scene.is_empty() => options.scene = arg,
             _ => return Err(format!("a second scene {arg:?}")),
@@ -145,7 +148,7 @@ fn run(options: &Options) -> Result<(), String> {
         let rays = PrimaryRays::new(&camera, options.width, options.height, Screen::Centered);
         let lighting = Lighting::new(&scene, &parts.planes, options.depth);
         let mut image = vec![0u8; options.width as usize * options.height as usize * 3];
-        let counts = render::render(&rays, &geometry, &lighting, options.width, &mut image);
+        let counts = render::render(&rays, &geometry, &lighting, options.width, &mut image, options.packets);
         (image, counts)
     });
     let seconds = render_start.elapsed().as_secs_f64();
@@ -159,7 +162,11 @@ fn run(options: &Options) -> Result<(), String> {
         mrays / options.threads as f64,
         options.threads,
     );
-    eprintln!("isa: {}", isa());
+    eprintln!(
+        "isa: {}, {}",
+        isa(),
+        if options.packets { "packets of 16 camera and shadow rays" } else { "single rays" }
+    );
     write_ppm(&options.output, options.width, options.height, &image)
 }
 

@@ -16,7 +16,7 @@ use rayrepl::render::shade::offset_origin;
 use rayrepl::render::{MAX_DEPTH, Ray, RayCounts};
 use rayrepl::scene::{Light, Material, Scene};
 
-use crate::geometry::{Geometry, Query, SurfaceHit};
+use crate::geometry::{Geometry, LANES, Query, SurfaceHit};
 
 /// Everything constant over one image that the formula needs (rayrepl's
 /// `shade::Lighting`).
@@ -59,6 +59,11 @@ pub struct Tracer<'a> {
     geometry: &'a Geometry<'a>,
     lighting: &'a Lighting<'a>,
     query: Box<Query>,
+    /// The query of packets (coherent rays).
+    packet_query: Box<Query>,
+    /// For the camera rays of a packet: per light, per lane, whether the
+    /// shadow ray is blocked.
+    packet_blocked: Vec<[bool; LANES]>,
     /// Rays traced so far.
     pub counts: RayCounts,
     levels: Vec<Level>,
@@ -67,7 +72,15 @@ pub struct Tracer<'a> {
 impl<'a> Tracer<'a> {
     /// A tracer over `geometry` with the image constants `lighting`.
     pub fn new(geometry: &'a Geometry<'a>, lighting: &'a Lighting<'a>) -> Tracer<'a> {
-        Tracer { geometry, lighting, query: Query::new(false), counts: RayCounts::default(), levels: Vec::new() }
+        Tracer {
+            geometry,
+            lighting,
+            query: Query::new(false),
+            packet_query: Query::new(true),
+            packet_blocked: vec![[false; LANES]; lighting.lights.len()],
+            counts: RayCounts::default(),
+            levels: Vec::new(),
+        }
     }
 
     /// SPEC 6: the colour seen along a camera ray (rayrepl's `Tracer::trace`).
@@ -75,22 +88,50 @@ impl<'a> Tracer<'a> {
     pub fn trace(&mut self, primary: &Ray) -> DVec3 {
         self.counts.primary += 1;
         let first = self.geometry.closest_hit(&mut self.query, primary);
-        self.trace_from(primary, first)
+        self.trace_from(primary, first, None)
     }
 
-    /// [`Tracer::trace`] once the camera ray's hit `first` is known (a
-    /// packet found it); counts the primary ray only in `trace`.
+    /// [`Tracer::trace`] for up to 16 camera rays (those `valid` marks):
+    /// their closest hits and their shadow rays are traced as packets
+    /// (`rtcIntersect16`, `rtcOccluded16`, one packet per light), the
+    /// reflections as single rays. Returns each lane's colour (black for
+    /// the others).
+    pub fn trace16(&mut self, primaries: &[Ray; LANES], valid: &[bool; LANES]) -> [DVec3; LANES] {
+        self.counts.primary += valid.iter().filter(|&&v| v).count() as u64;
+        let hits = self.geometry.closest_hits16(&mut self.packet_query, primaries, valid);
+        let origins: [DVec3; LANES] =
+            std::array::from_fn(|i| hits[i].map_or(DVec3::ZERO, |h| offset_origin(h.point, h.normal, h.t)));
+        for (j, (light, planes)) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes).enumerate() {
+            let l = light.direction;
+            let mut wanted = [false; LANES];
+            for lane in 0..LANES {
+                // The shadow rays `local_colour` would trace: N·L > 0.
+                wanted[lane] = hits[lane].is_some_and(|h| h.normal.dot(l) > 0.0);
+            }
+            self.counts.shadow += wanted.iter().filter(|&&w| w).count() as u64;
+            let rays = std::array::from_fn(|lane| Ray::new(origins[lane], l));
+            self.packet_blocked[j] = self.geometry.blocked16(&mut self.packet_query, &rays, &wanted, planes);
+        }
+        std::array::from_fn(|lane| {
+            if valid[lane] { self.trace_from(&primaries[lane], hits[lane], Some(lane)) } else { DVec3::ZERO }
+        })
+    }
+
+    /// [`Tracer::trace`] once the camera ray's hit `first` is known; the
+    /// primary ray is counted by the caller. With `lane`, the camera ray's
+    /// shadow rays were traced by [`Tracer::trace16`] (lane `lane`).
     #[inline(always)]
-    pub fn trace_from(&mut self, primary: &Ray, first: Option<SurfaceHit>) -> DVec3 {
+    fn trace_from(&mut self, primary: &Ray, first: Option<SurfaceHit>, lane: Option<usize>) -> DVec3 {
         let mut levels = std::mem::take(&mut self.levels);
         levels.clear();
         let mut ray = *primary;
         let mut found = first;
+        let mut lane = lane;
         loop {
             let Some(hit) = found else { break };
             // Shadow and mirror rays start at P moved off the surface.
             let origin = offset_origin(hit.point, hit.normal, hit.t);
-            let local = self.local_colour(&ray, &hit, origin);
+            let local = self.local_colour(&ray, &hit, origin, lane.take());
             let ks = hit.material.ks;
             // With ks = 0 the reflection term is `0 * colour = +0`.
             let reflects = levels.len() < self.lighting.depth as usize && ks != 0.0;
@@ -108,22 +149,29 @@ impl<'a> Tracer<'a> {
     }
 
     /// rayrepl's `Tracer::local_colour`: all of SPEC 6's formula at `hit`
-    /// but the reflection term. Shadow rays start at `origin`.
+    /// but the reflection term. Shadow rays start at `origin`; with
+    /// `lane`, they were traced in a packet, lane `lane`.
     #[inline(always)]
-    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3) -> DVec3 {
+    fn local_colour(&mut self, ray: &Ray, hit: &SurfaceHit, origin: DVec3, lane: Option<usize>) -> DVec3 {
         let Material { color, kd, ks, phong } = hit.material;
         let n = hit.normal;
         // kd * Ia * C
         let mut c = color * (kd * self.lighting.ambient);
-        for (light, planes) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes) {
+        for (j, (light, planes)) in self.lighting.lights.iter().zip(&self.lighting.blocking_planes).enumerate() {
             let l = light.direction;
             let n_dot_l = n.dot(l);
             // Only lights with N·L > 0 count: no shadow ray for the others.
             if n_dot_l <= 0.0 {
                 continue;
             }
-            self.counts.shadow += 1;
-            if self.geometry.blocked(&mut self.query, &Ray::new(origin, l), planes) {
+            let blocked = match lane {
+                Some(lane) => self.packet_blocked[j][lane],
+                None => {
+                    self.counts.shadow += 1;
+                    self.geometry.blocked(&mut self.query, &Ray::new(origin, l), planes)
+                }
+            };
+            if blocked {
                 continue;
             }
             // kd * (N·L) * I * C
