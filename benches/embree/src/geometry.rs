@@ -354,10 +354,9 @@ impl<'a> Geometry<'a> {
         }
         if any {
             self.scene.occluded16(&mask, query.context(), &mut packet);
-            for lane in 0..LANES {
-                if mask.0[lane] != 0 && packet.tfar[lane] == f32::NEG_INFINITY {
-                    blocked[lane] = true;
-                }
+            for ((blocked, &traced), &tfar) in blocked.iter_mut().zip(&mask.0).zip(&packet.tfar) {
+                // Embree marks an occluded ray with tfar = -inf.
+                *blocked |= traced != 0 && tfar == f32::NEG_INFINITY;
             }
         }
         blocked

@@ -127,8 +127,7 @@ impl<'a> Tracer<'a> {
         let mut ray = *primary;
         let mut found = first;
         let mut lane = lane;
-        loop {
-            let Some(hit) = found else { break };
+        while let Some(hit) = found {
             // Shadow and mirror rays start at P moved off the surface.
             let origin = offset_origin(hit.point, hit.normal, hit.t);
             let local = self.local_colour(&ray, &hit, origin, lane.take());
