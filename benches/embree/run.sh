@@ -4,6 +4,7 @@
 #
 #   benches/embree/run.sh            # 5 timed runs of each program per scene
 #   RUNS=9 benches/embree/run.sh     # 9
+#   EMBREE_ARGS=--packets benches/embree/run.sh   # Embree with 4x4 packets
 #
 # For each scene it renders once with both, checks that the images are
 # byte-identical (cmp; if not, counts the pixels that differ) and that the
@@ -18,6 +19,8 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 RUNS=${RUNS:-5}
 THREADS=${THREADS:-2}
+# Extra flags of the Embree renderer (--packets, --quality high, ...).
+read -r -a EMBREE_ARGS <<<"${EMBREE_ARGS:-}"
 OUT=${OUT:-$(mktemp -d)}
 cd "$ROOT"
 
@@ -56,14 +59,14 @@ differing_pixels() {
   cmp -l "$1" "$2" | awk -v h="$header" '{ p[int(($1 - 1 - h) / 3)] = 1 } END { print length(p) }'
 }
 
-printf '%s\n' "rayrepl $(git rev-parse --short HEAD), $RUNS runs each, $THREADS threads, outputs in $OUT"
+printf '%s\n' "rayrepl $(git rev-parse --short HEAD), $RUNS runs each, $THREADS threads, Embree flags: ${EMBREE_ARGS[*]:-none}, outputs in $OUT"
 TABLE=()
 for entry in "${SCENES[@]}"; do
   read -r name width height <<<"$entry"
   scene=benches/scenes/$name.ray
   args=(--width "$width" --height "$height" --threads "$THREADS")
   "$RAYREPL" "$scene" "${args[@]}" -o "$OUT/$name-rayrepl.ppm" --stats -q 2>"$OUT/$name-rayrepl.check"
-  "$EMBREE" "$scene" "${args[@]}" -o "$OUT/$name-embree.ppm" 2>"$OUT/$name-embree.check"
+  "$EMBREE" "$scene" "${args[@]}" "${EMBREE_ARGS[@]}" -o "$OUT/$name-embree.ppm" 2>"$OUT/$name-embree.check"
   if cmp -s "$OUT/$name-rayrepl.ppm" "$OUT/$name-embree.ppm"; then
     same="identical"
   else
@@ -80,7 +83,7 @@ for entry in "${SCENES[@]}"; do
   : >"$OUT/$name-embree.log"
   for _ in $(seq "$RUNS"); do
     "$RAYREPL" "$scene" "${args[@]}" -o "$OUT/$name-rayrepl.ppm" --stats -q 2>>"$OUT/$name-rayrepl.log"
-    "$EMBREE" "$scene" "${args[@]}" -o "$OUT/$name-embree.ppm" 2>>"$OUT/$name-embree.log"
+    "$EMBREE" "$scene" "${args[@]}" "${EMBREE_ARGS[@]}" -o "$OUT/$name-embree.ppm" 2>>"$OUT/$name-embree.log"
   done
   r_render=$(render_time "$OUT/$name-rayrepl.log" | stats)
   e_render=$(render_time "$OUT/$name-embree.log" | stats)
