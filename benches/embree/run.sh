@@ -22,6 +22,7 @@ THREADS=${THREADS:-2}
 # Extra flags of the Embree renderer (--packets, --quality high, ...).
 read -r -a EMBREE_ARGS <<<"${EMBREE_ARGS:-}"
 OUT=${OUT:-$(mktemp -d)}
+mkdir -p "$OUT"
 cd "$ROOT"
 
 cargo build --release --quiet
