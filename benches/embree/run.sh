@@ -11,7 +11,9 @@
 # ray counts agree, then times both alternately (rayrepl, Embree, rayrepl,
 # ...), RUNS runs each, and prints the median (and min-max) of the render
 # and BVH build times each program prints, with the ratio rayrepl / Embree
-# (below 1: rayrepl is faster).
+# (below 1: rayrepl is faster), taken run by run (pairs) and then the
+# median: pairing keeps the ratio meaningful when the machine's speed
+# drifts during the run.
 #
 # Needs Embree 3 (Debian: apt-get install -y libembree-dev).
 set -euo pipefail
@@ -44,8 +46,18 @@ stats() {
     printf "%.3f (%.3f-%.3f)\n", m, v[1], v[NR] }'
 }
 
-# The median alone of the numbers on stdin.
-median() { stats | cut -d' ' -f1; }
+# The ratios a/b, line by line, of the numbers in the files $1 (a) and $2
+# (b); "n/a" for a zero b (a time below the printout's precision).
+pair_ratios() {
+  paste "$1" "$2" | awk '$1 > 0 && $2 > 0 { printf "%.4f\n", $1 / $2 }'
+}
+
+# "median (min-max)" of the pair ratios, or n/a.
+ratio_stats() {
+  local ratios
+  ratios=$(pair_ratios "$1" "$2")
+  if [[ -z "$ratios" ]]; then echo "n/a"; else echo "$ratios" | stats | sed 's/\([0-9]\.[0-9][0-9]\)[0-9]/\1/g'; fi
+}
 
 # Field extractors for the printouts of both programs.
 render_time() { sed -n 's/.* rays in \([0-9.]*\) s.*/\1/p' "$1"; }
@@ -86,20 +98,25 @@ for entry in "${SCENES[@]}"; do
     "$RAYREPL" "$scene" "${args[@]}" -o "$OUT/$name-rayrepl.ppm" --stats -q 2>>"$OUT/$name-rayrepl.log"
     "$EMBREE" "$scene" "${args[@]}" "${EMBREE_ARGS[@]}" -o "$OUT/$name-embree.ppm" 2>>"$OUT/$name-embree.log"
   done
-  r_render=$(render_time "$OUT/$name-rayrepl.log" | stats)
-  e_render=$(render_time "$OUT/$name-embree.log" | stats)
-  r_build=$(build_time "$OUT/$name-rayrepl.log" | stats)
-  e_build=$(build_time "$OUT/$name-embree.log" | stats)
+  render_time "$OUT/$name-rayrepl.log" >"$OUT/$name-rayrepl.render"
+  render_time "$OUT/$name-embree.log" >"$OUT/$name-embree.render"
+  build_time "$OUT/$name-rayrepl.log" >"$OUT/$name-rayrepl.build"
+  build_time "$OUT/$name-embree.log" >"$OUT/$name-embree.build"
+  r_render=$(stats <"$OUT/$name-rayrepl.render")
+  e_render=$(stats <"$OUT/$name-embree.render")
+  r_build=$(stats <"$OUT/$name-rayrepl.build")
+  e_build=$(stats <"$OUT/$name-embree.build")
   e_commit=$(commit_time "$OUT/$name-embree.log" | stats)
+  render_ratio=$(ratio_stats "$OUT/$name-rayrepl.render" "$OUT/$name-embree.render")
+  build_ratio=$(ratio_stats "$OUT/$name-rayrepl.build" "$OUT/$name-embree.build")
   total=$(echo "$rays_rayrepl" | awk '{ print $1 + $2 + $3 }')
   per_thread() { awk -v n="$total" -v t="${1%% *}" -v k="$THREADS" 'BEGIN { printf "%.2f", n / t / 1e6 / k }'; }
-  ratio() { awk -v a="${1%% *}" -v b="${2%% *}" 'BEGIN { printf "%.2f", a / b }'; }
   echo
   echo "$name ${width}x${height}: $rays_rayrepl rays (primary shadow reflection), same counts; images $same"
-  echo "  render  rayrepl $r_render s, Embree $e_render s, rayrepl/Embree $(ratio "$r_render" "$e_render")"
-  echo "  build   rayrepl $r_build s, Embree $e_build s (rtcCommitScene $e_commit s), rayrepl/Embree $(ratio "$r_build" "$e_build")"
+  echo "  render  rayrepl $r_render s, Embree $e_render s, rayrepl/Embree $render_ratio"
+  echo "  build   rayrepl $r_build s, Embree $e_build s (rtcCommitScene $e_commit s), rayrepl/Embree $build_ratio"
   echo "  Mrays/s per thread: rayrepl $(per_thread "$r_render"), Embree $(per_thread "$e_render") ($isa)"
-  TABLE+=("| $name ${width}x${height} | ${r_render%% *} | ${e_render%% *} | $(ratio "$r_render" "$e_render") | ${r_build%% *} | ${e_build%% *} | $(ratio "$r_build" "$e_build") | $(per_thread "$r_render") / $(per_thread "$e_render") | $same |")
+  TABLE+=("| $name ${width}x${height} | ${r_render%% *} | ${e_render%% *} | ${render_ratio%% *} | ${r_build%% *} | ${e_build%% *} | ${build_ratio%% *} | $(per_thread "$r_render") / $(per_thread "$e_render") | $same |")
 done
 echo
 echo "| scene | render rayrepl (s) | render Embree (s) | ratio | build rayrepl (s) | build Embree (s) | ratio | Mrays/s per thread rayrepl / Embree | images |"
