@@ -222,6 +222,9 @@ pub struct Geometry<'a> {
     materials: &'a [Material],
     pub planes: &'a [PlaneShape],
     plane_materials: &'a [Material],
+    /// Test every object for every ray, in the scene's order, without
+    /// Embree (`--brute-force`): a check of the culling.
+    pub brute_force: bool,
 }
 
 /// What the geometry is made of, in the scene's order, before Embree builds
@@ -274,6 +277,7 @@ impl<'a> Geometry<'a> {
             materials: &parts.materials,
             planes: &parts.planes,
             plane_materials: &parts.plane_materials,
+            brute_force: false,
         })
     }
 
@@ -282,6 +286,16 @@ impl<'a> Geometry<'a> {
     /// box before a plane, an earlier object before a later one.
     #[inline]
     pub fn closest_hit(&self, query: &mut Query, ray: &Ray) -> Option<SurfaceHit> {
+        if self.brute_force {
+            let mut best = (f64::INFINITY, u32::MAX);
+            for k in 0..self.objects.list.len() {
+                let t = self.objects.list[k].hit(ray);
+                if goes_before(t, k as u32, best) {
+                    best = (t, k as u32);
+                }
+            }
+            return self.resolve(ray, best.0, best.1);
+        }
         let (traversed, inv) = self.objects.traversed(ray);
         (query.rays[0], query.inv[0]) = (*ray, inv);
         query.best[0] = (f64::INFINITY, u32::MAX);

@@ -6,8 +6,14 @@
 //!
 //! ```text
 //! embree-render SCENE.ray --width W --height H -o OUT.ppm [--threads N]
-//!               [--quality low|medium|high] [--packets] [--depth N]
+//!               [--quality low|medium|high] [--packets] [--depth N] [--verbose]
+//!               [--brute-force]
 //! ```
+//!
+//! `--brute-force` finds closest hits by testing every object in the
+//! scene's order, without Embree (a check of the culling: its image must be
+//! the Embree image's); `--verbose` has Embree print its configuration
+//! (its ISA among it) on standard output.
 
 mod embree;
 mod geometry;
@@ -36,11 +42,12 @@ struct Options {
     depth: u32,
     quality: BuildQuality,
     packets: bool,
+    brute_force: bool,
     verbose: bool,
 }
 
 const USAGE: &str = "usage: embree-render SCENE.ray --width W --height H -o OUT.ppm [--threads N] \
-                     [--quality low|medium|high] [--packets] [--depth N] [--verbose]";
+                     [--quality low|medium|high] [--packets] [--depth N] [--verbose] [--brute-force]";
 
 fn main() -> ExitCode {
     let options = match parse_args(std::env::args().skip(1)) {
@@ -70,6 +77,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Options, String>
         depth: 5,
         quality: BuildQuality::Medium,
         packets: false,
+        brute_force: false,
         verbose: false,
     };
     while let Some(arg) = args.next() {
@@ -90,6 +98,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Options, String>
             }
             "--verbose" => options.verbose = true,
             "--packets" => options.packets = true,
+            "--brute-force" => options.brute_force = true,
             _ if arg.starts_with('-') => return Err(format!("unknown flag {arg}")),
             _ if options.scene.is_empty() => options.scene = arg,
             _ => return Err(format!("a second scene {arg:?}")),
@@ -126,7 +135,8 @@ fn run(options: &Options) -> Result<(), String> {
     let scale = working_scale(&scene);
     let parts = Parts::new(&scene, scale, scene.camera.distance * scale);
     let commit_start = Instant::now();
-    let geometry = Geometry::build(&device, &parts, options.quality)?;
+    let mut geometry = Geometry::build(&device, &parts, options.quality)?;
+    geometry.brute_force = options.brute_force;
     let committed = commit_start.elapsed();
     let built = build_start.elapsed();
     eprintln!(
