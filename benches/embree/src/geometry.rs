@@ -547,3 +547,32 @@ unsafe extern "C" fn occluded(args: *const OccludedArguments) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_round_outwards() {
+        for x in [0.1, -0.1, 1.0 / 3.0, -7.7e-9, 1e30, 3.0] {
+            assert!(f64::from(round_down(x)) <= x && x <= f64::from(round_up(x)), "{x}");
+        }
+        assert_eq!(round_up(3.0), 3.0);
+    }
+
+    #[test]
+    fn culling_keeps_every_hit_the_tie_rule_could_keep() {
+        for t in [1e-12, 0.37, 1.0, 5e7] {
+            assert!(f64::from(culling_distance(t)) > reach_past(t), "{t}");
+        }
+    }
+
+    #[test]
+    fn ties_go_to_the_earlier_object() {
+        let best = (1.0, 5);
+        assert!(goes_before(1.0 + 1e-10, 3, best));
+        assert!(!goes_before(1.0 - 1e-10, 7, best));
+        assert!(goes_before(1.0 - 1e-8, 7, best));
+        assert!(!goes_before(f64::INFINITY, 0, (f64::INFINITY, u32::MAX)));
+    }
+}

@@ -25,7 +25,7 @@ use std::time::Instant;
 
 use rayrepl::lang::source::SourceMap;
 use rayrepl::lang::{Interpreter, Limits, parse_file};
-use rayrepl::render::{PrimaryRays, Screen};
+use rayrepl::render::{PrimaryRays, RayCounts, Screen};
 use rayrepl::scene::{Camera, Scene, Shape};
 
 use crate::embree::{BuildQuality, EmbreeDevice};
@@ -151,16 +151,7 @@ fn run(options: &Options) -> Result<(), String> {
     );
 
     let render_start = Instant::now();
-    let (image, counts) = pool.install(|| {
-        // rayrepl's `SceneGeometry::primary_rays`: the camera in the
-        // geometry's unit.
-        let camera = Camera { distance: scene.camera.distance * scale, ..scene.camera };
-        let rays = PrimaryRays::new(&camera, options.width, options.height, Screen::Centered);
-        let lighting = Lighting::new(&scene, &parts.planes, options.depth);
-        let mut image = vec![0u8; options.width as usize * options.height as usize * 3];
-        let counts = render::render(&rays, &geometry, &lighting, options.width, &mut image, options.packets);
-        (image, counts)
-    });
+    let (image, counts) = pool.install(|| render_image(&scene, scale, &geometry, &parts, options));
     let seconds = render_start.elapsed().as_secs_f64();
     let total = counts.primary + counts.shadow + counts.reflection;
     let mrays = total as f64 / seconds.max(1e-9) / 1e6;
@@ -178,6 +169,24 @@ fn run(options: &Options) -> Result<(), String> {
         if options.packets { "packets of 16 camera and shadow rays" } else { "single rays" }
     );
     write_ppm(&options.output, options.width, options.height, &image)
+}
+
+/// Renders the image of `scene` (whose geometry, in the unit `scale`, is
+/// `geometry` over `parts`) as `options` says: RGB bytes and the rays traced.
+fn render_image(
+    scene: &Scene,
+    scale: f64,
+    geometry: &Geometry,
+    parts: &Parts,
+    options: &Options,
+) -> (Vec<u8>, RayCounts) {
+    // rayrepl's `SceneGeometry::primary_rays`: the camera in the geometry's unit.
+    let camera = Camera { distance: scene.camera.distance * scale, ..scene.camera };
+    let rays = PrimaryRays::new(&camera, options.width, options.height, Screen::Centered);
+    let lighting = Lighting::new(scene, &parts.planes, options.depth);
+    let mut image = vec![0u8; options.width as usize * options.height as usize * 3];
+    let counts = render::render(&rays, geometry, &lighting, options.width, &mut image, options.packets);
+    (image, counts)
 }
 
 /// Parses and evaluates the scene file at `time = 0`.
@@ -240,4 +249,51 @@ fn write_ppm(path: &str, width: u32, height: u32, pixels: &[u8]) -> Result<(), S
     let mut bytes = format!("P6\n{width} {height}\n255\n").into_bytes();
     bytes.extend_from_slice(pixels);
     std::fs::write(path, bytes).map_err(|e| format!("{path}: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry};
+
+    use super::*;
+
+    /// Renders `scene` at `width` x `height` with rayrepl and with Embree
+    /// (single rays, then packets) and checks the bytes and the ray counts
+    /// are the same.
+    fn same_as_rayrepl(path: &str, width: u32, height: u32) {
+        let scene = evaluate(&format!("{}/../../{path}", env!("CARGO_MANIFEST_DIR"))).expect("the scene evaluates");
+        let expected = RenderOptions { width, height, ..RenderOptions::default() };
+        let (reference, stats) =
+            rayrepl::render::render(&scene, &SceneGeometry::new(&scene), &expected, &RenderControl::default())
+                .expect("not cancelled");
+        let device = EmbreeDevice::new("threads=2").expect("an Embree device");
+        let scale = working_scale(&scene);
+        let parts = Parts::new(&scene, scale, scene.camera.distance * scale);
+        let geometry = Geometry::build(&device, &parts, BuildQuality::Medium).expect("Embree builds the scene");
+        for packets in [false, true] {
+            let options = parse_args(
+                [path, "--width", &width.to_string(), "--height", &height.to_string(), "-o", "unused.ppm"]
+                    .into_iter()
+                    .map(String::from),
+            )
+            .expect("valid arguments");
+            let options = Options { packets, ..options };
+            let (image, counts) = render_image(&scene, scale, &geometry, &parts, &options);
+            assert_eq!(counts, stats.rays, "{path}, packets {packets}");
+            assert!(image == reference.as_raw().as_slice(), "{path}, packets {packets}: the images differ");
+        }
+    }
+
+    #[test]
+    fn the_benchmark_scenes_render_as_rayrepl_renders_them() {
+        same_as_rayrepl("benches/scenes/solar.ray", 160, 90);
+        same_as_rayrepl("benches/scenes/spheres100k.ray", 160, 120);
+        same_as_rayrepl("benches/scenes/sponge4.ray", 160, 90);
+    }
+
+    #[test]
+    fn scenes_at_extreme_scales_render_as_rayrepl_renders_them() {
+        same_as_rayrepl("benches/scenes/scales.ray", 160, 120);
+        same_as_rayrepl("scenarios/mirrors.ray", 160, 120);
+    }
 }
