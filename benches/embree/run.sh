@@ -116,9 +116,9 @@ for entry in "${SCENES[@]}"; do
   echo "  render  rayrepl $r_render s, Embree $e_render s, rayrepl/Embree $render_ratio"
   echo "  build   rayrepl $r_build s, Embree $e_build s (rtcCommitScene $e_commit s), rayrepl/Embree $build_ratio"
   echo "  Mrays/s per thread: rayrepl $(per_thread "$r_render"), Embree $(per_thread "$e_render") ($isa)"
-  TABLE+=("| $name ${width}x${height} | ${r_render%% *} | ${e_render%% *} | ${render_ratio%% *} | ${r_build%% *} | ${e_build%% *} | ${build_ratio%% *} | $(per_thread "$r_render") / $(per_thread "$e_render") | $same |")
+  TABLE+=("| $name ${width}x${height} | ${r_render%% *} | ${e_render%% *} | ${render_ratio%% *} | ${r_build%% *} | ${e_build%% *} | ${build_ratio%% *} | $(per_thread "$r_render") / $(per_thread "$e_render") | ${isa%%,*} | $same |")
 done
 echo
-echo "| scene | render rayrepl (s) | render Embree (s) | ratio | build rayrepl (s) | build Embree (s) | ratio | Mrays/s per thread rayrepl / Embree | images |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| scene | render rayrepl (s) | render Embree (s) | ratio | build rayrepl (s) | build Embree (s) | ratio | Mrays/s per thread rayrepl / Embree | Embree ISA | images |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 printf '%s\n' "${TABLE[@]}"
