@@ -16,7 +16,6 @@ const GEOMETRY_TYPE_USER: c_uint = 120;
 /// `RTCBuildQuality`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
-#[allow(dead_code)] // the variants are C's; not all are chosen
 pub enum BuildQuality {
     /// `RTC_BUILD_QUALITY_LOW`.
     Low = 0,
@@ -250,7 +249,8 @@ impl Drop for EmbreeDevice {
     }
 }
 
-/// The callbacks of a user geometry, over the user data `T`.
+/// The callbacks of a user geometry; each receives the scene's user data
+/// as `user` (`geometryUserPtr`).
 pub struct UserCallbacks {
     pub bounds: unsafe extern "C" fn(*const BoundsArguments),
     pub intersect: unsafe extern "C" fn(*const IntersectArguments),
