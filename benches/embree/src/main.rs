@@ -294,6 +294,23 @@ mod tests {
     #[test]
     fn scenes_at_extreme_scales_render_as_rayrepl_renders_them() {
         same_as_rayrepl("benches/scenes/scales.ray", 160, 120);
-        same_as_rayrepl("scenarios/mirrors.ray", 160, 120);
+        same_as_rayrepl("benches/scenes/menger.ray", 160, 120);
+    }
+
+    /// Every scenario, `boxes.ray` among them, where two boxes of the F
+    /// share a face: the one put first must be seen by both renderers.
+    #[test]
+    fn the_scenarios_render_as_rayrepl_renders_them() {
+        let folder = format!("{}/../../scenarios", env!("CARGO_MANIFEST_DIR"));
+        let mut names: Vec<String> = std::fs::read_dir(folder)
+            .expect("the scenarios folder")
+            .map(|entry| entry.expect("a folder entry").file_name().to_string_lossy().into_owned())
+            .filter(|name| name.ends_with(".ray"))
+            .collect();
+        names.sort();
+        assert!(names.len() >= 10, "{names:?}");
+        for name in names {
+            same_as_rayrepl(&format!("scenarios/{name}"), 320, 240);
+        }
     }
 }
