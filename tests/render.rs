@@ -546,7 +546,7 @@ proptest! {
 /// distance (coinciding faces), the BVH may answer any: it takes the one
 /// put first, which the tests of coinciding faces check.
 fn bvh_agrees_with_brute_force(objects: &[Bounded], rays: &[Ray], secondary: bool) -> Result<(), TestCaseError> {
-    let (bvh, order) = Bvh::build(objects.to_vec());
+    let (bvh, order) = Bvh::build(objects);
     let brute_force = |ray: &Ray| objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
     let same_distance = |t: f64, nearest: f64| nearest <= t && t <= nearest * (1.0 + 1e-9);
     for ray in rays {

@@ -204,16 +204,16 @@ impl Bvh {
     ///
     /// Returns the tree and the permutation applied: the tree's object `k` is
     /// `objects[order[k]]`, so callers can reorder data kept alongside.
-    pub fn build(mut objects: Vec<Bounded>) -> (Bvh, Vec<u32>) {
+    pub fn build(objects: &[Bounded]) -> (Bvh, Vec<u32>) {
         if objects.len() <= BRUTE_FORCE_MAX {
             let order = (0..objects.len() as u32).collect();
-            let flat = Bvh { wide: WideBvh::default(), objects, shared: None, put_order: Vec::new() };
+            let flat = Bvh { wide: WideBvh::default(), objects: objects.to_vec(), shared: None, put_order: Vec::new() };
             return (flat, order);
         }
         // Boxes that share their axes are grouped in their common frame,
         // where they are axis-aligned: far tighter nodes than their world
         // boxes give.
-        let frame = SharedFrame::common_axes(&objects);
+        let frame = SharedFrame::common_axes(objects);
         let mut items: Vec<Item> = objects
             .par_iter()
             .enumerate()
@@ -229,8 +229,7 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(objects.len());
         build_range(&mut items, 0, 0, extent, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
-        drop(items);
-        put_in_order(&mut objects, &order);
+        let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
         let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &objects)));
         let wide = match shared {
             Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds)),
@@ -326,30 +325,6 @@ impl Bvh {
     /// The depth of the tree (1 for a single node, 0 without a tree).
     pub fn depth(&self) -> usize {
         self.wide.depth()
-    }
-}
-
-/// Reorders `items` in place so that item `k` is the one that was at
-/// `order[k]` (a permutation), following its cycles: no second list, whose
-/// fresh pages cost more than the moves.
-pub(crate) fn put_in_order<T: Copy>(items: &mut [T], order: &[u32]) {
-    let mut placed = vec![false; items.len()];
-    for start in 0..items.len() {
-        if placed[start] {
-            continue;
-        }
-        let first = items[start];
-        let mut k = start;
-        loop {
-            placed[k] = true;
-            let from = order[k] as usize;
-            if from == start {
-                items[k] = first;
-                break;
-            }
-            items[k] = items[from];
-            k = from;
-        }
     }
 }
 
@@ -638,20 +613,10 @@ mod tests {
     use crate::render::intersect::SphereShape;
 
     #[test]
-    fn put_in_order_gathers_in_place() {
-        // Cycles of lengths 1, 2 and 4, and the empty list.
-        let order = [0u32, 2, 1, 6, 3, 4, 5];
-        let mut items: Vec<char> = "abcdefg".chars().collect();
-        put_in_order(&mut items, &order);
-        assert_eq!(items, order.iter().map(|&k| "abcdefg".as_bytes()[k as usize] as char).collect::<Vec<_>>());
-        put_in_order::<u8>(&mut [], &[]);
-    }
-
-    #[test]
     fn coincident_centroids_still_give_a_shallow_tree() {
         let spheres: Vec<Bounded> =
             (0..1000).map(|k| Bounded::Sphere(SphereShape { center: DVec3::ZERO, radius: 1.0 + k as f64 })).collect();
-        let (bvh, order) = Bvh::build(spheres.clone());
+        let (bvh, order) = Bvh::build(&spheres);
         assert!(bvh.depth() < STACK_SIZE);
         let mut sorted = order.clone();
         sorted.sort_unstable();
@@ -663,7 +628,7 @@ mod tests {
         let spheres: Vec<Bounded> = (0..2000)
             .map(|k| Bounded::Sphere(SphereShape { center: DVec3::new(1.01f64.powi(k), 0.0, 0.0), radius: 1e-3 }))
             .collect();
-        let (bvh, _) = Bvh::build(spheres);
+        let (bvh, _) = Bvh::build(&spheres);
         assert!(bvh.depth() < STACK_SIZE, "depth {}", bvh.depth());
     }
 }

@@ -15,7 +15,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::bvh::{self, Bvh, put_in_order};
+use super::bvh::{self, Bvh};
 use super::camera::{PrimaryRays, Screen};
 use super::intersect::{Aabb, Bounded, PlaneShape, Ray, ShapeClass};
 use crate::scene::{Camera, Material, Primitive, Scene, Shape};
@@ -101,12 +101,10 @@ impl Geometry {
                 }
             }
         }
-        let (bvh, order) = Bvh::build(bounded);
-        put_in_order(&mut materials, &order);
-        put_in_order(&mut bounded_sources, &order);
-        bounded_sources.extend(plane_sources);
-        let sources = bounded_sources;
-        Geometry { bvh, bounded_materials: materials, planes, plane_materials, scale, sources }
+        let (bvh, order) = Bvh::build(&bounded);
+        let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
+        let sources = order.iter().map(|&k| bounded_sources[k as usize]).chain(plane_sources).collect();
+        Geometry { bvh, bounded_materials, planes, plane_materials, scale, sources }
     }
 
     /// The union of two geometries without trees (both small), `a` first:

@@ -616,7 +616,7 @@ mod tests {
     /// Checks random rays through `objects`, some starting on the objects'
     /// faces and corners, against [`brute_force`] with every compiled form.
     fn check_against_brute_force(objects: &[Bounded], random: &mut Random) {
-        let (bvh, _) = Bvh::build(objects.to_vec());
+        let (bvh, _) = Bvh::build(objects);
         assert!(!bvh.is_flat());
         for _ in 0..3000 {
             let origin = match (random.next() * 2.0) as i32 {
