@@ -229,12 +229,16 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(objects.len());
         build_range(&mut items, 0, 0, extent, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
-        let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
-        let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &objects)));
-        let wide = match shared {
+        // The items and the binary nodes are freed before the objects are
+        // copied in tree order: they are not all at the peak together.
+        drop(items);
+        let wide = match frame {
             Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds)),
             None => WideBvh::collapse(&nodes, |k| nodes[k].bounds),
         };
+        drop(nodes);
+        let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
+        let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &objects)));
         (Bvh { wide, objects, shared, put_order: order.clone() }, order)
     }
 
