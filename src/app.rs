@@ -403,7 +403,8 @@ fn render_still(cli: &Cli, parsed: &ParsedScene, cancel: &AtomicBool) -> Result<
     let (image, stats) = render_frame(&scene, &prepared, &options, &progress, cancel)?;
     progress.finish();
     if cli.stats {
-        eprintln!("evaluate {:.3} s, build {:.3} s", evaluated.as_secs_f64(), built.as_secs_f64());
+        let search = prepared.search();
+        eprintln!("evaluate {:.3} s, build {:.3} s ({search})", evaluated.as_secs_f64(), built.as_secs_f64());
         print_stats(&stats, 1);
     }
     Ok(image)

@@ -135,6 +135,17 @@ impl Geometry {
         self.bvh.is_empty() && self.planes.is_empty()
     }
 
+    /// For `--stats`: how the spheres and boxes are searched (the tree
+    /// walk's compiled form, or a flat list).
+    fn search(&self) -> String {
+        let count = self.bvh.objects().len();
+        let objects = if count == 1 { "object" } else { "objects" };
+        match self.bvh.walk_form() {
+            Some(form) => format!("a tree of {count} {objects}, {form} walk"),
+            None => format!("a list of {count} {objects}"),
+        }
+    }
+
     /// Number of primitives.
     pub fn len(&self) -> usize {
         self.bvh.objects().len() + self.planes.len()
@@ -299,6 +310,17 @@ impl SceneGeometry {
     /// animation: pass it to [`SceneGeometry::with_static`] for the next frame.
     pub fn static_part(&self) -> &Arc<Geometry> {
         &self.static_part
+    }
+
+    /// For `--stats`: how the spheres and boxes are searched, in a tree
+    /// (and the compiled form of its walk) or a flat list, for the fixed
+    /// and the moving part.
+    pub fn search(&self) -> String {
+        match &self.merged {
+            Some(merged) => merged.search(),
+            None if self.timed.is_empty() => self.static_part.search(),
+            None => format!("{}; moving: {}", self.static_part.search(), self.timed.search()),
+        }
     }
 
     /// The geometry of [`Scene::timed_primitives`].

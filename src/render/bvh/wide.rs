@@ -94,6 +94,17 @@ pub(super) enum Isa {
 }
 
 impl Isa {
+    /// Its name, as `--stats` prints it.
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Isa::Portable => "portable",
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2 => "AVX2",
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx512 => "AVX-512",
+        }
+    }
+
     /// The widest form this processor runs.
     pub(super) fn detect() -> Isa {
         *Isa::available().last().expect("the portable form always runs")
@@ -365,6 +376,11 @@ impl WideBvh {
         }
         self.nodes[at] = node;
         at as u32
+    }
+
+    /// The compiled form the walks run.
+    pub(super) fn isa(&self) -> Isa {
+        self.isa
     }
 
     /// Whether there is no tree.
