@@ -146,7 +146,9 @@ fn samples_threads_screen_and_stats_are_accepted() {
 /// walked in the widest compiled form the processor runs.
 #[test]
 fn stats_name_the_tree_walk() {
-    let spheres: String = (0..5).map(|k| format!("put sphere center {k}, 0, 0 radius 0.4 kd 1 ks 0 phong 1 color 255, 0, 0 end\n")).collect();
+    let spheres: String = (0..5)
+        .map(|k| format!("put sphere center {k}, 0, 0 radius 0.4 kd 1 ks 0 phong 1 color 255, 0, 0 end\n"))
+        .collect();
     let (dir, path) = scene(&format!("camera distance 10 angle 1 end\nambient 0.2\n{spheres}"));
     let out = dir.path().join("out.png");
     let walk = if cfg!(target_arch = "x86_64") { r"(AVX-512|AVX2|portable) walk" } else { "portable walk" };
