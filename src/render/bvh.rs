@@ -358,8 +358,9 @@ fn test_range(objects: &[Bounded], first: usize, put_order: &[u32], ray: &Ray, b
 /// Hits whose distances differ by less than this fraction of them are at
 /// one distance: faces that coincide (two boxes sharing a face) are then
 /// told apart by the order in which the objects were put, not by the
-/// rounding of their distances, which changes with the scene's units (SPEC 6: the same
-/// pixels at every scale). A billionth, as the offset of secondary rays.
+/// rounding of their distances, which changes with the scene's units
+/// (SPEC 6: the same pixels at every scale). A billionth, as the offset of
+/// secondary rays.
 const SAME_DISTANCE: f64 = 1e-9;
 
 /// The distance up to which a hit may still go before one at `t`
@@ -372,7 +373,9 @@ pub(crate) fn reach_past(t: f64) -> f64 {
 /// Whether a hit at `t` of object `k` goes before `best` (distance, object;
 /// `u32::MAX` for none yet): nearer by more than [`SAME_DISTANCE`], or at
 /// the same distance and put before it (`put_order` as [`Bvh::put_order`]).
-/// The tree's order plays no part, so any tree gives the same picture.
+/// The tree's order plays no part, so any tree gives the same picture
+/// (but for three or more hits each within a billionth of the next, which
+/// this rule compares in the order the walk meets them).
 #[inline(always)]
 fn goes_before(t: f64, k: u32, best: (f64, u32), put_order: &[u32]) -> bool {
     t < nearer_than(best.0) || (t <= reach_past(best.0) && t < f64::INFINITY && put_before(put_order, k, best.1))

@@ -50,6 +50,17 @@ struct GeometryHit {
     object: ObjectId,
 }
 
+impl GeometryHit {
+    /// Whether this hit of a timed object goes before `fixed`, a hit of a
+    /// fixed object at most [`bvh::reach_past`] nearer: when it is nearer
+    /// by more than that, or when it is on a sphere or a box and `fixed` on
+    /// a plane (the order of [`Geometry::closest_hit`] in one list).
+    fn goes_before_fixed(&self, fixed: GeometryHit) -> bool {
+        self.t < bvh::nearer_than(fixed.t)
+            || matches!((self.object, fixed.object), (ObjectId::Bounded(_), ObjectId::Plane(_)))
+    }
+}
+
 /// A surface point found by a ray: what shading needs (SPEC 6).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceHit {
@@ -139,10 +150,9 @@ impl Geometry {
     /// walk's compiled form, or a flat list).
     fn search(&self) -> String {
         let count = self.bvh.objects().len();
-        let objects = if count == 1 { "object" } else { "objects" };
         match self.bvh.walk_form() {
-            Some(form) => format!("a tree of {count} {objects}, {form} walk"),
-            None => format!("a list of {count} {objects}"),
+            Some(form) => format!("a tree of {count}, {form} walk"),
+            None => format!("a list of {count}"),
         }
     }
 
@@ -316,11 +326,12 @@ impl SceneGeometry {
     /// (and the compiled form of its walk) or a flat list, for the fixed
     /// and the moving part.
     pub fn search(&self) -> String {
-        match &self.merged {
+        let search = match &self.merged {
             Some(merged) => merged.search(),
             None if self.timed.is_empty() => self.static_part.search(),
-            None => format!("{}; moving: {}", self.static_part.search(), self.timed.search()),
-        }
+            None => format!("{}; those depending on time: {}", self.static_part.search(), self.timed.search()),
+        };
+        format!("spheres and boxes: {search}")
     }
 
     /// The geometry of [`Scene::timed_primitives`].
@@ -329,8 +340,10 @@ impl SceneGeometry {
     }
 
     /// The nearest hit with `t > 0` (SPEC 6), with its point, facing normal
-    /// and material. Ties (equal distances) are broken in a fixed order, so
-    /// the answer does not depend on threads.
+    /// and material. Of hits at the same distance (within
+    /// [`bvh::reach_past`]), a sphere or a box goes before a plane, then a
+    /// fixed object before a timed one, then the one put first: the order
+    /// of the merged list, whichever way the parts are asked.
     #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
         if let Some(merged) = &self.merged {
@@ -343,9 +356,10 @@ impl SceneGeometry {
             return static_hit.map(|h| self.static_part.surface(ray, h, false));
         }
         let t_max = static_hit.map_or(f64::INFINITY, |h| h.t);
-        match self.timed.closest_hit(ray, t_max) {
-            Some(h) => Some(self.timed.surface(ray, h, true)),
-            None => static_hit.map(|h| self.static_part.surface(ray, h, false)),
+        match (self.timed.closest_hit(ray, t_max), static_hit) {
+            (Some(h), Some(s)) if !h.goes_before_fixed(s) => Some(self.static_part.surface(ray, s, false)),
+            (Some(h), _) => Some(self.timed.surface(ray, h, true)),
+            (None, s) => s.map(|s| self.static_part.surface(ray, s, false)),
         }
     }
 

@@ -42,8 +42,10 @@ fn nearer_than(t: f64) -> f64 {
 }
 
 /// rayrepl's `render::bvh::goes_before`: whether a hit at `t` of object `k`
-/// goes before `best` (distance, object; `u32::MAX` for none yet). Here `k`
-/// is the object's index in the scene's order, not in a tree's.
+/// goes before `best` (distance, object; `u32::MAX` for none yet). `k` is
+/// the object's index in the scene's order (fixed objects first, then those
+/// that depend on `time`, each in the order put), which is rayrepl's order
+/// for ties.
 #[inline(always)]
 fn goes_before(t: f64, k: u32, best: (f64, u32)) -> bool {
     t < nearer_than(best.0) || (t <= reach_past(best.0) && k < best.1 && t < f64::INFINITY)

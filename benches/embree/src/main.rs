@@ -289,12 +289,12 @@ mod tests {
         same_as_rayrepl("benches/scenes/solar.ray", 160, 90);
         same_as_rayrepl("benches/scenes/spheres100k.ray", 160, 120);
         same_as_rayrepl("benches/scenes/sponge4.ray", 160, 90);
+        same_as_rayrepl("benches/scenes/menger.ray", 160, 120);
     }
 
     #[test]
     fn scenes_at_extreme_scales_render_as_rayrepl_renders_them() {
         same_as_rayrepl("benches/scenes/scales.ray", 160, 120);
-        same_as_rayrepl("benches/scenes/menger.ray", 160, 120);
     }
 
     /// Every scenario, `boxes.ray` among them, where two boxes of the F
