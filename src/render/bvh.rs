@@ -366,7 +366,7 @@ const SAME_DISTANCE: f64 = 1e-9;
 /// The distance up to which a hit may still go before one at `t`
 /// ([`goes_before`]): subtrees are pruned beyond it.
 #[inline(always)]
-pub(crate) fn reach_past(t: f64) -> f64 {
+pub fn reach_past(t: f64) -> f64 {
     t * (1.0 + SAME_DISTANCE)
 }
 
@@ -395,7 +395,7 @@ fn put_before(put_order: &[u32], k: u32, other: u32) -> bool {
 /// The distance under which a hit is nearer than one at `t` by more than
 /// [`SAME_DISTANCE`].
 #[inline(always)]
-pub(crate) fn nearer_than(t: f64) -> f64 {
+pub fn nearer_than(t: f64) -> f64 {
     t * (1.0 - SAME_DISTANCE)
 }
 

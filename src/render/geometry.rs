@@ -225,7 +225,7 @@ impl Geometry {
 /// Multiplying by a power of two is exact, and every formula of the
 /// renderer gives lengths proportional to its input lengths (no absolute
 /// epsilon), so the choice changes no pixel.
-fn working_scale(scene: &Scene) -> f64 {
+pub fn working_scale(scene: &Scene) -> f64 {
     let reach = |shape: &Shape| match *shape {
         Shape::Sphere { center, radius } => center.abs().max_element() + radius,
         Shape::Box { center, half, .. } => center.abs().max_element() + half.max_element(),

@@ -235,13 +235,13 @@ impl<'a> Tracer<'a> {
 /// 8-bit level, and the renders of every scene in the repository came out
 /// byte-identical to the `pow` ones.
 #[inline]
-fn phong_power(x: f64, n: f64) -> f64 {
+pub fn phong_power(x: f64, n: f64) -> f64 {
     if n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX) { x.powi(n as i32) } else { x.powf(n) }
 }
 
 /// Clamps each component to [0, 1]; a NaN component becomes 0.
 #[inline]
-fn clamp_unit(c: DVec3) -> DVec3 {
+pub fn clamp_unit(c: DVec3) -> DVec3 {
     // f64::max returns the non-NaN operand, so NaN maps to 0.
     c.max(DVec3::ZERO).min(DVec3::ONE)
 }

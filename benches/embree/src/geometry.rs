@@ -11,6 +11,7 @@
 
 use glam::{DMat3, DVec3};
 use rayrepl::render::Ray;
+use rayrepl::render::bvh::{nearer_than, reach_past};
 use rayrepl::render::intersect::{Bounded, BoxShape, PlaneShape, ShapeClass};
 use rayrepl::scene::{Material, Scene};
 
@@ -22,24 +23,6 @@ use crate::embree::{
 
 /// Rays a [`Query`] holds: one for single rays, sixteen for a packet.
 pub const LANES: usize = 16;
-
-/// Hits whose distances differ by less than this fraction are at one
-/// distance (rayrepl's `render::bvh::SAME_DISTANCE`).
-const SAME_DISTANCE: f64 = 1e-9;
-
-/// rayrepl's `render::bvh::reach_past`: the distance up to which a hit may
-/// still go before one at `t`.
-#[inline(always)]
-fn reach_past(t: f64) -> f64 {
-    t * (1.0 + SAME_DISTANCE)
-}
-
-/// rayrepl's `render::bvh::nearer_than`: the distance under which a hit is
-/// nearer than one at `t` by more than [`SAME_DISTANCE`].
-#[inline(always)]
-fn nearer_than(t: f64) -> f64 {
-    t * (1.0 - SAME_DISTANCE)
-}
 
 /// rayrepl's `render::bvh::goes_before`: whether a hit at `t` of object `k`
 /// goes before `best` (distance, object; `u32::MAX` for none yet). `k` is

@@ -25,8 +25,9 @@ use std::time::Instant;
 
 use rayrepl::lang::source::SourceMap;
 use rayrepl::lang::{Interpreter, Limits, parse_file};
+use rayrepl::render::geometry::working_scale;
 use rayrepl::render::{PrimaryRays, RayCounts, Screen};
-use rayrepl::scene::{Camera, Scene, Shape};
+use rayrepl::scene::{Camera, Scene};
 
 use crate::embree::{BuildQuality, EmbreeDevice};
 use crate::geometry::{Geometry, Parts};
@@ -198,28 +199,6 @@ fn evaluate(path: &str) -> Result<Scene, String> {
     let mut interpreter = Interpreter::new(0.0, Limits::default());
     interpreter.run(&program).map_err(|d| d.render(&sources, false))?;
     Ok(interpreter.into_scene())
-}
-
-/// rayrepl's `render::geometry::working_scale` (private there, copied
-/// exactly): the power of two `2^-e` that brings the scene's size (the
-/// camera distance, or else the largest primitive's reach) into `[1, 2)`.
-fn working_scale(scene: &Scene) -> f64 {
-    let reach = |shape: &Shape| match *shape {
-        Shape::Sphere { center, radius } => center.abs().max_element() + radius,
-        Shape::Box { center, half, .. } => center.abs().max_element() + half.max_element(),
-        Shape::Plane { shift, .. } => shift.abs(),
-    };
-    let distance = scene.camera.distance.abs();
-    let size = if distance > 0.0 && distance.is_finite() {
-        distance
-    } else {
-        scene.primitives.iter().chain(&scene.timed_primitives).map(|p| reach(&p.shape)).fold(0.0, f64::max)
-    };
-    if !(size > 0.0 && size.is_finite()) {
-        return 1.0;
-    }
-    let exponent = size.log2().floor().clamp(-1000.0, 1000.0) as i32;
-    2f64.powi(-exponent)
 }
 
 /// The widest vector ISA this CPU offers among those Embree 3.13 is built

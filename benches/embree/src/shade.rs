@@ -12,7 +12,7 @@
 
 use glam::DVec3;
 use rayrepl::render::intersect::PlaneShape;
-use rayrepl::render::shade::offset_origin;
+use rayrepl::render::shade::{clamp_unit, offset_origin, phong_power};
 use rayrepl::render::{MAX_DEPTH, Ray, RayCounts};
 use rayrepl::scene::{Light, Material, Scene};
 
@@ -187,18 +187,6 @@ impl<'a> Tracer<'a> {
         }
         c
     }
-}
-
-/// rayrepl's `shade::phong_power`: `x^n`, by `powi` for a whole exponent.
-#[inline]
-fn phong_power(x: f64, n: f64) -> f64 {
-    if n.fract() == 0.0 && n.abs() <= f64::from(i32::MAX) { x.powi(n as i32) } else { x.powf(n) }
-}
-
-/// rayrepl's `shade::clamp_unit`: each component to [0, 1], NaN to 0.
-#[inline]
-fn clamp_unit(c: DVec3) -> DVec3 {
-    c.max(DVec3::ZERO).min(DVec3::ONE)
 }
 
 /// rayrepl's `shade::reflected`: from `origin` along `V - 2 (V·N) N`.
