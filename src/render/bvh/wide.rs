@@ -335,43 +335,40 @@ impl Stack {
 
 impl WideBvh {
     /// Collapses the binary tree `nodes` (flattened depth-first, the root
-    /// first) into wide nodes: each takes the children of a binary node and
-    /// opens its largest inner child until it has [`WIDTH`]. `bounds(k)` is
-    /// the box tested for binary node `k`.
+    /// first) into wide nodes, choosing which binary subtrees become wide
+    /// nodes, which become leaves and which are merged into their parent by
+    /// the surface area heuristic ([`Plan`]); `bounds(k)` is the box tested
+    /// for binary node `k`.
     pub(super) fn collapse(nodes: &[Node], bounds: impl Fn(usize) -> Aabb) -> WideBvh {
-        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 2), isa: Isa::detect() };
+        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 4), isa: Isa::detect() };
         if !nodes.is_empty() {
-            wide.add(nodes, &bounds, 0);
+            let plans = Plan::all(nodes, &bounds);
+            wide.add(nodes, &plans, &bounds, 0);
         }
         wide
     }
 
-    /// Appends the wide node made from binary node `k` and its subtrees;
-    /// returns its index.
-    fn add(&mut self, nodes: &[Node], bounds: &impl Fn(usize) -> Aabb, k: usize) -> u32 {
+    /// Appends the wide node made from binary node `k` (whose plan makes it
+    /// a node) and the nodes below it; returns its index.
+    fn add(&mut self, nodes: &[Node], plans: &[Plan], bounds: &impl Fn(usize) -> Aabb, k: usize) -> u32 {
         let at = self.nodes.len();
         self.nodes.push(WideNode::EMPTY);
-        let is_leaf = |k: usize| nodes[k].count > 0;
-        let (mut kids, mut n) = ([k; WIDTH], 1);
-        if !is_leaf(k) {
-            (kids[0], kids[1], n) = (k + 1, nodes[k].index as usize, 2);
-        }
-        while n < WIDTH {
-            let largest = (0..n)
-                .filter(|&i| !is_leaf(kids[i]))
-                .max_by(|&a, &b| bounds(kids[a]).half_area().total_cmp(&bounds(kids[b]).half_area()));
-            let Some(i) = largest else { break };
-            let opened = kids[i];
-            (kids[i], kids[n]) = (opened + 1, nodes[opened].index as usize);
-            n += 1;
+        let mut kids = Vec::with_capacity(WIDTH);
+        match plans[k].choice[0] {
+            Choice::Node(left_pieces) => {
+                let left = k + 1;
+                let right = nodes[k].index as usize;
+                Plan::pieces(nodes, plans, left, usize::from(left_pieces), &mut kids);
+                Plan::pieces(nodes, plans, right, WIDTH - usize::from(left_pieces), &mut kids);
+            }
+            _ => kids.push(k),
         }
         let mut node = WideNode::EMPTY;
-        for (slot, &kid) in kids[..n].iter().enumerate() {
+        for (slot, &kid) in kids.iter().enumerate() {
             node.set_bounds(slot, &bounds(kid));
-            (node.child[slot], node.count[slot]) = if is_leaf(kid) {
-                (nodes[kid].index, u32::from(nodes[kid].count))
-            } else {
-                (self.add(nodes, bounds, kid), 0)
+            (node.child[slot], node.count[slot]) = match plans[kid].choice[0] {
+                Choice::Node(_) => (self.add(nodes, plans, bounds, kid), 0),
+                _ => (plans[kid].first, plans[kid].count),
             };
         }
         self.nodes[at] = node;
@@ -442,6 +439,100 @@ impl WideBvh {
     #[cfg(test)]
     pub(super) fn with_isa(&self, isa: Isa) -> WideBvh {
         WideBvh { nodes: self.nodes.clone(), isa }
+    }
+}
+
+/// Most objects in a leaf made of a binary subtree (a binary leaf may
+/// hold more, up to the build's own limit).
+const MAX_LEAF_OBJECTS: u32 = 4;
+
+/// Cost of a wide node's test relative to an object test.
+const NODE_COST: f64 = 2.0;
+
+/// How a binary subtree is best given `i + 1` slots of a wide node.
+#[derive(Debug, Clone, Copy)]
+enum Choice {
+    /// One slot: its objects as a leaf.
+    Leaf,
+    /// One slot: a wide node, whose slots go this many to the left subtree
+    /// and the rest to the right one.
+    Node(u8),
+    /// This many slots to the left subtree, the rest to the right one.
+    Split(u8),
+}
+
+/// The cheapest way to put a binary subtree into `1 ..= WIDTH` slots of a
+/// wide node, by the surface area heuristic (the optimal collapse of
+/// Ylitie, Karras and Laine, 2017): a subtree may be a leaf, a wide node,
+/// or spread over several slots of its parent.
+#[derive(Debug, Clone, Copy)]
+struct Plan {
+    /// With at most `i + 1` slots.
+    choice: [Choice; WIDTH],
+    /// The subtree's objects: `first .. first + count`.
+    first: u32,
+    count: u32,
+}
+
+impl Plan {
+    /// The plan of every binary node.
+    fn all(nodes: &[Node], bounds: &impl Fn(usize) -> Aabb) -> Vec<Plan> {
+        let mut plans = vec![Plan { choice: [Choice::Leaf; WIDTH], first: 0, count: 0 }; nodes.len()];
+        Plan::make(nodes, bounds, 0, &mut plans);
+        plans
+    }
+
+    /// Makes the plans of subtree `k`; returns the costs of its plan with at
+    /// most `i + 1` slots (in object tests, times the area of the root).
+    fn make(nodes: &[Node], bounds: &impl Fn(usize) -> Aabb, k: usize, plans: &mut [Plan]) -> [f64; WIDTH] {
+        let area = bounds(k).half_area();
+        if nodes[k].count > 0 {
+            let count = u32::from(nodes[k].count);
+            plans[k] = Plan { choice: [Choice::Leaf; WIDTH], first: nodes[k].index, count };
+            return [area * f64::from(count); WIDTH];
+        }
+        let right = nodes[k].index as usize;
+        let (left_cost, right_cost) =
+            (Plan::make(nodes, bounds, k + 1, plans), Plan::make(nodes, bounds, right, plans));
+        let (first, count) = (plans[k + 1].first, plans[k + 1].count + plans[right].count);
+        // Spread over `slots` slots: the best division between the two.
+        let spread = |slots: usize| {
+            let mut best = (f64::INFINITY, 1);
+            for left_slots in 1..slots {
+                let cost = left_cost[left_slots - 1] + right_cost[slots - left_slots - 1];
+                if cost < best.0 {
+                    best = (cost, left_slots as u8);
+                }
+            }
+            best
+        };
+        let (below, left_slots) = spread(WIDTH);
+        let as_node = area * NODE_COST + below;
+        let as_leaf = if count <= MAX_LEAF_OBJECTS { area * f64::from(count) } else { f64::INFINITY };
+        let one = if as_leaf <= as_node { (as_leaf, Choice::Leaf) } else { (as_node, Choice::Node(left_slots)) };
+        let mut plan = Plan { choice: [one.1; WIDTH], first, count };
+        let mut cost = [one.0; WIDTH];
+        for slots in 2..=WIDTH {
+            let (spread_cost, left_slots) = spread(slots);
+            if spread_cost < one.0 {
+                (cost[slots - 1], plan.choice[slots - 1]) = (spread_cost, Choice::Split(left_slots));
+            }
+        }
+        plans[k] = plan;
+        cost
+    }
+
+    /// Appends to `kids` the binary subtrees that take the `slots` slots
+    /// given to subtree `k`.
+    fn pieces(nodes: &[Node], plans: &[Plan], k: usize, slots: usize, kids: &mut Vec<usize>) {
+        match plans[k].choice[slots - 1] {
+            Choice::Split(left_slots) => {
+                let left_slots = usize::from(left_slots);
+                Plan::pieces(nodes, plans, k + 1, left_slots, kids);
+                Plan::pieces(nodes, plans, nodes[k].index as usize, slots - left_slots, kids);
+            }
+            Choice::Leaf | Choice::Node(_) => kids.push(k),
+        }
     }
 }
 
