@@ -8,10 +8,10 @@
 
 mod wide;
 
-use glam::{DMat3, DVec3, UVec3};
+use glam::{DMat3, DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 
-use self::wide::{WideBvh, WideRay};
+use self::wide::{WideBvh, WideRay, round_down, round_up};
 use super::intersect::{Aabb, Bounded, BoxShape, Ray};
 
 /// Up to this many objects a tree costs more than it saves: on the solar
@@ -49,9 +49,9 @@ const TRAVERSAL_COST: f64 = 1.0;
 /// Interior nodes have `count == 0`; their left child is the next node and
 /// their right child is at `index`. Leaves hold the objects
 /// `index .. index + count` of [`Bvh::objects`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 struct Node {
-    bounds: Aabb,
+    bounds: Box32,
     index: u32,
     count: u16,
 }
@@ -162,26 +162,92 @@ impl SharedFrame {
     }
 }
 
-/// Build-time record of one object.
+/// A box in f32, rounded outwards from the f64 boxes it stands for, so that
+/// it holds them: what the build sorts and bins, in half the bytes of an
+/// [`Aabb`] and one SIMD register per corner. The wide nodes are f32 and
+/// padded anyway, and the objects are still tested in f64.
 #[derive(Debug, Clone, Copy)]
+struct Box32 {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl Box32 {
+    const EMPTY: Box32 = Box32 { min: Vec3A::INFINITY, max: Vec3A::NEG_INFINITY };
+
+    /// The smallest f32 box holding `b`.
+    fn enclosing(b: &Aabb) -> Box32 {
+        Box32 {
+            min: Vec3A::from_array(b.min.to_array().map(round_down)),
+            max: Vec3A::from_array(b.max.to_array().map(round_up)),
+        }
+    }
+
+    /// The smallest box containing both.
+    #[inline(always)]
+    fn union(self, other: Box32) -> Box32 {
+        Box32 { min: self.min.min(other.min), max: self.max.max(other.max) }
+    }
+
+    /// The smallest box containing `self` and the point `p`.
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> Box32 {
+        Box32 { min: self.min.min(p), max: self.max.max(p) }
+    }
+
+    /// The same box in f64 (exact).
+    fn aabb(&self) -> Aabb {
+        Aabb { min: self.min.as_dvec3(), max: self.max.as_dvec3() }
+    }
+
+    /// Half the surface area, computed in f64 (no overflow).
+    #[inline(always)]
+    fn half_area(&self) -> f64 {
+        self.aabb().half_area()
+    }
+}
+
+/// Build-time record of one object: 32 bytes, so the partitions move
+/// little memory.
+#[derive(Debug, Clone, Copy)]
+#[repr(C)]
 struct Item {
-    bounds: Aabb,
-    centroid: DVec3,
+    min: Vec3,
     index: u32,
+    max: Vec3,
     /// Its bin on each axis in the range last binned (set by [`Bins::of`],
     /// read by the partition that follows; it fits in the padding).
     bins: [u8; 3],
 }
 
+impl Item {
+    /// The item of object `index`, whose box is `b`.
+    fn new(index: u32, b: &Box32) -> Item {
+        Item { min: b.min.into(), index, max: b.max.into(), bins: [0; 3] }
+    }
+
+    /// Its box.
+    #[inline(always)]
+    fn bounds(&self) -> Box32 {
+        Box32 { min: self.min.into(), max: self.max.into() }
+    }
+
+    /// The centre of its box.
+    #[inline(always)]
+    fn centroid(&self) -> Vec3A {
+        (Vec3A::from(self.min) + Vec3A::from(self.max)) * 0.5
+    }
+}
+
 /// The bounds of a range of items and the bounds of their centroids.
 #[derive(Debug, Clone, Copy)]
 struct Extent {
-    bounds: Aabb,
-    centroids: Aabb,
+    bounds: Box32,
+    centroids: Box32,
 }
 
 impl Extent {
-    const EMPTY: Extent = Extent { bounds: Aabb::EMPTY, centroids: Aabb::EMPTY };
+    const EMPTY: Extent = Extent { bounds: Box32::EMPTY, centroids: Box32::EMPTY };
 
     /// The extent of `items`.
     fn of(items: &[Item]) -> Extent {
@@ -190,7 +256,7 @@ impl Extent {
 
     /// The extent grown to hold `it`.
     fn add(self, it: &Item) -> Extent {
-        Extent { bounds: self.bounds.union(it.bounds), centroids: self.centroids.grow(it.centroid) }
+        Extent { bounds: self.bounds.union(it.bounds()), centroids: self.centroids.grow(it.centroid()) }
     }
 
     /// The extent holding both.
@@ -222,7 +288,7 @@ impl Bvh {
                     Some(to_local) => SharedFrame::local_bounds(to_local, o),
                     None => o.bounds(),
                 };
-                Item { bounds, centroid: bounds.center(), index: k as u32, bins: [0; 3] }
+                Item::new(k as u32, &Box32::enclosing(&bounds))
             })
             .collect();
         let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
@@ -233,8 +299,8 @@ impl Bvh {
         // copied in tree order: they are not all at the peak together.
         drop(items);
         let wide = match frame {
-            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds)),
-            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds),
+            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds.aabb())),
+            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds.aabb()),
         };
         drop(nodes);
         let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
@@ -456,36 +522,57 @@ enum Split {
     At { mid: usize, left: Extent, right: Extent },
 }
 
-/// Which of [`BINS`] bins along each axis an item's centroid falls in: the
+/// Which of `count` bins along each axis an item's centroid falls in: the
 /// centroid bounds cut into equal slices.
 struct Binning {
-    min: DVec3,
-    scale: DVec3,
+    min: Vec3A,
+    scale: Vec3A,
+    count: usize,
 }
 
 impl Binning {
-    /// The bins over `centroids`: on an axis where they do not spread, the
-    /// scale is infinite or NaN, and that axis is not evaluated.
-    fn new(centroids: &Aabb) -> Binning {
-        Binning { min: centroids.min, scale: BINS as f64 / (centroids.max - centroids.min) }
+    /// The bins over `centroids` of `items` items: [`BINS`] for large
+    /// ranges, fewer for small ones (`4 + items / 20`, as Embree has it),
+    /// whose evaluation would otherwise cost more than their binning. On an
+    /// axis where the centroids do not spread, the scale is infinite or
+    /// NaN, and that axis is not evaluated.
+    fn new(centroids: &Box32, items: usize) -> Binning {
+        let count = BINS.min(4 + items / 20);
+        Binning { min: centroids.min, scale: count as f32 / (centroids.max - centroids.min), count }
     }
 
     /// The bin of `centroid` on each axis.
     #[inline(always)]
-    fn bins(&self, centroid: DVec3) -> UVec3 {
-        ((centroid - self.min) * self.scale).as_uvec3().min(UVec3::splat(BINS as u32 - 1))
+    fn bins(&self, centroid: Vec3A) -> [u32; 3] {
+        // Clamped in f32 (a NaN, on an axis that is not evaluated, gives the
+        // last bin), so the conversion needs no saturation.
+        let bins = ((centroid - self.min) * self.scale).min(Vec3A::splat((self.count - 1) as f32));
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{__m128i, _mm_cvttps_epi32};
+            // LLVM converts lane by lane, each with the checks of a
+            // saturating cast; one SSE conversion does all three.
+            // SAFETY: SSE2 is part of the x86_64 baseline, and an `__m128i`
+            // is four `u32`.
+            let lanes: [u32; 4] = unsafe { std::mem::transmute::<__m128i, [u32; 4]>(_mm_cvttps_epi32(bins.into())) };
+            [lanes[0], lanes[1], lanes[2]]
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            bins.to_array().map(|b| b as u32)
+        }
     }
 }
 
 /// The bounds and item counts of the bins of a range, on every axis.
 #[derive(Clone, Copy)]
 struct Bins {
-    bounds: [[Aabb; BINS]; 3],
+    bounds: [[Box32; BINS]; 3],
     counts: [[u32; BINS]; 3],
 }
 
 impl Bins {
-    const EMPTY: Bins = Bins { bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
+    const EMPTY: Bins = Bins { bounds: [[Box32::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
 
     /// The bins of `items`, noting each item's bins in it: for large ranges, binned in parallel over chunks
     /// that are then merged in order, so that the result does not depend on
@@ -495,11 +582,12 @@ impl Bins {
         let add_all = |items: &mut [Item]| {
             let mut bins = Bins::EMPTY;
             for it in items {
-                let b = binning.bins(it.centroid);
-                it.bins = [b.x as u8, b.y as u8, b.z as u8];
-                for axis in 0..3 {
-                    let k = b[axis] as usize;
-                    bins.bounds[axis][k] = bins.bounds[axis][k].union(it.bounds);
+                let b = binning.bins(it.centroid());
+                it.bins = b.map(|b| b as u8);
+                let bounds = it.bounds();
+                for (axis, &k) in b.iter().enumerate() {
+                    let k = k as usize;
+                    bins.bounds[axis][k] = bins.bounds[axis][k].union(bounds);
                     bins.counts[axis][k] += 1;
                 }
             }
@@ -524,9 +612,10 @@ impl Bins {
     }
 }
 
-/// The binned surface area heuristic: over 16 bins per axis of the centroid
-/// bounds, the split minimising `C_trav + (A_l N_l + A_r N_r) / A`, compared
-/// with the leaf cost `N`. `None` when the centroids all coincide.
+/// The binned surface area heuristic: over the bins of [`Binning`] on each
+/// axis of the centroid bounds, the split minimising
+/// `C_trav + (A_l N_l + A_r N_r) / A`, compared with the leaf cost `N`.
+/// `None` when the centroids all coincide.
 fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
     let size = extent.centroids.max - extent.centroids.min;
     // Axes where the centroids spread (not 0, not NaN).
@@ -534,8 +623,9 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
     if !(0..3).any(spread) {
         return None;
     }
-    let binning = Binning::new(&extent.centroids);
+    let binning = Binning::new(&extent.centroids, items.len());
     let bins = Bins::of(items, &binning);
+    let n_bins = binning.count;
     let mut best: Option<(f64, usize, usize)> = None;
     for axis in (0..3).filter(|&axis| spread(axis)) {
         let (bounds, counts) = (&bins.bounds[axis], &bins.counts[axis]);
@@ -546,8 +636,8 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
         // costs the first is kept.
         let mut right_area = [0.0; BINS];
         let mut right_count = [0u32; BINS];
-        let (mut acc, mut area, mut n) = (Aabb::EMPTY, 0.0, 0);
-        for b in (1..BINS).rev() {
+        let (mut acc, mut area, mut n) = (Box32::EMPTY, 0.0, 0);
+        for b in (1..n_bins).rev() {
             if counts[b] > 0 {
                 acc = acc.union(bounds[b]);
                 area = acc.half_area();
@@ -556,8 +646,8 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
             right_area[b] = area;
             right_count[b] = n;
         }
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
-        for b in 1..BINS {
+        let (mut acc, mut n) = (Box32::EMPTY, 0);
+        for b in 1..n_bins {
             if counts[b - 1] == 0 {
                 continue;
             }
@@ -578,16 +668,16 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
     if split_cost >= items.len() as f64 {
         return Some(Split::Leaf);
     }
-    let side_bounds = |bins: &[Aabb]| bins.iter().copied().fold(Aabb::EMPTY, Aabb::union);
+    let side_bounds = |bins: &[Box32]| bins.iter().copied().fold(Box32::EMPTY, Box32::union);
     let (mid, left_centroids, right_centroids) = partition(items, |it| usize::from(it.bins[axis]) < bin);
     let left = Extent { bounds: side_bounds(&bins.bounds[axis][..bin]), centroids: left_centroids };
-    let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..]), centroids: right_centroids };
+    let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..n_bins]), centroids: right_centroids };
     Some(Split::At { mid, left, right })
 }
 
 /// Splits by object count along the longest centroid axis (the fallback
 /// when the SAH cannot or should not decide); returns the left side's count.
-fn median_split(items: &mut [Item], centroids: &Aabb) -> usize {
+fn median_split(items: &mut [Item], centroids: &Box32) -> usize {
     let extent = centroids.max - centroids.min;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
         0
@@ -597,27 +687,32 @@ fn median_split(items: &mut [Item], centroids: &Aabb) -> usize {
         2
     };
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]).then(a.index.cmp(&b.index)));
+    items.select_nth_unstable_by(mid, |a, b| {
+        a.centroid()[axis].total_cmp(&b.centroid()[axis]).then(a.index.cmp(&b.index))
+    });
     mid
 }
 
-/// Moves the items satisfying `left` to the front; returns their count and
-/// the centroid bounds of both sides. Deterministic (no dependence on
-/// threads).
-fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> (usize, Aabb, Aabb) {
-    let mut mid = 0;
-    let (mut left_centroids, mut right_centroids) = (Aabb::EMPTY, Aabb::EMPTY);
-    for k in 0..items.len() {
-        let centroid = items[k].centroid;
-        if left(&items[k]) {
-            items.swap(mid, k);
-            mid += 1;
-            left_centroids = left_centroids.grow(centroid);
-        } else {
-            right_centroids = right_centroids.grow(centroid);
+/// Moves the items satisfying `left` to the front, swapping the first
+/// misplaced item from each end; returns their count and the centroid
+/// bounds of both sides. Deterministic (no dependence on threads).
+fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> (usize, Box32, Box32) {
+    let (mut start, mut end) = (0, items.len());
+    let (mut left_centroids, mut right_centroids) = (Box32::EMPTY, Box32::EMPTY);
+    loop {
+        while start < end && left(&items[start]) {
+            left_centroids = left_centroids.grow(items[start].centroid());
+            start += 1;
         }
+        while start < end && !left(&items[end - 1]) {
+            right_centroids = right_centroids.grow(items[end - 1].centroid());
+            end -= 1;
+        }
+        if start == end {
+            return (start, left_centroids, right_centroids);
+        }
+        items.swap(start, end - 1);
     }
-    (mid, left_centroids, right_centroids)
 }
 
 #[cfg(test)]
