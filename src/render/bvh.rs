@@ -49,11 +49,30 @@ const TRAVERSAL_COST: f64 = 1.0;
 /// Interior nodes have `count == 0`; their left child is the next node and
 /// their right child is at `index`. Leaves hold the objects
 /// `index .. index + count` of [`Bvh::objects`].
+///
+/// 32 bytes (its box as two unaligned [`Vec3`]): the build writes and the
+/// collapse reads them in less memory.
 #[derive(Debug, Clone, Copy)]
+#[repr(C)]
 struct Node {
-    bounds: Box32,
+    min: Vec3,
     index: u32,
+    max: Vec3,
     count: u16,
+}
+
+impl Node {
+    /// The node over `bounds`: a leaf holding `count` objects from `index`,
+    /// or, with `count == 0`, an interior node whose right child is at
+    /// `index`.
+    fn new(bounds: &Box32, index: u32, count: u16) -> Node {
+        Node { min: bounds.min.into(), index, max: bounds.max.into(), count }
+    }
+
+    /// Its box.
+    fn bounds(&self) -> Box32 {
+        Box32 { min: self.min.into(), max: self.max.into() }
+    }
 }
 
 /// A BVH over bounded objects, or a flat list when they are few.
@@ -292,15 +311,15 @@ impl Bvh {
             })
             .collect();
         let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
-        let mut nodes = Vec::with_capacity(objects.len());
+        let mut nodes = Vec::with_capacity(2 * objects.len());
         build_range(&mut items, 0, 0, extent, &mut nodes);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         // The items and the binary nodes are freed before the objects are
         // copied in tree order: they are not all at the peak together.
         drop(items);
         let wide = match frame {
-            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds.aabb())),
-            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds.aabb()),
+            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds().aabb())),
+            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds().aabb()),
         };
         drop(nodes);
         let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
@@ -471,7 +490,7 @@ pub fn nearer_than(t: f64) -> f64 {
 /// its left subtree, its right subtree.
 fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, nodes: &mut Vec<Node>) {
     let count = items.len();
-    let leaf = Node { bounds: extent.bounds, index: offset as u32, count: count as u16 };
+    let leaf = Node::new(&extent.bounds, offset as u32, count as u16);
     if count <= 2 {
         nodes.push(leaf);
         return;
@@ -489,12 +508,14 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, 
         }
     };
     let at = nodes.len();
-    nodes.push(Node { bounds: extent.bounds, index: 0, count: 0 });
+    nodes.push(Node::new(&extent.bounds, 0, 0));
     let (left, right) = items.split_at_mut(mid);
     if count >= PARALLEL_MIN {
         // The right subtree is built into its own list, with indices from
-        // its start, then appended.
-        let mut right_nodes = Vec::new();
+        // its start, then appended. Each leaf holds an object at least, so
+        // a subtree has fewer than twice as many nodes as objects: that
+        // capacity never grows (and pages never written cost nothing).
+        let mut right_nodes = Vec::with_capacity(2 * right.len());
         rayon::join(
             || build_range(left, offset, depth + 1, left_extent, nodes),
             || build_range(right, offset + mid, depth + 1, right_extent, &mut right_nodes),
