@@ -115,7 +115,7 @@ impl SharedFrame {
             Bounded::Box(b) => b.to_local,
             Bounded::Sphere(_) => return None,
         };
-        objects.iter().all(|o| matches!(o, Bounded::Box(b) if b.to_local == to_local)).then_some(to_local)
+        objects.par_iter().all(|o| matches!(o, Bounded::Box(b) if b.to_local == to_local)).then_some(to_local)
     }
 
     /// The box of `object` (a box with axes `to_local`) in the frame.
@@ -234,7 +234,7 @@ struct Item {
     min: Vec3,
     index: u32,
     max: Vec3,
-    /// Its bin on each axis in the range last binned (set by [`Bins::of`],
+    /// Its bin on each axis in the range last binned (set by [`Bins::fill`],
     /// read by the partition that follows; it fits in the padding).
     bins: [u8; 3],
 }
@@ -312,7 +312,8 @@ impl Bvh {
             .collect();
         let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
         let mut nodes = Vec::with_capacity(2 * objects.len());
-        build_range(&mut items, 0, 0, extent, &mut nodes);
+        let mut bins = Bins::EMPTY;
+        build_range(&mut items, 0, 0, extent, &mut nodes, &mut bins);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         // The items and the binary nodes are freed before the objects are
         // copied in tree order: they are not all at the peak together.
@@ -487,15 +488,23 @@ pub fn nearer_than(t: f64) -> f64 {
 /// Builds the subtree over `items` (which start at `offset` in the whole
 /// array, and have the bounds and centroid bounds `extent`), reordering
 /// them in place and appending its nodes depth-first to `nodes`: the node,
-/// its left subtree, its right subtree.
-fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, nodes: &mut Vec<Node>) {
+/// its left subtree, its right subtree. `bins` is room for binning, reused
+/// down the recursion.
+fn build_range(
+    items: &mut [Item],
+    offset: usize,
+    depth: usize,
+    extent: Extent,
+    nodes: &mut Vec<Node>,
+    bins: &mut Bins,
+) {
     let count = items.len();
     let leaf = Node::new(&extent.bounds, offset as u32, count as u16);
     if count <= 2 {
         nodes.push(leaf);
         return;
     }
-    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &extent) } else { None };
+    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &extent, bins) } else { None };
     let (mid, left_extent, right_extent) = match split {
         Some(Split::Leaf) if count <= MAX_LEAF => {
             nodes.push(leaf);
@@ -517,8 +526,11 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, 
         // capacity never grows (and pages never written cost nothing).
         let mut right_nodes = Vec::with_capacity(2 * right.len());
         rayon::join(
-            || build_range(left, offset, depth + 1, left_extent, nodes),
-            || build_range(right, offset + mid, depth + 1, right_extent, &mut right_nodes),
+            || build_range(left, offset, depth + 1, left_extent, nodes, bins),
+            || {
+                let mut right_bins = Bins::EMPTY;
+                build_range(right, offset + mid, depth + 1, right_extent, &mut right_nodes, &mut right_bins);
+            },
         );
         let base = nodes.len() as u32;
         nodes[at].index = base;
@@ -526,9 +538,9 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, 
             right_nodes.into_iter().map(|n| if n.count == 0 { Node { index: n.index + base, ..n } } else { n }),
         );
     } else {
-        build_range(left, offset, depth + 1, left_extent, nodes);
+        build_range(left, offset, depth + 1, left_extent, nodes, bins);
         nodes[at].index = nodes.len() as u32;
-        build_range(right, offset + mid, depth + 1, right_extent, nodes);
+        build_range(right, offset + mid, depth + 1, right_extent, nodes, bins);
     }
 }
 
@@ -595,13 +607,13 @@ struct Bins {
 impl Bins {
     const EMPTY: Bins = Bins { bounds: [[Box32::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
 
-    /// The bins of `items`, noting each item's bins in it: for large ranges, binned in parallel over chunks
-    /// that are then merged in order, so that the result does not depend on
-    /// threads (not even the sign of a zero bound, which a minimum of 0 and
-    /// -0 takes from its order).
-    fn of(items: &mut [Item], binning: &Binning) -> Bins {
-        let add_all = |items: &mut [Item]| {
-            let mut bins = Bins::EMPTY;
+    /// Bins `items` (after emptying the bins of `binning`, the only ones
+    /// then read), noting each item's bins in it: for large ranges, binned
+    /// in parallel over chunks that are then merged in order, so that the
+    /// result does not depend on threads (not even the sign of a zero bound,
+    /// which a minimum of 0 and -0 takes from its order).
+    fn fill(&mut self, items: &mut [Item], binning: &Binning) {
+        let add_all = |bins: &mut Bins, items: &mut [Item]| {
             for it in items {
                 let b = binning.bins(it.centroid());
                 it.bins = b.map(|b| b as u8);
@@ -612,32 +624,44 @@ impl Bins {
                     bins.counts[axis][k] += 1;
                 }
             }
-            bins
         };
-        if items.len() < PARALLEL_BINNING_MIN {
-            return add_all(items);
+        for axis in 0..3 {
+            self.bounds[axis][..binning.count].fill(Box32::EMPTY);
+            self.counts[axis][..binning.count].fill(0);
         }
-        let chunks: Vec<Bins> = items.par_chunks_mut(PARALLEL_MIN).map(add_all).collect();
-        chunks.into_iter().fold(Bins::EMPTY, Bins::merge)
+        if items.len() < PARALLEL_BINNING_MIN {
+            add_all(self, items);
+            return;
+        }
+        let chunks: Vec<Bins> = items
+            .par_chunks_mut(PARALLEL_MIN)
+            .map(|chunk| {
+                let mut bins = Bins::EMPTY;
+                add_all(&mut bins, chunk);
+                bins
+            })
+            .collect();
+        for chunk in &chunks {
+            self.merge(chunk);
+        }
     }
 
-    /// The bins of the items of both.
-    fn merge(mut self, other: Bins) -> Bins {
+    /// Adds the items of `other`.
+    fn merge(&mut self, other: &Bins) {
         for axis in 0..3 {
             for k in 0..BINS {
                 self.bounds[axis][k] = self.bounds[axis][k].union(other.bounds[axis][k]);
                 self.counts[axis][k] += other.counts[axis][k];
             }
         }
-        self
     }
 }
 
 /// The binned surface area heuristic: over the bins of [`Binning`] on each
 /// axis of the centroid bounds, the split minimising
 /// `C_trav + (A_l N_l + A_r N_r) / A`, compared with the leaf cost `N`.
-/// `None` when the centroids all coincide.
-fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
+/// `None` when the centroids all coincide. `bins` is room for the binning.
+fn sah_split(items: &mut [Item], extent: &Extent, bins: &mut Bins) -> Option<Split> {
     let size = extent.centroids.max - extent.centroids.min;
     // Axes where the centroids spread (not 0, not NaN).
     let spread = |axis: usize| size[axis] > 0.0;
@@ -645,7 +669,7 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
         return None;
     }
     let binning = Binning::new(&extent.centroids, items.len());
-    let bins = Bins::of(items, &binning);
+    bins.fill(items, &binning);
     let n_bins = binning.count;
     let mut best: Option<(f64, usize, usize)> = None;
     for axis in (0..3).filter(|&axis| spread(axis)) {
