@@ -132,7 +132,7 @@ impl SharedFrame {
     /// The frame of the boxes `objects`, whose axes are `to_local`.
     fn new(to_local: DMat3, objects: &[Bounded]) -> SharedFrame {
         let boxes = objects
-            .iter()
+            .par_iter()
             .map(|o| match o {
                 Bounded::Box(b) => (b.center, b.half),
                 Bounded::Sphere(_) => unreachable!("a shared frame holds only boxes"),
