@@ -1,7 +1,8 @@
 //! A bounding volume hierarchy over spheres and boxes: binned SAH build
-//! (subtrees built in parallel, and the binning of large ranges too) that
-//! writes flattened depth-first binary nodes directly, collapsed into the
-//! 8-wide tree of [`wide`] for the closest hit and any hit.
+//! over f32 boxes rounded outwards (subtrees built in parallel, and the
+//! binning of large ranges too) that writes flattened depth-first binary
+//! nodes directly, collapsed into the 8-wide tree of [`wide`] for the
+//! closest hit and any hit.
 //!
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
@@ -577,8 +578,8 @@ impl Binning {
     /// The bin of `centroid` on each axis.
     #[inline(always)]
     fn bins(&self, centroid: Vec3A) -> [u32; 3] {
-        // Clamped in f32 (a NaN, on an axis that is not evaluated, gives the
-        // last bin), so the conversion needs no saturation.
+        // Clamped in f32 (a NaN, on an axis that is not evaluated, gives a
+        // bin in range too), so the conversion needs no saturation.
         let bins = ((centroid - self.min) * self.scale).min(Vec3A::splat((self.count - 1) as f32));
         #[cfg(target_arch = "x86_64")]
         {
