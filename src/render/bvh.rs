@@ -311,7 +311,11 @@ impl Bvh {
                 Item::new(k as u32, &Box32::enclosing(&bounds))
             })
             .collect();
-        let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
+        // Over fixed chunks merged in order, so that the extent does not
+        // depend on threads (a box past f32's range has a NaN centroid,
+        // whose minimum with another takes the order).
+        let chunks: Vec<Extent> = items.par_chunks(PARALLEL_MIN).map(Extent::of).collect();
+        let extent = chunks.into_iter().fold(Extent::EMPTY, Extent::union);
         let mut nodes = Vec::with_capacity(2 * objects.len());
         let mut bins = Bins::EMPTY;
         build_range(&mut items, 0, 0, extent, &mut nodes, &mut bins);
@@ -578,9 +582,12 @@ impl Binning {
     /// The bin of `centroid` on each axis.
     #[inline(always)]
     fn bins(&self, centroid: Vec3A) -> [u32; 3] {
-        // Clamped in f32 (a NaN, on an axis that is not evaluated, gives a
-        // bin in range too), so the conversion needs no saturation.
-        let bins = ((centroid - self.min) * self.scale).min(Vec3A::splat((self.count - 1) as f32));
+        // Clamped to the bins in f32, so the conversion needs no
+        // saturation. A NaN (on an axis that is not evaluated, or the
+        // centroid of a box past f32's range, which also leaves centroid
+        // bounds that miss some centroids) gives the first bin.
+        let last = Vec3A::splat((self.count - 1) as f32);
+        let bins = ((centroid - self.min) * self.scale).max(Vec3A::ZERO).min(last);
         #[cfg(target_arch = "x86_64")]
         {
             use std::arch::x86_64::{__m128i, _mm_cvttps_epi32};
@@ -775,6 +782,28 @@ mod tests {
         let mut sorted = order.clone();
         sorted.sort_unstable();
         assert!(sorted.iter().enumerate().all(|(k, &v)| k as u32 == v));
+    }
+
+    #[test]
+    fn objects_past_the_f32_range_are_found_and_the_tree_does_not_depend_on_threads() {
+        // Small spheres around a huge one, whose f32 box is infinite and
+        // whose centroid is NaN.
+        let mut spheres: Vec<Bounded> = (0..6000)
+            .map(|k| Bounded::Sphere(SphereShape { center: DVec3::new(k as f64 * 0.1, 0.0, 0.0), radius: 0.03 }))
+            .collect();
+        spheres.insert(3000, Bounded::Sphere(SphereShape { center: DVec3::new(0.0, -1e39, 0.0), radius: 1e39 }));
+        let build_on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
+            pool.install(|| Bvh::build(&spheres))
+        };
+        let ((bvh, order), (_, order_on_two)) = (build_on(1), build_on(2));
+        assert_eq!(order, order_on_two);
+        for k in 0..2000 {
+            let ray = Ray::new(DVec3::new(k as f64 * 0.3, 5.0, 0.01), DVec3::NEG_Y);
+            let nearest = bvh.objects().iter().map(|o| o.hit(&ray)).fold(f64::INFINITY, f64::min);
+            assert_eq!(bvh.closest_hit(&ray, f64::INFINITY).0, nearest);
+            assert_eq!(bvh.any_hit(&ray, f64::INFINITY), nearest < f64::INFINITY);
+        }
     }
 
     #[test]
