@@ -1,17 +1,18 @@
 //! A bounding volume hierarchy over spheres and boxes: binned SAH build
-//! (subtrees built in parallel, and the binning of large ranges too) that
-//! writes flattened depth-first binary nodes directly, collapsed into the
-//! 8-wide tree of [`wide`] for the closest hit and any hit.
+//! over f32 boxes rounded outwards (subtrees built in parallel, and the
+//! binning of large ranges too) that writes flattened depth-first binary
+//! nodes directly, collapsed into the 8-wide tree of [`wide`] for the
+//! closest hit and any hit.
 //!
 //! Small sets (at most [`BRUTE_FORCE_MAX`] objects) are not given a tree:
 //! testing every object directly is cheaper than the node tests.
 
 mod wide;
 
-use glam::{DMat3, DVec3, UVec3};
+use glam::{DMat3, DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 
-use self::wide::{WideBvh, WideRay};
+use self::wide::{WideBvh, WideRay, round_down, round_up};
 use super::intersect::{Aabb, Bounded, BoxShape, Ray};
 
 /// Up to this many objects a tree costs more than it saves: on the solar
@@ -49,11 +50,30 @@ const TRAVERSAL_COST: f64 = 1.0;
 /// Interior nodes have `count == 0`; their left child is the next node and
 /// their right child is at `index`. Leaves hold the objects
 /// `index .. index + count` of [`Bvh::objects`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// 32 bytes (its box as two unaligned [`Vec3`]): the build writes and the
+/// collapse reads them in less memory.
+#[derive(Debug, Clone, Copy)]
+#[repr(C)]
 struct Node {
-    bounds: Aabb,
+    min: Vec3,
     index: u32,
+    max: Vec3,
     count: u16,
+}
+
+impl Node {
+    /// The node over `bounds`: a leaf holding `count` objects from `index`,
+    /// or, with `count == 0`, an interior node whose right child is at
+    /// `index`.
+    fn new(bounds: &Box32, index: u32, count: u16) -> Node {
+        Node { min: bounds.min.into(), index, max: bounds.max.into(), count }
+    }
+
+    /// Its box.
+    fn bounds(&self) -> Box32 {
+        Box32 { min: self.min.into(), max: self.max.into() }
+    }
 }
 
 /// A BVH over bounded objects, or a flat list when they are few.
@@ -96,7 +116,7 @@ impl SharedFrame {
             Bounded::Box(b) => b.to_local,
             Bounded::Sphere(_) => return None,
         };
-        objects.iter().all(|o| matches!(o, Bounded::Box(b) if b.to_local == to_local)).then_some(to_local)
+        objects.par_iter().all(|o| matches!(o, Bounded::Box(b) if b.to_local == to_local)).then_some(to_local)
     }
 
     /// The box of `object` (a box with axes `to_local`) in the frame.
@@ -113,7 +133,7 @@ impl SharedFrame {
     /// The frame of the boxes `objects`, whose axes are `to_local`.
     fn new(to_local: DMat3, objects: &[Bounded]) -> SharedFrame {
         let boxes = objects
-            .iter()
+            .par_iter()
             .map(|o| match o {
                 Bounded::Box(b) => (b.center, b.half),
                 Bounded::Sphere(_) => unreachable!("a shared frame holds only boxes"),
@@ -162,26 +182,92 @@ impl SharedFrame {
     }
 }
 
-/// Build-time record of one object.
+/// A box in f32, rounded outwards from the f64 boxes it stands for, so that
+/// it holds them: what the build sorts and bins, in half the bytes of an
+/// [`Aabb`] and one SIMD register per corner. The wide nodes are f32 and
+/// padded anyway, and the objects are still tested in f64.
 #[derive(Debug, Clone, Copy)]
+struct Box32 {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl Box32 {
+    const EMPTY: Box32 = Box32 { min: Vec3A::INFINITY, max: Vec3A::NEG_INFINITY };
+
+    /// The smallest f32 box holding `b`.
+    fn enclosing(b: &Aabb) -> Box32 {
+        Box32 {
+            min: Vec3A::from_array(b.min.to_array().map(round_down)),
+            max: Vec3A::from_array(b.max.to_array().map(round_up)),
+        }
+    }
+
+    /// The smallest box containing both.
+    #[inline(always)]
+    fn union(self, other: Box32) -> Box32 {
+        Box32 { min: self.min.min(other.min), max: self.max.max(other.max) }
+    }
+
+    /// The smallest box containing `self` and the point `p`.
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> Box32 {
+        Box32 { min: self.min.min(p), max: self.max.max(p) }
+    }
+
+    /// The same box in f64 (exact).
+    fn aabb(&self) -> Aabb {
+        Aabb { min: self.min.as_dvec3(), max: self.max.as_dvec3() }
+    }
+
+    /// Half the surface area, computed in f64 (no overflow).
+    #[inline(always)]
+    fn half_area(&self) -> f64 {
+        self.aabb().half_area()
+    }
+}
+
+/// Build-time record of one object: 32 bytes, so the partitions move
+/// little memory.
+#[derive(Debug, Clone, Copy)]
+#[repr(C)]
 struct Item {
-    bounds: Aabb,
-    centroid: DVec3,
+    min: Vec3,
     index: u32,
-    /// Its bin on each axis in the range last binned (set by [`Bins::of`],
+    max: Vec3,
+    /// Its bin on each axis in the range last binned (set by [`Bins::fill`],
     /// read by the partition that follows; it fits in the padding).
     bins: [u8; 3],
+}
+
+impl Item {
+    /// The item of object `index`, whose box is `b`.
+    fn new(index: u32, b: &Box32) -> Item {
+        Item { min: b.min.into(), index, max: b.max.into(), bins: [0; 3] }
+    }
+
+    /// Its box.
+    #[inline(always)]
+    fn bounds(&self) -> Box32 {
+        Box32 { min: self.min.into(), max: self.max.into() }
+    }
+
+    /// The centre of its box.
+    #[inline(always)]
+    fn centroid(&self) -> Vec3A {
+        (Vec3A::from(self.min) + Vec3A::from(self.max)) * 0.5
+    }
 }
 
 /// The bounds of a range of items and the bounds of their centroids.
 #[derive(Debug, Clone, Copy)]
 struct Extent {
-    bounds: Aabb,
-    centroids: Aabb,
+    bounds: Box32,
+    centroids: Box32,
 }
 
 impl Extent {
-    const EMPTY: Extent = Extent { bounds: Aabb::EMPTY, centroids: Aabb::EMPTY };
+    const EMPTY: Extent = Extent { bounds: Box32::EMPTY, centroids: Box32::EMPTY };
 
     /// The extent of `items`.
     fn of(items: &[Item]) -> Extent {
@@ -190,7 +276,7 @@ impl Extent {
 
     /// The extent grown to hold `it`.
     fn add(self, it: &Item) -> Extent {
-        Extent { bounds: self.bounds.union(it.bounds), centroids: self.centroids.grow(it.centroid) }
+        Extent { bounds: self.bounds.union(it.bounds()), centroids: self.centroids.grow(it.centroid()) }
     }
 
     /// The extent holding both.
@@ -222,19 +308,24 @@ impl Bvh {
                     Some(to_local) => SharedFrame::local_bounds(to_local, o),
                     None => o.bounds(),
                 };
-                Item { bounds, centroid: bounds.center(), index: k as u32, bins: [0; 3] }
+                Item::new(k as u32, &Box32::enclosing(&bounds))
             })
             .collect();
-        let extent = items.par_iter().fold(|| Extent::EMPTY, Extent::add).reduce(|| Extent::EMPTY, Extent::union);
-        let mut nodes = Vec::with_capacity(objects.len());
-        build_range(&mut items, 0, 0, extent, &mut nodes);
+        // Over fixed chunks merged in order, so that the extent does not
+        // depend on threads (a box past f32's range has a NaN centroid,
+        // whose minimum with another takes the order).
+        let chunks: Vec<Extent> = items.par_chunks(PARALLEL_MIN).map(Extent::of).collect();
+        let extent = chunks.into_iter().fold(Extent::EMPTY, Extent::union);
+        let mut nodes = Vec::with_capacity(2 * objects.len());
+        let mut bins = Bins::EMPTY;
+        build_range(&mut items, 0, 0, extent, &mut nodes, &mut bins);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         // The items and the binary nodes are freed before the objects are
         // copied in tree order: they are not all at the peak together.
         drop(items);
         let wide = match frame {
-            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds)),
-            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds),
+            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds().aabb())),
+            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds().aabb()),
         };
         drop(nodes);
         let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
@@ -402,15 +493,23 @@ pub fn nearer_than(t: f64) -> f64 {
 /// Builds the subtree over `items` (which start at `offset` in the whole
 /// array, and have the bounds and centroid bounds `extent`), reordering
 /// them in place and appending its nodes depth-first to `nodes`: the node,
-/// its left subtree, its right subtree.
-fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, nodes: &mut Vec<Node>) {
+/// its left subtree, its right subtree. `bins` is room for binning, reused
+/// down the recursion.
+fn build_range(
+    items: &mut [Item],
+    offset: usize,
+    depth: usize,
+    extent: Extent,
+    nodes: &mut Vec<Node>,
+    bins: &mut Bins,
+) {
     let count = items.len();
-    let leaf = Node { bounds: extent.bounds, index: offset as u32, count: count as u16 };
+    let leaf = Node::new(&extent.bounds, offset as u32, count as u16);
     if count <= 2 {
         nodes.push(leaf);
         return;
     }
-    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &extent) } else { None };
+    let split = if depth < SAH_MAX_DEPTH { sah_split(items, &extent, bins) } else { None };
     let (mid, left_extent, right_extent) = match split {
         Some(Split::Leaf) if count <= MAX_LEAF => {
             nodes.push(leaf);
@@ -423,15 +522,20 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, 
         }
     };
     let at = nodes.len();
-    nodes.push(Node { bounds: extent.bounds, index: 0, count: 0 });
+    nodes.push(Node::new(&extent.bounds, 0, 0));
     let (left, right) = items.split_at_mut(mid);
     if count >= PARALLEL_MIN {
         // The right subtree is built into its own list, with indices from
-        // its start, then appended.
-        let mut right_nodes = Vec::new();
+        // its start, then appended. Each leaf holds an object at least, so
+        // a subtree has fewer than twice as many nodes as objects: that
+        // capacity never grows (and pages never written cost nothing).
+        let mut right_nodes = Vec::with_capacity(2 * right.len());
         rayon::join(
-            || build_range(left, offset, depth + 1, left_extent, nodes),
-            || build_range(right, offset + mid, depth + 1, right_extent, &mut right_nodes),
+            || build_range(left, offset, depth + 1, left_extent, nodes, bins),
+            || {
+                let mut right_bins = Bins::EMPTY;
+                build_range(right, offset + mid, depth + 1, right_extent, &mut right_nodes, &mut right_bins);
+            },
         );
         let base = nodes.len() as u32;
         nodes[at].index = base;
@@ -439,9 +543,9 @@ fn build_range(items: &mut [Item], offset: usize, depth: usize, extent: Extent, 
             right_nodes.into_iter().map(|n| if n.count == 0 { Node { index: n.index + base, ..n } } else { n }),
         );
     } else {
-        build_range(left, offset, depth + 1, left_extent, nodes);
+        build_range(left, offset, depth + 1, left_extent, nodes, bins);
         nodes[at].index = nodes.len() as u32;
-        build_range(right, offset + mid, depth + 1, right_extent, nodes);
+        build_range(right, offset + mid, depth + 1, right_extent, nodes, bins);
     }
 }
 
@@ -456,86 +560,125 @@ enum Split {
     At { mid: usize, left: Extent, right: Extent },
 }
 
-/// Which of [`BINS`] bins along each axis an item's centroid falls in: the
+/// Which of `count` bins along each axis an item's centroid falls in: the
 /// centroid bounds cut into equal slices.
 struct Binning {
-    min: DVec3,
-    scale: DVec3,
+    min: Vec3A,
+    scale: Vec3A,
+    count: usize,
 }
 
 impl Binning {
-    /// The bins over `centroids`: on an axis where they do not spread, the
-    /// scale is infinite or NaN, and that axis is not evaluated.
-    fn new(centroids: &Aabb) -> Binning {
-        Binning { min: centroids.min, scale: BINS as f64 / (centroids.max - centroids.min) }
+    /// The bins over `centroids` of `items` items: [`BINS`] for large
+    /// ranges, fewer for small ones (`4 + items / 20`, as Embree has it),
+    /// whose evaluation would otherwise cost more than their binning. On an
+    /// axis where the centroids do not spread, the scale is infinite or
+    /// NaN, and that axis is not evaluated.
+    fn new(centroids: &Box32, items: usize) -> Binning {
+        let count = BINS.min(4 + items / 20);
+        Binning { min: centroids.min, scale: count as f32 / (centroids.max - centroids.min), count }
     }
 
     /// The bin of `centroid` on each axis.
     #[inline(always)]
-    fn bins(&self, centroid: DVec3) -> UVec3 {
-        ((centroid - self.min) * self.scale).as_uvec3().min(UVec3::splat(BINS as u32 - 1))
+    fn bins(&self, centroid: Vec3A) -> [u32; 3] {
+        // Clamped to the bins in f32, so the conversion needs no
+        // saturation. A NaN (on an axis that is not evaluated, or the
+        // centroid of a box past f32's range, which also leaves centroid
+        // bounds that miss some centroids) gives the first bin.
+        let last = Vec3A::splat((self.count - 1) as f32);
+        let bins = ((centroid - self.min) * self.scale).max(Vec3A::ZERO).min(last);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{__m128i, _mm_cvttps_epi32};
+            // LLVM converts lane by lane, each with the checks of a
+            // saturating cast; one SSE conversion does all three.
+            // SAFETY: SSE2 is part of the x86_64 baseline, and an `__m128i`
+            // is four `u32`.
+            let lanes: [u32; 4] = unsafe { std::mem::transmute::<__m128i, [u32; 4]>(_mm_cvttps_epi32(bins.into())) };
+            [lanes[0], lanes[1], lanes[2]]
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            bins.to_array().map(|b| b as u32)
+        }
     }
 }
 
 /// The bounds and item counts of the bins of a range, on every axis.
 #[derive(Clone, Copy)]
 struct Bins {
-    bounds: [[Aabb; BINS]; 3],
+    bounds: [[Box32; BINS]; 3],
     counts: [[u32; BINS]; 3],
 }
 
 impl Bins {
-    const EMPTY: Bins = Bins { bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
+    const EMPTY: Bins = Bins { bounds: [[Box32::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
 
-    /// The bins of `items`, noting each item's bins in it: for large ranges, binned in parallel over chunks
-    /// that are then merged in order, so that the result does not depend on
-    /// threads (not even the sign of a zero bound, which a minimum of 0 and
-    /// -0 takes from its order).
-    fn of(items: &mut [Item], binning: &Binning) -> Bins {
-        let add_all = |items: &mut [Item]| {
-            let mut bins = Bins::EMPTY;
+    /// Bins `items` (after emptying the bins of `binning`, the only ones
+    /// then read), noting each item's bins in it: for large ranges, binned
+    /// in parallel over chunks that are then merged in order, so that the
+    /// result does not depend on threads (not even the sign of a zero bound,
+    /// which a minimum of 0 and -0 takes from its order).
+    fn fill(&mut self, items: &mut [Item], binning: &Binning) {
+        let add_all = |bins: &mut Bins, items: &mut [Item]| {
             for it in items {
-                let b = binning.bins(it.centroid);
-                it.bins = [b.x as u8, b.y as u8, b.z as u8];
-                for axis in 0..3 {
-                    let k = b[axis] as usize;
-                    bins.bounds[axis][k] = bins.bounds[axis][k].union(it.bounds);
+                let b = binning.bins(it.centroid());
+                it.bins = b.map(|b| b as u8);
+                let bounds = it.bounds();
+                for (axis, &k) in b.iter().enumerate() {
+                    let k = k as usize;
+                    bins.bounds[axis][k] = bins.bounds[axis][k].union(bounds);
                     bins.counts[axis][k] += 1;
                 }
             }
-            bins
         };
-        if items.len() < PARALLEL_BINNING_MIN {
-            return add_all(items);
+        for axis in 0..3 {
+            self.bounds[axis][..binning.count].fill(Box32::EMPTY);
+            self.counts[axis][..binning.count].fill(0);
         }
-        let chunks: Vec<Bins> = items.par_chunks_mut(PARALLEL_MIN).map(add_all).collect();
-        chunks.into_iter().fold(Bins::EMPTY, Bins::merge)
+        if items.len() < PARALLEL_BINNING_MIN {
+            add_all(self, items);
+            return;
+        }
+        let chunks: Vec<Bins> = items
+            .par_chunks_mut(PARALLEL_MIN)
+            .map(|chunk| {
+                let mut bins = Bins::EMPTY;
+                add_all(&mut bins, chunk);
+                bins
+            })
+            .collect();
+        for chunk in &chunks {
+            self.merge(chunk);
+        }
     }
 
-    /// The bins of the items of both.
-    fn merge(mut self, other: Bins) -> Bins {
+    /// Adds the items of `other`.
+    fn merge(&mut self, other: &Bins) {
         for axis in 0..3 {
             for k in 0..BINS {
                 self.bounds[axis][k] = self.bounds[axis][k].union(other.bounds[axis][k]);
                 self.counts[axis][k] += other.counts[axis][k];
             }
         }
-        self
     }
 }
 
-/// The binned surface area heuristic: over 16 bins per axis of the centroid
-/// bounds, the split minimising `C_trav + (A_l N_l + A_r N_r) / A`, compared
-/// with the leaf cost `N`. `None` when the centroids all coincide.
-fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
+/// The binned surface area heuristic: over the bins of [`Binning`] on each
+/// axis of the centroid bounds, the split minimising
+/// `C_trav + (A_l N_l + A_r N_r) / A`, compared with the leaf cost `N`.
+/// `None` when the centroids all coincide. `bins` is room for the binning.
+fn sah_split(items: &mut [Item], extent: &Extent, bins: &mut Bins) -> Option<Split> {
     let size = extent.centroids.max - extent.centroids.min;
     // Axes where the centroids spread (not 0, not NaN).
     let spread = |axis: usize| size[axis] > 0.0;
     if !(0..3).any(spread) {
         return None;
     }
-    let binning = Binning::new(&extent.centroids);
-    let bins = Bins::of(items, &binning);
+    let binning = Binning::new(&extent.centroids, items.len());
+    bins.fill(items, &binning);
+    let n_bins = binning.count;
     let mut best: Option<(f64, usize, usize)> = None;
     for axis in (0..3).filter(|&axis| spread(axis)) {
         let (bounds, counts) = (&bins.bounds[axis], &bins.counts[axis]);
@@ -546,8 +689,8 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
         // costs the first is kept.
         let mut right_area = [0.0; BINS];
         let mut right_count = [0u32; BINS];
-        let (mut acc, mut area, mut n) = (Aabb::EMPTY, 0.0, 0);
-        for b in (1..BINS).rev() {
+        let (mut acc, mut area, mut n) = (Box32::EMPTY, 0.0, 0);
+        for b in (1..n_bins).rev() {
             if counts[b] > 0 {
                 acc = acc.union(bounds[b]);
                 area = acc.half_area();
@@ -556,8 +699,8 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
             right_area[b] = area;
             right_count[b] = n;
         }
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
-        for b in 1..BINS {
+        let (mut acc, mut n) = (Box32::EMPTY, 0);
+        for b in 1..n_bins {
             if counts[b - 1] == 0 {
                 continue;
             }
@@ -578,16 +721,16 @@ fn sah_split(items: &mut [Item], extent: &Extent) -> Option<Split> {
     if split_cost >= items.len() as f64 {
         return Some(Split::Leaf);
     }
-    let side_bounds = |bins: &[Aabb]| bins.iter().copied().fold(Aabb::EMPTY, Aabb::union);
+    let side_bounds = |bins: &[Box32]| bins.iter().copied().fold(Box32::EMPTY, Box32::union);
     let (mid, left_centroids, right_centroids) = partition(items, |it| usize::from(it.bins[axis]) < bin);
     let left = Extent { bounds: side_bounds(&bins.bounds[axis][..bin]), centroids: left_centroids };
-    let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..]), centroids: right_centroids };
+    let right = Extent { bounds: side_bounds(&bins.bounds[axis][bin..n_bins]), centroids: right_centroids };
     Some(Split::At { mid, left, right })
 }
 
 /// Splits by object count along the longest centroid axis (the fallback
 /// when the SAH cannot or should not decide); returns the left side's count.
-fn median_split(items: &mut [Item], centroids: &Aabb) -> usize {
+fn median_split(items: &mut [Item], centroids: &Box32) -> usize {
     let extent = centroids.max - centroids.min;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
         0
@@ -597,27 +740,32 @@ fn median_split(items: &mut [Item], centroids: &Aabb) -> usize {
         2
     };
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]).then(a.index.cmp(&b.index)));
+    items.select_nth_unstable_by(mid, |a, b| {
+        a.centroid()[axis].total_cmp(&b.centroid()[axis]).then(a.index.cmp(&b.index))
+    });
     mid
 }
 
-/// Moves the items satisfying `left` to the front; returns their count and
-/// the centroid bounds of both sides. Deterministic (no dependence on
-/// threads).
-fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> (usize, Aabb, Aabb) {
-    let mut mid = 0;
-    let (mut left_centroids, mut right_centroids) = (Aabb::EMPTY, Aabb::EMPTY);
-    for k in 0..items.len() {
-        let centroid = items[k].centroid;
-        if left(&items[k]) {
-            items.swap(mid, k);
-            mid += 1;
-            left_centroids = left_centroids.grow(centroid);
-        } else {
-            right_centroids = right_centroids.grow(centroid);
+/// Moves the items satisfying `left` to the front, swapping the first
+/// misplaced item from each end; returns their count and the centroid
+/// bounds of both sides. Deterministic (no dependence on threads).
+fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> (usize, Box32, Box32) {
+    let (mut start, mut end) = (0, items.len());
+    let (mut left_centroids, mut right_centroids) = (Box32::EMPTY, Box32::EMPTY);
+    loop {
+        while start < end && left(&items[start]) {
+            left_centroids = left_centroids.grow(items[start].centroid());
+            start += 1;
         }
+        while start < end && !left(&items[end - 1]) {
+            right_centroids = right_centroids.grow(items[end - 1].centroid());
+            end -= 1;
+        }
+        if start == end {
+            return (start, left_centroids, right_centroids);
+        }
+        items.swap(start, end - 1);
     }
-    (mid, left_centroids, right_centroids)
 }
 
 #[cfg(test)]
@@ -634,6 +782,28 @@ mod tests {
         let mut sorted = order.clone();
         sorted.sort_unstable();
         assert!(sorted.iter().enumerate().all(|(k, &v)| k as u32 == v));
+    }
+
+    #[test]
+    fn objects_past_the_f32_range_are_found_and_the_tree_does_not_depend_on_threads() {
+        // Small spheres around a huge one, whose f32 box is infinite and
+        // whose centroid is NaN.
+        let mut spheres: Vec<Bounded> = (0..6000)
+            .map(|k| Bounded::Sphere(SphereShape { center: DVec3::new(k as f64 * 0.1, 0.0, 0.0), radius: 0.03 }))
+            .collect();
+        spheres.insert(3000, Bounded::Sphere(SphereShape { center: DVec3::new(0.0, -1e39, 0.0), radius: 1e39 }));
+        let build_on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
+            pool.install(|| Bvh::build(&spheres))
+        };
+        let ((bvh, order), (_, order_on_two)) = (build_on(1), build_on(2));
+        assert_eq!(order, order_on_two);
+        for k in 0..2000 {
+            let ray = Ray::new(DVec3::new(k as f64 * 0.3, 5.0, 0.01), DVec3::NEG_Y);
+            let nearest = bvh.objects().iter().map(|o| o.hit(&ray)).fold(f64::INFINITY, f64::min);
+            assert_eq!(bvh.closest_hit(&ray, f64::INFINITY).0, nearest);
+            assert_eq!(bvh.any_hit(&ray, f64::INFINITY), nearest < f64::INFINITY);
+        }
     }
 
     #[test]
