@@ -482,8 +482,10 @@ impl Plan {
         plans
     }
 
-    /// Makes the plans of subtree `k`; returns the costs of its plan with at
-    /// most `i + 1` slots (in object tests, times the area of the root).
+    /// Makes the plans of subtree `k`; returns the cost of its plan with at
+    /// most `i + 1` slots: the tests it makes a ray run (a node test counts
+    /// [`NODE_COST`] object tests), each weighted by the area of the box
+    /// that leads to it.
     fn make(nodes: &[Node], bounds: &impl Fn(usize) -> Aabb, k: usize, plans: &mut [Plan]) -> [f64; WIDTH] {
         let area = bounds(k).half_area();
         if nodes[k].count > 0 {
