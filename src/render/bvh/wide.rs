@@ -780,4 +780,28 @@ mod tests {
             .collect();
         check_against_brute_force(&objects, &mut random);
     }
+
+    #[test]
+    fn the_collapse_fills_the_nodes_and_leaves_each_object_in_one_leaf() {
+        let mut random = Random::new();
+        let objects: Vec<Bounded> =
+            (0..2000).map(|_| Bounded::Sphere(SphereShape { center: random.vector() * 10.0, radius: 0.1 })).collect();
+        let (bvh, _) = Bvh::build(&objects);
+        let nodes = &bvh.wide.nodes;
+        let mut seen = vec![0; objects.len()];
+        let mut used = 0;
+        for node in nodes {
+            for slot in (0..WIDTH).filter(|&i| node.bounds[0][i] <= node.bounds[3][i]) {
+                used += 1;
+                let (first, count) = (node.child[slot] as usize, node.count[slot] as usize);
+                for k in first..first + count {
+                    seen[k] += 1;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1), "every object in exactly one leaf");
+        // Opening the largest child gave 3.4 children per node here (1,686
+        // in 496 nodes), the surface area heuristic 4.6 (1,521 in 334).
+        assert!(used as f64 / nodes.len() as f64 >= 4.0, "{used} slots in {} nodes", nodes.len());
+    }
 }
