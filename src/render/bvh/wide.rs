@@ -794,8 +794,8 @@ mod tests {
             for slot in (0..WIDTH).filter(|&i| node.bounds[0][i] <= node.bounds[3][i]) {
                 used += 1;
                 let (first, count) = (node.child[slot] as usize, node.count[slot] as usize);
-                for k in first..first + count {
-                    seen[k] += 1;
+                for n in &mut seen[first..first + count] {
+                    *n += 1;
                 }
             }
         }
