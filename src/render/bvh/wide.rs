@@ -497,25 +497,26 @@ impl Plan {
         let (left_cost, right_cost) =
             (Plan::make(nodes, bounds, k + 1, plans), Plan::make(nodes, bounds, right, plans));
         let (first, count) = (plans[k + 1].first, plans[k + 1].count + plans[right].count);
-        // Spread over `slots` slots: the best division between the two.
-        let spread = |slots: usize| {
+        // Spread over `i + 1` slots: the best division between the two,
+        // and its left part (none for one slot).
+        let spread: [(f64, u8); WIDTH] = std::array::from_fn(|i| {
             let mut best = (f64::INFINITY, 1);
-            for left_slots in 1..slots {
-                let cost = left_cost[left_slots - 1] + right_cost[slots - left_slots - 1];
+            for left_slots in 1..=i {
+                let cost = left_cost[left_slots - 1] + right_cost[i - left_slots];
                 if cost < best.0 {
                     best = (cost, left_slots as u8);
                 }
             }
             best
-        };
-        let (below, left_slots) = spread(WIDTH);
+        });
+        let (below, left_slots) = spread[WIDTH - 1];
         let as_node = area * NODE_COST + below;
         let as_leaf = if count <= MAX_LEAF_OBJECTS { area * f64::from(count) } else { f64::INFINITY };
         let one = if as_leaf <= as_node { (as_leaf, Choice::Leaf) } else { (as_node, Choice::Node(left_slots)) };
         let mut plan = Plan { choice: [one.1; WIDTH], first, count };
         let mut cost = [one.0; WIDTH];
         for slots in 2..=WIDTH {
-            let (spread_cost, left_slots) = spread(slots);
+            let (spread_cost, left_slots) = spread[slots - 1];
             if spread_cost < one.0 {
                 (cost[slots - 1], plan.choice[slots - 1]) = (spread_cost, Choice::Split(left_slots));
             }
