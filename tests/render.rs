@@ -547,7 +547,7 @@ proptest! {
 /// must take (the one put first) is checked by the tests of coinciding
 /// faces below.
 fn bvh_agrees_with_brute_force(objects: &[Bounded], rays: &[Ray], secondary: bool) -> Result<(), TestCaseError> {
-    let (bvh, order) = Bvh::build(objects);
+    let (bvh, order) = Bvh::build(objects.len(), |k| objects[k]);
     let brute_force = |ray: &Ray| objects.iter().map(|o| o.hit(ray)).fold(f64::INFINITY, f64::min);
     let same_distance = |t: f64, nearest: f64| nearest <= t && t <= nearest * (1.0 + 1e-9);
     for ray in rays {

@@ -110,13 +110,17 @@ struct SharedFrame {
 }
 
 impl SharedFrame {
-    /// The common axes of `objects`, if they are all boxes with equal axes.
-    fn common_axes(objects: &[Bounded]) -> Option<DMat3> {
-        let to_local = match objects.first()? {
+    /// The common axes of the `count` objects `object(k)`, if they are all
+    /// boxes with equal axes.
+    fn common_axes(count: usize, object: &(impl Fn(usize) -> Bounded + Sync)) -> Option<DMat3> {
+        let to_local = match object(0) {
             Bounded::Box(b) => b.to_local,
             Bounded::Sphere(_) => return None,
         };
-        objects.par_iter().all(|o| matches!(o, Bounded::Box(b) if b.to_local == to_local)).then_some(to_local)
+        (0..count)
+            .into_par_iter()
+            .all(|k| matches!(object(k), Bounded::Box(b) if b.to_local == to_local))
+            .then_some(to_local)
     }
 
     /// The box of `object` (a box with axes `to_local`) in the frame.
@@ -286,29 +290,36 @@ impl Extent {
 }
 
 impl Bvh {
-    /// Builds the hierarchy over `objects`.
+    /// Builds the hierarchy over the `count` objects `object(0 .. count)`.
     ///
-    /// Returns the tree and the permutation applied: the tree's object `k` is
-    /// `objects[order[k]]`, so callers can reorder data kept alongside.
-    pub fn build(objects: &[Bounded]) -> (Bvh, Vec<u32>) {
-        if objects.len() <= BRUTE_FORCE_MAX {
-            let order = (0..objects.len() as u32).collect();
-            let flat = Bvh { wide: WideBvh::default(), objects: objects.to_vec(), shared: None, put_order: Vec::new() };
-            return (flat, order);
+    /// The objects are asked for, not given, so that a caller holding them
+    /// in another form (the scene's primitives) does not copy them all
+    /// once more in their given order: only the tree's copy is made.
+    /// Returns the tree and the permutation applied: the tree's object `k`
+    /// is `object(order[k])`, so callers can reorder data kept alongside.
+    pub fn build(count: usize, object: impl Fn(usize) -> Bounded + Sync) -> (Bvh, Vec<u32>) {
+        if count <= BRUTE_FORCE_MAX {
+            let flat = Bvh {
+                wide: WideBvh::default(),
+                objects: (0..count).map(object).collect(),
+                shared: None,
+                put_order: Vec::new(),
+            };
+            return (flat, (0..count as u32).collect());
         }
         // Boxes that share their axes are grouped in their common frame,
         // where they are axis-aligned: far tighter nodes than their world
         // boxes give.
-        let frame = SharedFrame::common_axes(objects);
-        let mut items: Vec<Item> = objects
-            .par_iter()
-            .enumerate()
-            .map(|(k, o)| {
+        let frame = SharedFrame::common_axes(count, &object);
+        let mut items: Vec<Item> = (0..count as u32)
+            .into_par_iter()
+            .map(|k| {
+                let o = object(k as usize);
                 let bounds = match frame {
-                    Some(to_local) => SharedFrame::local_bounds(to_local, o),
+                    Some(to_local) => SharedFrame::local_bounds(to_local, &o),
                     None => o.bounds(),
                 };
-                Item::new(k as u32, &Box32::enclosing(&bounds))
+                Item::new(k, &Box32::enclosing(&bounds))
             })
             .collect();
         // Over fixed chunks merged in order, so that the extent does not
@@ -316,7 +327,7 @@ impl Bvh {
         // whose minimum with another takes the order).
         let chunks: Vec<Extent> = items.par_chunks(PARALLEL_MIN).map(Extent::of).collect();
         let extent = chunks.into_iter().fold(Extent::EMPTY, Extent::union);
-        let mut nodes = Vec::with_capacity(2 * objects.len());
+        let mut nodes = Vec::with_capacity(2 * count);
         let mut bins = Bins::EMPTY;
         build_range(&mut items, 0, 0, extent, &mut nodes, &mut bins);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
@@ -328,7 +339,7 @@ impl Bvh {
             None => WideBvh::collapse(&nodes, |k| nodes[k].bounds().aabb()),
         };
         drop(nodes);
-        let objects: Vec<Bounded> = order.par_iter().map(|&k| objects[k as usize]).collect();
+        let objects: Vec<Bounded> = order.par_iter().map(|&k| object(k as usize)).collect();
         let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &objects)));
         (Bvh { wide, objects, shared, put_order: order.clone() }, order)
     }
@@ -777,7 +788,7 @@ mod tests {
     fn coincident_centroids_still_give_a_shallow_tree() {
         let spheres: Vec<Bounded> =
             (0..1000).map(|k| Bounded::Sphere(SphereShape { center: DVec3::ZERO, radius: 1.0 + k as f64 })).collect();
-        let (bvh, order) = Bvh::build(&spheres);
+        let (bvh, order) = Bvh::build(spheres.len(), |k| spheres[k]);
         assert!(bvh.depth() < STACK_SIZE);
         let mut sorted = order.clone();
         sorted.sort_unstable();
@@ -794,7 +805,7 @@ mod tests {
         spheres.insert(3000, Bounded::Sphere(SphereShape { center: DVec3::new(0.0, -1e39, 0.0), radius: 1e39 }));
         let build_on = |threads| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
-            pool.install(|| Bvh::build(&spheres))
+            pool.install(|| Bvh::build(spheres.len(), |k| spheres[k]))
         };
         let ((bvh, order), (_, order_on_two)) = (build_on(1), build_on(2));
         assert_eq!(order, order_on_two);
@@ -811,7 +822,7 @@ mod tests {
         let spheres: Vec<Bounded> = (0..2000)
             .map(|k| Bounded::Sphere(SphereShape { center: DVec3::new(1.01f64.powi(k), 0.0, 0.0), radius: 1e-3 }))
             .collect();
-        let (bvh, _) = Bvh::build(&spheres);
+        let (bvh, _) = Bvh::build(spheres.len(), |k| spheres[k]);
         assert!(bvh.depth() < STACK_SIZE, "depth {}", bvh.depth());
     }
 }

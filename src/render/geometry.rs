@@ -14,6 +14,7 @@
 use std::sync::Arc;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::bvh::{self, Bvh};
 use super::camera::{PrimaryRays, Screen};
@@ -89,33 +90,32 @@ pub struct SurfaceHit {
 
 impl Geometry {
     /// Prepares `primitives` with every length multiplied by `scale` (a
-    /// power of two): builds the BVH over spheres and boxes (in parallel
-    /// with rayon when there are many) and lists the planes.
+    /// power of two): builds the BVH over spheres and boxes and lists the
+    /// planes, in parallel with rayon.
     fn build(primitives: &[Primitive], scale: f64) -> Geometry {
-        let mut bounded = Vec::new();
-        let mut materials = Vec::new();
-        let mut planes = Vec::new();
-        let mut plane_materials = Vec::new();
-        let (mut bounded_sources, mut plane_sources) = (Vec::new(), Vec::new());
-        for (index, primitive) in primitives.iter().enumerate() {
-            let index = u32::try_from(index).unwrap_or(u32::MAX);
-            match ShapeClass::from(&primitive.shape.scaled(scale)) {
-                ShapeClass::Bounded(b) => {
-                    bounded.push(b);
-                    materials.push(primitive.material);
-                    bounded_sources.push(index);
-                }
-                ShapeClass::Plane(p) => {
-                    planes.push(p);
-                    plane_materials.push(primitive.material);
-                    plane_sources.push(index);
-                }
-            }
+        let count = u32::try_from(primitives.len()).unwrap_or(u32::MAX);
+        let (plane_sources, bounded_sources): (Vec<u32>, Vec<u32>) =
+            (0..count).into_par_iter().partition(|&k| matches!(primitives[k as usize].shape, Shape::Plane { .. }));
+        let shape = |k: u32| ShapeClass::from(&primitives[k as usize].shape.scaled(scale));
+        let (bvh, order) = Bvh::build(bounded_sources.len(), |k| match shape(bounded_sources[k]) {
+            ShapeClass::Bounded(b) => b,
+            ShapeClass::Plane(_) => unreachable!("the planes were set apart"),
+        });
+        let sources: Vec<u32> = order.par_iter().map(|&k| bounded_sources[k as usize]).chain(plane_sources).collect();
+        let material = |&k: &u32| primitives[k as usize].material;
+        let (bounded_sources, plane_sources) = sources.split_at(order.len());
+        let planes = plane_sources.iter().filter_map(|&k| match shape(k) {
+            ShapeClass::Plane(p) => Some(p),
+            ShapeClass::Bounded(_) => None,
+        });
+        Geometry {
+            bvh,
+            bounded_materials: bounded_sources.par_iter().map(material).collect(),
+            planes: planes.collect(),
+            plane_materials: plane_sources.iter().map(material).collect(),
+            scale,
+            sources,
         }
-        let (bvh, order) = Bvh::build(&bounded);
-        let bounded_materials = order.iter().map(|&k| materials[k as usize]).collect();
-        let sources = order.iter().map(|&k| bounded_sources[k as usize]).chain(plane_sources).collect();
-        Geometry { bvh, bounded_materials, planes, plane_materials, scale, sources }
     }
 
     /// The union of two geometries without trees (both small), `a` first:

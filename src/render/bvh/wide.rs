@@ -726,7 +726,7 @@ mod tests {
     /// Checks random rays through `objects`, some starting on the objects'
     /// faces and corners, against [`brute_force`] with every compiled form.
     fn check_against_brute_force(objects: &[Bounded], random: &mut Random) {
-        let (bvh, _) = Bvh::build(objects);
+        let (bvh, _) = Bvh::build(objects.len(), |k| objects[k]);
         assert!(!bvh.is_flat());
         for _ in 0..3000 {
             let origin = match (random.next() * 2.0) as i32 {
@@ -787,7 +787,7 @@ mod tests {
         let mut random = Random::new();
         let objects: Vec<Bounded> =
             (0..2000).map(|_| Bounded::Sphere(SphereShape { center: random.vector() * 10.0, radius: 0.1 })).collect();
-        let (bvh, _) = Bvh::build(&objects);
+        let (bvh, _) = Bvh::build(objects.len(), |k| objects[k]);
         let nodes = &bvh.wide.nodes;
         let mut seen = vec![0; objects.len()];
         let mut used = 0;
