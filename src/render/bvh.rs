@@ -331,15 +331,18 @@ impl Bvh {
         let mut bins = Bins::EMPTY;
         build_range(&mut items, 0, 0, extent, &mut nodes, &mut bins);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
-        // The items and the binary nodes are freed before the objects are
-        // copied in tree order: they are not all at the peak together.
+        // The items are freed before the objects are copied in tree order:
+        // they are not at the peak together. The copy runs beside the
+        // collapse, which is serial.
         drop(items);
-        let wide = match frame {
-            Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds().aabb())),
-            None => WideBvh::collapse(&nodes, |k| nodes[k].bounds().aabb()),
-        };
+        let (wide, objects) = rayon::join(
+            || match frame {
+                Some(_) => WideBvh::collapse(&nodes, |k| SharedFrame::padded(&nodes[k].bounds().aabb())),
+                None => WideBvh::collapse(&nodes, |k| nodes[k].bounds().aabb()),
+            },
+            || order.par_iter().map(|&k| object(k as usize)).collect::<Vec<Bounded>>(),
+        );
         drop(nodes);
-        let objects: Vec<Bounded> = order.par_iter().map(|&k| object(k as usize)).collect();
         let shared = frame.map(|to_local| Box::new(SharedFrame::new(to_local, &objects)));
         (Bvh { wide, objects, shared, put_order: order.clone() }, order)
     }
