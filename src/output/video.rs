@@ -68,14 +68,11 @@ impl VideoStream {
             .args(encoder_arguments(format))
             .arg(&pending.temp_path)
             .stdin(Stdio::piped());
-        let mut child = command.spawn().map_err(|_| OutputError::NoFfmpeg { path: path.to_owned() })?;
-        let stdin = child.stdin.take().map(|inner| Cancellable { inner, cancel });
-        let messages = child.stderr.take().map(read_all_in_background);
+        let ffmpeg = Ffmpeg::spawn(&mut command, path, cancel)?;
         let plays = match playback.loops {
             Some(Loops::Times(times)) => times,
             _ => 1,
         };
-        let ffmpeg = Ffmpeg { child, stdin, messages };
         Ok(VideoStream { ffmpeg, pending, format, plays, width, height })
     }
 
@@ -105,22 +102,35 @@ impl VideoStream {
         if self.plays == 1 {
             return self.pending.commit();
         }
-        let (repeated, writer) = PendingFile::create(&self.pending.path, self.pending.cancel)?;
-        drop(writer);
-        let mut command = ffmpeg_command();
-        command
-            .args(["-stream_loop", &(self.plays - 1).to_string(), "-i"])
-            .arg(&self.pending.temp_path)
-            .args(["-c", "copy", "-f", container(self.format)])
-            .arg(&repeated.temp_path)
-            .stdin(Stdio::null());
-        let output = command.output().map_err(|e| io_error(&self.pending.path, e))?;
-        if !output.status.success() {
-            let message = String::from_utf8_lossy(&output.stderr).trim().to_string();
-            return Err(OutputError::Ffmpeg { path: self.pending.path.clone(), message });
-        }
-        repeated.commit()
+        repeat(&self.pending.temp_path, &self.pending.path, self.plays, self.format, self.pending.cancel)?.commit()
     }
+}
+
+/// The video at `once` played `plays` times over, for the file `path`, by a
+/// second ffmpeg that copies the streams; it is stopped when `cancel` is
+/// raised (a long video takes a while), and then nothing is left behind.
+fn repeat(
+    once: &Path,
+    path: &Path,
+    plays: u32,
+    format: ImageFormat,
+    cancel: &'static AtomicBool,
+) -> Result<PendingFile, OutputError> {
+    let (repeated, writer) = PendingFile::create(path, cancel)?;
+    drop(writer);
+    let mut command = ffmpeg_command();
+    command
+        .args(["-stream_loop", &(plays - 1).to_string(), "-i"])
+        .arg(once)
+        .args(["-c", "copy", "-f", container(format)])
+        .arg(&repeated.temp_path)
+        .stdin(Stdio::null());
+    // After `repeated`, so dropped before it: stopped before its file goes.
+    let mut ffmpeg = Ffmpeg::spawn(&mut command, path, cancel)?;
+    if !ffmpeg.wait(&repeated)?.success() {
+        return Err(ffmpeg.failure(path));
+    }
+    Ok(repeated)
 }
 
 /// The running ffmpeg of a video: frames go to its standard input.
@@ -136,6 +146,15 @@ struct Ffmpeg {
 const CANCEL_CHECK: Duration = Duration::from_millis(20);
 
 impl Ffmpeg {
+    /// Starts `command` (from [`ffmpeg_command`]), for the file `path`; its
+    /// standard input, if piped, fails once `cancel` is raised.
+    fn spawn(command: &mut Command, path: &Path, cancel: &'static AtomicBool) -> Result<Ffmpeg, OutputError> {
+        let mut child = command.spawn().map_err(|_| OutputError::NoFfmpeg { path: path.to_owned() })?;
+        let stdin = child.stdin.take().map(|inner| Cancellable { inner, cancel });
+        let messages = child.stderr.take().map(read_all_in_background);
+        Ok(Ffmpeg { child, stdin, messages })
+    }
+
     /// Waits for ffmpeg to end the video it writes into `pending`, or for
     /// `pending`'s cancel flag (encoding the last frames of a large video
     /// takes a while).
@@ -228,4 +247,33 @@ fn read_all_in_background(mut stream: impl Read + Send + 'static) -> JoinHandle<
         let _ = stream.read_to_string(&mut text);
         text
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cancel flag raised from the start.
+    static RAISED: AtomicBool = AtomicBool::new(true);
+
+    #[test]
+    fn ctrl_c_stops_the_pass_that_repeats_a_video_and_leaves_nothing() {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let once = dir.path().join("once.mp4");
+        let made = Command::new(FFMPEG)
+            .args(["-loglevel", "error", "-f", "lavfi", "-i", "color=c=red:s=32x24:d=0.2", "-c:v", "libx264"])
+            .arg(&once)
+            .status();
+        if !made.is_ok_and(|status| status.success()) {
+            eprintln!("skipped: ffmpeg with libx264 is not installed");
+            return;
+        }
+        // Twenty thousand plays take ffmpeg about a second.
+        let path = dir.path().join("looped.mp4");
+        let result = repeat(&once, &path, 20_000, ImageFormat::Mp4, &RAISED);
+        assert!(matches!(result, Err(OutputError::Cancelled { .. })), "not cancelled");
+        let left: Vec<_> =
+            std::fs::read_dir(dir.path()).expect("the folder").map(|e| e.expect("an entry").file_name()).collect();
+        assert_eq!(left, ["once.mp4"]);
+    }
 }
