@@ -118,27 +118,43 @@ impl Diagnostic {
 
     /// One snippet per source the diagnostic points into, the primary
     /// span's first, each with its marks: `^` for the primary span, `-`
-    /// for the related places.
+    /// for the related places. Each snippet holds only the lines from the
+    /// first mark to the last (annotate-snippets would scan the text from
+    /// its start to find them, for every diagnostic).
     fn snippets<'a>(&'a self, sources: &'a SourceMap) -> Vec<Snippet<'a, Annotation<'a>>> {
         let primary = (self.span, AnnotationKind::Primary, self.label.as_deref());
         let related = self.related.iter().map(|(span, text)| (*span, AnnotationKind::Context, Some(text.as_str())));
-        let mut by_source: Vec<(SourceId, Vec<Annotation<'a>>)> = Vec::new();
+        let mut by_source: Vec<(SourceId, Vec<Mark<'a>>)> = Vec::new();
         for (span, kind, label) in std::iter::once(primary).chain(related) {
-            let annotation = kind.span(shown_range(&sources.get(span.source).text, span)).label(label.map(printable));
+            let mark = (shown_range(&sources.get(span.source).text, span), kind, label);
             match by_source.iter_mut().find(|(source, _)| *source == span.source) {
-                Some((_, annotations)) => annotations.push(annotation),
-                None => by_source.push((span.source, vec![annotation])),
+                Some((_, marks)) => marks.push(mark),
+                None => by_source.push((span.source, vec![mark])),
             }
         }
         by_source
             .into_iter()
-            .map(|(source, annotations)| {
+            .map(|(source, marks)| {
                 let file = sources.get(source);
-                Snippet::source(&*file.text).path(&file.name).line_start(file.line_offset + 1).annotations(annotations)
+                let first = marks.iter().map(|(range, ..)| range.start).min().unwrap_or(0);
+                let last = marks.iter().map(|(range, ..)| range.end).max().unwrap_or(0);
+                let (line, start) = file.line_of(first);
+                let end = file.text[last..].find('\n').map_or(file.text.len(), |i| last + i + 1);
+                let annotations = marks.into_iter().map(|(range, kind, label)| {
+                    kind.span(range.start - start..range.end - start).label(label.map(printable))
+                });
+                Snippet::source(&file.text[start..end])
+                    .path(&file.name)
+                    .line_start(file.line_offset + line + 1)
+                    .annotations(annotations)
             })
             .collect()
     }
 }
+
+/// A place a snippet marks: its bytes in the source, whether it is the
+/// primary span or a related one, and its label.
+type Mark<'a> = (Range<usize>, AnnotationKind, Option<&'a str>);
 
 /// Prints `diagnostic` on `out`: the one way batch runs, scripts and the
 /// session print diagnostics, so that they look the same everywhere. The
@@ -271,6 +287,26 @@ impl From<&str> for Note {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_the_lines_from_the_first_mark_to_the_last_are_shown() {
+        let text = "camera\nput a\n\nput b\nput c\nend\n";
+        let (map, id) = map_with("scene.ray", text, 10);
+        let (a, b) = (text.find("put a").expect("a") + 4, text.find("put b").expect("b") + 4);
+        let diagnostic = Diagnostic::warning(Span::new(id, b, b + 1), "`b` again")
+            .with_related(Span::new(id, a, a + 1), "first here");
+        let expected = "\
+warning: `b` again
+  --> scene.ray:14:5
+   |
+12 | put a
+   |     - first here
+13 |
+14 | put b
+   |     ^
+";
+        assert_eq!(diagnostic.render(&map, false), expected);
+    }
 
     fn map_with(name: &str, text: &str, line_offset: usize) -> (SourceMap, SourceId) {
         let mut map = SourceMap::new();

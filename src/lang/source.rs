@@ -4,7 +4,7 @@
 //! running a procedure defined in an earlier input of the session still points
 //! at the right text.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// Identifies one source text inside a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -44,17 +44,29 @@ pub struct SourceFile {
     /// that starts at line 17 has `line_offset` 16, so diagnostics show the
     /// script's own line numbers.
     pub line_offset: usize,
+    /// Where each line of `text` starts, found on the first question (a
+    /// text without diagnostics never needs it): a file with many warnings
+    /// is not scanned from its start for each.
+    line_starts: OnceLock<Vec<usize>>,
 }
 
 impl SourceFile {
     /// The 1-based (line, column) of byte `offset`, columns counted in characters.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = offset.min(self.text.len());
-        let before = &self.text[..offset];
-        let line = before.matches('\n').count();
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let column = before[line_start..].chars().count();
+        let (line, line_start) = self.line_of(offset);
+        let column = self.text[line_start..offset].chars().count();
         (line + 1 + self.line_offset, column + 1)
+    }
+
+    /// The 0-based index in `text` of the line holding byte `offset` (a
+    /// line's `\n` is its last byte), and where that line starts.
+    pub fn line_of(&self, offset: usize) -> (usize, usize) {
+        let starts = self
+            .line_starts
+            .get_or_init(|| std::iter::once(0).chain(self.text.match_indices('\n').map(|(i, _)| i + 1)).collect());
+        let line = starts.partition_point(|&start| start <= offset) - 1;
+        (line, starts[line])
     }
 }
 
@@ -72,7 +84,7 @@ impl SourceMap {
 
     /// Adds a text and returns its id.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<Arc<str>>, line_offset: usize) -> SourceId {
-        self.files.push(SourceFile { name: name.into(), text: text.into(), line_offset });
+        self.files.push(SourceFile { name: name.into(), text: text.into(), line_offset, line_starts: OnceLock::new() });
         SourceId((self.files.len() - 1) as u32)
     }
 
@@ -94,5 +106,15 @@ mod tests {
         assert_eq!(map.get(id).line_col(4), (2, 2));
         let id = map.add("b.ray", "x\ny", 16);
         assert_eq!(map.get(id).line_col(2), (18, 1));
+    }
+
+    #[test]
+    fn a_line_ends_with_its_newline() {
+        let mut map = SourceMap::new();
+        let id = map.add("a.ray", "ab\n\ncd", 0);
+        let file = map.get(id);
+        let lines: Vec<_> = (0..=6).map(|offset| file.line_of(offset)).collect();
+        assert_eq!(lines, [(0, 0), (0, 0), (0, 0), (1, 3), (2, 4), (2, 4), (2, 4)]);
+        assert_eq!(file.line_col(6), (3, 3));
     }
 }
