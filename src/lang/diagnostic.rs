@@ -136,8 +136,8 @@ impl Diagnostic {
             .into_iter()
             .map(|(source, marks)| {
                 let file = sources.get(source);
-                let first = marks.iter().map(|(range, ..)| range.start).min().unwrap_or(0);
-                let last = marks.iter().map(|(range, ..)| range.end).max().unwrap_or(0);
+                let first = marks.iter().map(|(range, ..)| range.start).min().expect("a source has a mark");
+                let last = marks.iter().map(|(range, ..)| range.end).max().expect("a source has a mark");
                 let (line, start) = file.line_of(first);
                 let end = file.text[last..].find('\n').map_or(file.text.len(), |i| last + i + 1);
                 let annotations = marks.into_iter().map(|(range, kind, label)| {
@@ -306,6 +306,40 @@ warning: `b` again
    |     ^
 ";
         assert_eq!(diagnostic.render(&map, false), expected);
+    }
+
+    /// `diagnostic` (its marks all in `file`, no notes) drawn by
+    /// annotate-snippets from the whole text: what [`Diagnostic::render`]
+    /// must give from its window of lines.
+    fn drawn_from_the_whole_text(diagnostic: &Diagnostic, file: &crate::lang::source::SourceFile) -> String {
+        let mark = |span, kind: AnnotationKind, label: Option<&str>| {
+            kind.span(shown_range(&file.text, span)).label(label.map(printable))
+        };
+        let related = diagnostic.related.iter().map(|(span, text)| mark(*span, AnnotationKind::Context, Some(text)));
+        let annotations =
+            std::iter::once(mark(diagnostic.span, AnnotationKind::Primary, diagnostic.label.as_deref())).chain(related);
+        let snippet =
+            Snippet::source(&*file.text).path(&file.name).line_start(file.line_offset + 1).annotations(annotations);
+        let group = Level::WARNING.primary_title(&diagnostic.message).element(snippet);
+        format!("{}\n", Renderer::plain().render(&[group]))
+    }
+
+    #[test]
+    fn the_window_shows_what_the_whole_text_shows() {
+        let texts = ["a\nbc\n\ndef\n", "a\r\nbc\r\n\r\nd", "x\n\n\ny\nz", "é\nàb\n\n", "one line"];
+        for (text, line_offset) in texts.into_iter().flat_map(|text| [(text, 0), (text, 3)]) {
+            let (map, id) = map_with("a.ray", text, line_offset);
+            let spans: Vec<Span> = (0..=text.len())
+                .flat_map(|start| (start..=text.len()).map(move |end| Span::new(id, start, end)))
+                .collect();
+            for (k, &primary) in spans.iter().enumerate() {
+                let alone = Diagnostic::warning(primary, "here");
+                assert_eq!(alone.render(&map, false), drawn_from_the_whole_text(&alone, map.get(id)), "{primary:?}");
+                let related = spans[(k * 7) % spans.len()];
+                let both = alone.with_label("this").with_related(related, "and that");
+                assert_eq!(both.render(&map, false), drawn_from_the_whole_text(&both, map.get(id)), "{related:?}");
+            }
+        }
     }
 
     fn map_with(name: &str, text: &str, line_offset: usize) -> (SourceMap, SourceId) {

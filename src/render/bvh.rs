@@ -110,10 +110,10 @@ struct SharedFrame {
 }
 
 impl SharedFrame {
-    /// The common axes of the `count` objects `object(k)`, if they are all
-    /// boxes with equal axes.
+    /// The common axes of the `count` objects `object(k)`, if there are
+    /// some and they are all boxes with equal axes.
     fn common_axes(count: usize, object: &(impl Fn(usize) -> Bounded + Sync)) -> Option<DMat3> {
-        let to_local = match object(0) {
+        let to_local = match (count > 0).then(|| object(0))? {
             Bounded::Box(b) => b.to_local,
             Bounded::Sphere(_) => return None,
         };
@@ -295,6 +295,8 @@ impl Bvh {
     /// The objects are asked for, not given, so that a caller holding them
     /// in another form (the scene's primitives) does not copy them all
     /// once more in their given order: only the tree's copy is made.
+    /// `object(k)` is asked for several times (for the shared frame, the
+    /// boxes and the copy), so it must be cheap and always the same.
     /// Returns the tree and the permutation applied: the tree's object `k`
     /// is `object(order[k])`, so callers can reorder data kept alongside.
     pub fn build(count: usize, object: impl Fn(usize) -> Bounded + Sync) -> (Bvh, Vec<u32>) {

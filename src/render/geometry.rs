@@ -93,25 +93,29 @@ impl Geometry {
     /// power of two): builds the BVH over spheres and boxes and lists the
     /// planes, in parallel with rayon.
     fn build(primitives: &[Primitive], scale: f64) -> Geometry {
-        let count = u32::try_from(primitives.len()).unwrap_or(u32::MAX);
-        let (plane_sources, bounded_sources): (Vec<u32>, Vec<u32>) =
-            (0..count).into_par_iter().partition(|&k| matches!(primitives[k as usize].shape, Shape::Plane { .. }));
+        // Memory runs out long before: each primitive takes over 100 bytes.
+        let count = u32::try_from(primitives.len()).expect("fewer than 2^32 primitives");
         let shape = |k: u32| ShapeClass::from(&primitives[k as usize].shape.scaled(scale));
+        let (plane_sources, bounded_sources): (Vec<u32>, Vec<u32>) =
+            (0..count).into_par_iter().partition(|&k| matches!(shape(k), ShapeClass::Plane(_)));
         let (bvh, order) = Bvh::build(bounded_sources.len(), |k| match shape(bounded_sources[k]) {
             ShapeClass::Bounded(b) => b,
             ShapeClass::Plane(_) => unreachable!("the planes were set apart"),
         });
+        let planes: Vec<PlaneShape> = plane_sources
+            .iter()
+            .map(|&k| match shape(k) {
+                ShapeClass::Plane(p) => p,
+                ShapeClass::Bounded(_) => unreachable!("only the planes were set apart"),
+            })
+            .collect();
         let sources: Vec<u32> = order.par_iter().map(|&k| bounded_sources[k as usize]).chain(plane_sources).collect();
         let material = |&k: &u32| primitives[k as usize].material;
         let (bounded_sources, plane_sources) = sources.split_at(order.len());
-        let planes = plane_sources.iter().filter_map(|&k| match shape(k) {
-            ShapeClass::Plane(p) => Some(p),
-            ShapeClass::Bounded(_) => None,
-        });
         Geometry {
             bvh,
             bounded_materials: bounded_sources.par_iter().map(material).collect(),
-            planes: planes.collect(),
+            planes,
             plane_materials: plane_sources.iter().map(material).collect(),
             scale,
             sources,
