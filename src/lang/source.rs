@@ -61,7 +61,7 @@ impl SourceFile {
 
     /// The 0-based index in `text` of the line holding byte `offset` (a
     /// line's `\n` is its last byte), and where that line starts.
-    pub fn line_of(&self, offset: usize) -> (usize, usize) {
+    pub(crate) fn line_of(&self, offset: usize) -> (usize, usize) {
         let starts = self
             .line_starts
             .get_or_init(|| std::iter::once(0).chain(self.text.match_indices('\n').map(|(i, _)| i + 1)).collect());
