@@ -13,7 +13,8 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use serde_json::{Map, Value, json};
 
-use crate::lang::eval::{Call, Origins, format_number};
+use crate::lang::eval::{Call, Origins};
+use crate::lang::number::format_number;
 use crate::lang::{Interpreter, SourceMap, Span};
 use crate::render::explain::{Level, LightPart, SamplePath, Surface};
 use crate::render::{Explainer, PixelPaths, RenderOptions};

@@ -13,7 +13,8 @@
 
 use glam::DVec3;
 
-use crate::lang::eval::{Origins, format_number};
+use crate::lang::eval::Origins;
+use crate::lang::number::format_number;
 use crate::lang::{Diagnostic, Span};
 use crate::render::{PrimaryRays, Screen};
 use crate::scene::{Counts, Primitive, Scene, Shape};

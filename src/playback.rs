@@ -23,11 +23,6 @@ impl Timeline {
     pub fn time_of(&self, k: u32) -> f64 {
         self.start + f64::from(k - 1) * self.step
     }
-
-    /// Whether this is the default `time = k`.
-    pub fn is_default(&self) -> bool {
-        *self == Timeline::DEFAULT
-    }
 }
 
 impl Default for Timeline {

@@ -12,7 +12,7 @@ use common::sexpr::{cond, expr};
 
 /// Every keyword, symbol, and some names, numbers and noise.
 fn vocabulary() -> Vec<&'static str> {
-    rayrepl::lang::lexer::keyword_names().chain(SYMBOLS_AND_NOISE.iter().copied()).collect()
+    rayrepl::lang::words::keyword_names().chain(SYMBOLS_AND_NOISE.iter().copied()).collect()
 }
 
 /// The symbols of the language, a few names and numbers, and some noise

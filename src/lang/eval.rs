@@ -37,7 +37,7 @@ use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
 
 pub use origins::{Call, CameraOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans};
-pub use print::{Number, PRINT_LIMIT, PrintLine, PrintLog, format_number};
+pub use print::{PRINT_LIMIT, PrintLine, PrintLog};
 
 use super::ast::{Item, ProcDef, Program};
 use super::diagnostic::{Diagnostic, Note};
@@ -128,8 +128,6 @@ pub struct Interpreter {
     /// What each procedure name held before each definition of the current
     /// run, oldest first, so that a failed run takes them back.
     procs_undo: Vec<(Rc<str>, Option<Rc<ProcDef>>)>,
-    has_camera: bool,
-    has_ambient: bool,
     /// Where the scene's parts come from.
     origins: Origins,
     /// What `print` wrote and was not yet taken.
@@ -161,8 +159,6 @@ pub struct Interpreter {
 struct Snapshot {
     camera: Camera,
     ambient: f64,
-    has_camera: bool,
-    has_ambient: bool,
     time_use: TimeUse,
     created: usize,
     lights: usize,
@@ -196,8 +192,6 @@ impl Interpreter {
             interrupt: None,
             procs: NameMap::default(),
             procs_undo: Vec::new(),
-            has_camera: false,
-            has_ambient: false,
             origins: Origins::default(),
             printed: PrintLog::default(),
             warnings: Vec::new(),
@@ -292,23 +286,18 @@ impl Interpreter {
 
     /// Whether a `camera` was given (otherwise [`DEFAULT_CAMERA`] is used).
     pub fn has_camera(&self) -> bool {
-        self.has_camera
+        self.origins.camera.is_some()
     }
 
     /// Whether an `ambient` was given (otherwise [`DEFAULT_AMBIENT`] is used).
     pub fn has_ambient(&self) -> bool {
-        self.has_ambient
+        self.origins.ambient.is_some()
     }
 
     /// Whether evaluation read `time` at all. When it did not, every frame of
     /// an animation is the same picture.
     pub fn has_time_reads(&self) -> bool {
         self.scene.time_use.read
-    }
-
-    /// The limits this interpreter enforces.
-    pub fn limits(&self) -> Limits {
-        self.limits
     }
 
     /// The names of the defined procedures, sorted (for completion and `:help`).
@@ -353,14 +342,12 @@ impl Interpreter {
                 self.scene.time_use.camera = distance.tainted | angle.tainted;
                 self.origins.camera =
                     Some(CameraOrigin { item: def.span, distance: def.distance.span, angle: def.angle.span });
-                self.has_camera = true;
             }
             Item::Ambient(def) => {
                 let ambient = self.eval_expr(&def.intensity)?;
                 self.scene.ambient = ambient.value;
                 self.scene.time_use.ambient = ambient.tainted;
                 self.origins.ambient = Some(def.intensity.span);
-                self.has_ambient = true;
             }
             Item::Light(def) => {
                 let (angles, rotation_tainted) = self.eval_triple(&def.rotation)?;
@@ -399,8 +386,6 @@ impl Interpreter {
         Snapshot {
             camera: self.scene.camera,
             ambient: self.scene.ambient,
-            has_camera: self.has_camera,
-            has_ambient: self.has_ambient,
             time_use: self.scene.time_use,
             created: self.created,
             lights: self.scene.lights.len(),
@@ -424,8 +409,6 @@ impl Interpreter {
         self.last_proc = None;
         self.scene.camera = snapshot.camera;
         self.scene.ambient = snapshot.ambient;
-        self.has_camera = snapshot.has_camera;
-        self.has_ambient = snapshot.has_ambient;
         self.scene.time_use = snapshot.time_use;
         self.created = snapshot.created;
         self.scene.lights.truncate(snapshot.lights);

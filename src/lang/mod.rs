@@ -5,9 +5,11 @@ pub mod ast;
 pub mod diagnostic;
 pub mod eval;
 pub mod lexer;
+pub mod number;
 pub mod parser;
 pub mod source;
 pub mod suggest;
+pub mod token;
 pub mod walk;
 pub mod words;
 

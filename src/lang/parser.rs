@@ -17,8 +17,9 @@ use lalrpop_util::{ParseError, lalrpop_mod};
 
 use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
-use super::lexer::{Lexer, Spanned, Token};
+use super::lexer::{Lexer, Spanned};
 use super::source::{SourceId, Span};
+use super::token::Token;
 use super::words::Word;
 use context::Tracked;
 use errors::Mode;

@@ -3,7 +3,9 @@
 //! the session its completion, colours and `:help` pages, and the hints the
 //! words learners bring from elsewhere (the French course, other languages).
 
-use super::lexer::Token;
+use std::fmt;
+
+use super::token::Token;
 
 /// The part a keyword plays in the grammar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -240,6 +242,59 @@ pub fn hint_for_function(name: &str) -> String {
     match instead {
         Some(word) => format!("there is no `{name}`; the functions are {list}: {}", word.about),
         None => format!("there is no function `{name}`; the functions are {list}"),
+    }
+}
+
+/// The names of all keywords, for "did you mean ...?" suggestions.
+pub fn keyword_names() -> impl Iterator<Item = &'static str> {
+    keywords().map(|(word, _)| word.text)
+}
+
+/// The keyword token spelt `word`, if `word` is a keyword.
+pub fn keyword_token(word: &str) -> Option<Token> {
+    keywords().find(|(row, _)| row.text == word).map(|(_, token)| token.clone())
+}
+
+impl Token {
+    /// How the token is written, for keywords and symbols; `None` for
+    /// numbers and names, whose text depends on the source.
+    pub fn spelling(&self) -> Option<&'static str> {
+        let symbol = match self {
+            Token::Number(_) | Token::Ident(_) => return None,
+            Token::Plus => "+",
+            Token::Minus => "-",
+            Token::Star => "*",
+            Token::Slash => "/",
+            Token::LParen => "(",
+            Token::RParen => ")",
+            Token::Comma => ",",
+            Token::Eq => "=",
+            Token::Ne => "!=",
+            Token::Lt => "<",
+            Token::Le => "<=",
+            Token::Gt => ">",
+            Token::Ge => ">=",
+            Token::And => "&",
+            Token::Or => "|",
+            Token::Bang => "!",
+            keyword => return keywords().find(|(_, token)| *token == keyword).map(|(word, _)| word.text),
+        };
+        Some(symbol)
+    }
+
+    /// Whether the token is a keyword of SPEC 1.
+    pub fn is_keyword(&self) -> bool {
+        keywords().any(|(_, token)| token == self)
+    }
+}
+
+impl fmt::Display for Token {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Token::Number(value) => write!(f, "{value}"),
+            Token::Ident(name) => f.write_str(name),
+            other => f.write_str(other.spelling().unwrap_or("?")),
+        }
     }
 }
 

@@ -104,17 +104,6 @@ pub fn sample_offsets(n: u32) -> Vec<DVec2> {
         .collect()
 }
 
-/// The samples adaptive anti-aliasing gives a pixel whose `n` samples
-/// disagree too much: those `n` followed by the `4 n` of
-/// [`sample_offsets`]`(4 n)`. For `n = k²` the two grids interleave: each
-/// of the k x k strata holds 5 samples, its centre and 4 around it, so the
-/// average stays an even-weighted estimate of the pixel.
-pub fn escalation_offsets(n: u32) -> Vec<DVec2> {
-    let mut offsets = sample_offsets(n);
-    offsets.extend(sample_offsets(n.max(1).saturating_mul(4)));
-    offsets
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -167,20 +156,5 @@ mod tests {
         for (s, p) in five.iter().enumerate() {
             assert!((p.x * 5.0).floor() as usize == s && (0.0..1.0).contains(&p.y));
         }
-    }
-
-    #[test]
-    fn escalation_puts_five_samples_in_each_stratum() {
-        let offsets = escalation_offsets(16);
-        assert_eq!(offsets[..16], sample_offsets(16)[..]);
-        assert_eq!(offsets.len(), 80);
-        let mut per_stratum = [0; 16];
-        for p in &offsets {
-            // Inside the pixel, never on a stratum's border.
-            let (sx, sy) = (p.x * 4.0, p.y * 4.0);
-            assert!(sx.fract() != 0.0 && sy.fract() != 0.0, "{p}");
-            per_stratum[sy as usize * 4 + sx as usize] += 1;
-        }
-        assert_eq!(per_stratum, [5; 16]);
     }
 }

@@ -338,11 +338,6 @@ impl SceneGeometry {
         format!("spheres and boxes: {search}")
     }
 
-    /// The geometry of [`Scene::timed_primitives`].
-    pub fn timed(&self) -> &Geometry {
-        &self.timed
-    }
-
     /// The nearest hit with `t > 0` (SPEC 6), with its point, facing normal
     /// and material. Of hits at the same distance (within
     /// [`bvh::reach_past`]), a sphere or a box goes before a plane, then a

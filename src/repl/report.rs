@@ -3,9 +3,9 @@
 use std::fmt::{self, Display};
 
 use crate::lang::ast::{InstrKind, Item};
-use crate::lang::eval::Number;
+use crate::lang::number::Number;
 /// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
-pub(crate) use crate::lang::eval::format_number as number;
+pub(crate) use crate::lang::number::format_number as number;
 use crate::scene::Counts;
 
 use super::console::Console;

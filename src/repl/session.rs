@@ -477,11 +477,6 @@ impl Session {
         self.settings.samples = samples;
     }
 
-    /// How many accepted inputs the session holds.
-    pub fn history_len(&self) -> usize {
-        self.history.len()
-    }
-
     /// Whether a `camera` was given (otherwise the default one is used).
     pub fn has_camera(&self) -> bool {
         self.interpreter.has_camera()

@@ -3,6 +3,7 @@
 use std::rc::Rc;
 
 use crate::lang::diagnostic::{Diagnostic, Note};
+use crate::lang::number::format_number;
 use crate::lang::source::Span;
 use crate::lang::suggest;
 
@@ -41,13 +42,13 @@ pub(crate) fn check_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
 #[cold]
 #[inline(never)]
 fn bad_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
-    let a = super::print::format_number(angle);
+    let a = format_number(angle);
     let diagnostic = if (std::f64::consts::PI..180.0).contains(&angle) {
         Diagnostic::error(span, format!("the camera angle {a} looks like degrees, but angles are in radians"))
             .with_label(format!("read as {a} radians, more than half a turn"))
             .with_help(format!(
                 "for {a} degrees, write `angle {a} * pi / 180` (that is {} radians)",
-                super::print::format_number(angle.to_radians())
+                format_number(angle.to_radians())
             ))
     } else {
         Diagnostic::error(span, format!("the camera angle must be between 0 and pi, but it is {a}"))

@@ -10,8 +10,9 @@
 //! one whose `end` is missing.
 
 use crate::lang::diagnostic::Diagnostic;
-use crate::lang::lexer::{Lexer, Spanned, Token};
+use crate::lang::lexer::{Lexer, Spanned};
 use crate::lang::source::{SourceId, Span};
+use crate::lang::token::Token;
 use crate::lang::words::{Role, Word};
 
 /// How many misplaced `end`s are remembered: the first ones tell the story.

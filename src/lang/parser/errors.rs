@@ -14,9 +14,10 @@ use lalrpop_util::ParseError;
 use super::context::{Blame, Context, Misclosed, Open};
 use super::order::start_error;
 use crate::lang::diagnostic::Diagnostic;
-use crate::lang::lexer::{self, Lexer, Token};
+use crate::lang::lexer::Lexer;
 use crate::lang::source::{SourceId, Span};
 use crate::lang::suggest;
+use crate::lang::token::Token;
 use crate::lang::words::{self, Role};
 
 /// The error type of the generated parser.
@@ -149,7 +150,7 @@ impl Expected {
 
     /// The expected keywords, for "did you mean ...?".
     fn keywords(&self) -> impl Iterator<Item = &str> {
-        self.names.iter().map(String::as_str).filter(|name| lexer::keyword(name).is_some())
+        self.names.iter().map(String::as_str).filter(|name| words::keyword_token(name).is_some())
     }
 }
 
@@ -491,7 +492,7 @@ fn spelling_help(
     }
     if let Token::Ident(name) = &found.token {
         let suggestion = suggest::closest(name, expected.keywords())
-            .or_else(|| suggest::closest(name, lexer::keyword_names()).filter(|_| name.len() >= 3));
+            .or_else(|| suggest::closest(name, words::keyword_names()).filter(|_| name.len() >= 3));
         if let Some(keyword) = suggestion {
             return Some((format!("did you mean `{keyword}`?"), None));
         }
@@ -500,7 +501,7 @@ fn spelling_help(
         if name.len() < 3 {
             continue;
         }
-        if let Some(keyword) = suggest::closest(name, lexer::keyword_names()) {
+        if let Some(keyword) = suggest::closest(name, words::keyword_names()) {
             return Some((format!("did you mean `{keyword}`?"), not_a_keyword(name, *span)));
         }
     }

@@ -1,0 +1,44 @@
+//! How the language writes a number in messages, `print` and `:env`.
+
+use std::fmt;
+
+/// A number the way a learner writes it: `3`, `0.75`, `-1.570796` (six
+/// decimals at most, trailing zeros dropped; tiny numbers in `1e-9` form).
+pub fn format_number(value: f64) -> String {
+    Number(value).to_string()
+}
+
+/// [`format_number`], formatted straight into the text that shows it.
+pub struct Number(pub f64);
+
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        let Number(value) = *self;
+        if value == value.trunc() && value.abs() < 1e15 {
+            // Exact as an integer, which formats faster than the float; `-0`
+            // keeps its sign, as `{:.0}` writes it.
+            let integer = value as i64;
+            return if integer == 0 && value.is_sign_negative() { f.write_str("-0") } else { write!(f, "{integer}") };
+        }
+        let text = format!("{value:.6}");
+        let text = text.trim_end_matches('0').trim_end_matches('.');
+        if text == "0" || text == "-0" { write!(f, "{value:e}") } else { f.write_str(text) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_like_the_language() {
+        assert_eq!(format_number(3.0), "3");
+        assert_eq!(format_number(-2.0), "-2");
+        assert_eq!(format_number(0.75), "0.75");
+        assert_eq!(format_number(std::f64::consts::PI), "3.141593");
+        assert_eq!(format_number(1e-9), "1e-9");
+        assert_eq!(format_number(0.0), "0");
+        assert_eq!(format_number(-0.0), format!("{:.0}", -0.0));
+        assert_eq!(format_number(-123_456_789_012_345.0), "-123456789012345");
+    }
+}
