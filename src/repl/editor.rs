@@ -17,14 +17,11 @@ use rustyline::{Context, Helper};
 
 use crate::lang::{EntryState, entry_state};
 
-use super::commands::{COMMANDS, is_command};
+use super::commands::{self, COMMANDS, Files, help_pages, is_command};
 use super::help;
 use super::session::Vocabulary;
 use super::syntax::{TokenKind, is_word_char, tokens};
 use crate::lang::words::{self, Role};
-
-/// Commands whose arguments are file names.
-const FILE_COMMANDS: &[&str] = &[":load", ":save", ":anim", ":watch", ":write"];
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
 /// rustyline repaint the whole line at every key, so a long pasted line
@@ -101,17 +98,17 @@ impl RayHelper {
         let command_end = before[start..].find(char::is_whitespace).map(|i| start + i);
         let Some(command_end) = command_end else {
             let typed = &before[start..];
-            let names = COMMANDS.iter().map(|c| c.name).filter(|name| name.starts_with(typed));
+            let names = COMMANDS.iter().map(|command| command.topic.name).filter(|name| name.starts_with(typed));
             return Ok((start, names.map(|name| plain(name, &format!("{name} "))).collect()));
         };
-        let command = &before[start..command_end];
-        if FILE_COMMANDS.contains(&command) {
+        let command = commands::find(&before[start..command_end]).map(|command| (command.topic.name, command.files));
+        if command.is_some_and(|(_, files)| files != Files::None) {
             return self.files.complete(line, pos, ctx);
         }
-        if command == ":help" {
+        if command.is_some_and(|(name, _)| name == ":help") {
             let word_start = word_start(before);
             let typed = &before[word_start..];
-            let mut topics: Vec<&str> = help::all_names().filter(|name| name.starts_with(typed)).collect();
+            let mut topics: Vec<&str> = help::all_names(&help_pages()).filter(|name| name.starts_with(typed)).collect();
             topics.sort_unstable();
             topics.dedup();
             return Ok((word_start, topics.into_iter().map(|name| plain(name, name)).collect()));
@@ -250,7 +247,7 @@ impl Highlighter for RayHelper {
 impl Helper for RayHelper {}
 
 /// `line` with ANSI colours: keywords, built-ins, numbers, comments and
-/// commands.
+/// commands (those the registry knows: a misspelt one stays plain).
 pub(crate) fn colorize(line: &str) -> String {
     let mut out = String::with_capacity(line.len() * 2);
     for token in tokens(line) {
@@ -260,7 +257,8 @@ pub(crate) fn colorize(line: &str) -> String {
             TokenKind::Builtin => Some("36"),
             TokenKind::Number => Some("33"),
             TokenKind::Comment => Some("2;37"),
-            TokenKind::Command => Some("1;32"),
+            TokenKind::Command if commands::find(text).is_some() => Some("1;32"),
+            TokenKind::Command => None,
             TokenKind::Ident | TokenKind::Other => None,
         };
         match code {

@@ -1,6 +1,9 @@
-//! Looking inside the session: `:show NAME` prints a definition as it was
+//! Looking inside the session: `:env` lists the names defined, `:scene`
+//! what the scene holds, `:show NAME` prints a definition as it was
 //! written, `:list` the inputs the session holds, `:history` the lines
 //! typed in the line editor.
+
+use std::path::PathBuf;
 
 use rustyline::history::{FileHistory, History};
 
@@ -10,13 +13,90 @@ use crate::lang::walk::{bound_name, same_level};
 
 use super::console::Console;
 use super::excerpt::{item_text, location};
-use super::interactive::history_path;
-use super::outcome::{CommandError, CommandResult, Flow};
-use super::report::{counted, number};
+use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
+use super::rendering::Size;
+use super::report::{self, counted, number};
 use super::session::Session;
 
 /// How many lines `:history` prints unless told.
 const HISTORY_SHOWN: usize = 20;
+
+pub(crate) fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    let numbers: Vec<String> =
+        session.numbers().iter().map(|(name, value)| format!("{name} = {}", number(*value))).collect();
+    let objects: Vec<String> = session.objects().iter().map(|(name, what)| format!("{name} ({what})")).collect();
+    let procedures: Vec<String> =
+        session.procedures().iter().map(|(name, params)| format!("{name}({})", params.join(", "))).collect();
+    console.say(format!("numbers:    {}", numbers.join(", ")));
+    let no_objects = format!("none yet: `object {} = sphere ... end` names one", free_name(session, "ball"));
+    console.say(format!("objects:    {}", or_none(&objects, &no_objects)));
+    let no_procedures = "none yet: see `:help proc`";
+    console.say(format!("procedures: {}", or_none(&procedures, no_procedures)));
+    Ok(Flow::Continue)
+}
+
+/// `base`, or `base2`, `base3`...: the first that names nothing yet, so an
+/// example never suggests redefining a number or a procedure.
+fn free_name(session: &Session, base: &str) -> String {
+    let taken = |name: &str| {
+        session.numbers().iter().any(|(n, _)| &**n == name) || session.procedures().iter().any(|(n, _)| &**n == name)
+    };
+    let mut candidates = std::iter::once(base.to_string()).chain((2..).map(|n| format!("{base}{n}")));
+    candidates.find(|name| !taken(name)).unwrap_or_default()
+}
+
+fn or_none(items: &[String], none: &str) -> String {
+    if items.is_empty() { none.to_string() } else { items.join(", ") }
+}
+
+pub(crate) fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    let scene = session.scene();
+    let default = |given: bool| {
+        if given { "" } else { " (default: none given yet)" }
+    };
+    console.say(format!(
+        "camera:   distance {}, angle {}{}",
+        number(scene.camera.distance),
+        number(scene.camera.angle),
+        default(session.has_camera())
+    ));
+    console.say(format!("ambient:  {}{}", number(scene.ambient), default(session.has_ambient())));
+    console.say(format!("lights:   {}", scene.lights.len()));
+    for (index, light) in scene.lights.iter().enumerate() {
+        let d = light.direction;
+        console.say(format!(
+            "  {}. towards ({}, {}, {}), intensity {}",
+            index + 1,
+            number(d.x),
+            number(d.y),
+            number(d.z),
+            number(light.intensity)
+        ));
+    }
+    let counts = scene.counts();
+    let mut objects = format!(
+        "objects:  {} ({}, {}, {})",
+        report::objects(&counts),
+        counted(counts.spheres, "sphere"),
+        counted(counts.planes, "plane"),
+        counted(counts.boxes, "box")
+    );
+    if !scene.timed_primitives.is_empty() {
+        objects.push_str(&format!(", {} depending on time", scene.timed_primitives.len()));
+    }
+    console.say(objects);
+    let s = session.settings();
+    console.say(format!(
+        "settings: time {}, size {}, depth {}, samples {}",
+        number(s.time),
+        Size { width: s.width, height: s.height },
+        s.depth,
+        s.samples
+    ));
+    Ok(Flow::Continue)
+}
 
 /// `:show NAME`: the latest definition of a procedure, object or number,
 /// with where it came from.
@@ -84,9 +164,7 @@ fn not_defined(session: &Session, name: &str) -> CommandError {
 /// `:list`: the inputs the session holds, in the order they run, each named
 /// as messages name it (`<input 3>:1`, `<stdin>:12`) or by its file.
 pub(crate) fn list(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
-    if !arguments.is_empty() {
-        return Err(CommandError::Usage("this command takes no arguments".to_string()));
-    }
+    no_arguments(arguments)?;
     let sources = session.sources();
     let rows: Vec<(String, String)> = session
         .inputs()
@@ -138,6 +216,14 @@ pub(crate) fn history(_session: &mut Session, arguments: &[String], console: &mu
         console.say("the history is empty");
     }
     Ok(Flow::Continue)
+}
+
+/// `rayrepl/history` in the user's data directory, created if missing;
+/// `None` if there is no such directory or it cannot be created.
+pub(crate) fn history_path() -> Option<PathBuf> {
+    let directory = dirs::data_dir()?.join("rayrepl");
+    std::fs::create_dir_all(&directory).ok()?;
+    Some(directory.join("history"))
 }
 
 /// `text` after `label`, its other lines indented to line up with its first.

@@ -18,12 +18,15 @@ use super::cancel::CancelSwitch;
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::editor::RayHelper;
+use super::file_commands::load_reporting;
+use super::inputs::handle_input;
+use super::inspect::history_path;
+use super::options::{SessionOptions, new_session};
 use super::preview::Preview;
 use super::report::counted;
 use super::session::Session;
 use super::syntax::continuation_prompt;
 use super::write_back;
-use super::{SessionOptions, handle_input, new_session};
 
 /// The prompt for a new input, after its number.
 const PROMPT: &str = "ray> ";
@@ -102,7 +105,7 @@ fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOption
     let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
     let mut session = new_session(&SessionOptions { limits, ..options.clone() }, console.cancel);
     if let Some(path) = &options.initial_file {
-        let _ = commands::load_reporting(&mut session, path, console);
+        let _ = load_reporting(&mut session, path, console);
     }
     Repl { lines, session, inputs: 0 }.run(console)
 }
@@ -291,12 +294,4 @@ fn new_editor(color: bool) -> rustyline::Result<Editor<RayHelper, FileHistory>> 
     let mut editor = Editor::with_config(config)?;
     editor.set_helper(Some(RayHelper::new(color)));
     Ok(editor)
-}
-
-/// `rayrepl/history` in the user's data directory, created if missing;
-/// `None` if there is no such directory or it cannot be created.
-pub(super) fn history_path() -> Option<PathBuf> {
-    let directory = dirs::data_dir()?.join("rayrepl");
-    std::fs::create_dir_all(&directory).ok()?;
-    Some(directory.join("history"))
 }

@@ -1,10 +1,13 @@
-//! What a command gives back: go on or leave, or why it failed. Its own
-//! module so that the modules holding commands need not import the table
-//! of commands that lists them.
+//! What a command gives back: go on or leave, or why it failed, and the
+//! checks of arguments that give the reasons. Its own module so that the
+//! modules holding commands need not import the table of commands that
+//! lists them.
 
 use crate::lang::Diagnostic;
+use crate::settings::{HEIGHT, Limit, WIDTH, check_size};
 
 use super::console::Console;
+use super::rendering::Size;
 use super::session::Session;
 
 /// What the session does after a command.
@@ -40,5 +43,46 @@ impl CommandError {
             CommandError::Program(diagnostic) => console.diagnostic(&diagnostic, session.sources()),
             CommandError::Cancelled(message) => console.say(message),
         }
+    }
+}
+
+/// Fails unless the command was given no arguments.
+pub(crate) fn no_arguments(arguments: &[String]) -> Result<(), CommandError> {
+    match arguments {
+        [] => Ok(()),
+        _ => Err(CommandError::Usage("this command takes no arguments".to_string())),
+    }
+}
+
+/// A whole-number setting from `text`, within `limit`.
+pub(crate) fn parse_count(text: &str, limit: &'static Limit) -> Result<u32, CommandError> {
+    limit.parse(text).map_err(usage)
+}
+
+/// A picture size from `width` and `height`, each within its limit.
+pub(crate) fn parse_size(width: &str, height: &str) -> Result<Size, CommandError> {
+    let size = Size { width: parse_count(width, &WIDTH)?, height: parse_count(height, &HEIGHT)? };
+    check_size(size.width, size.height).map_err(usage)?;
+    Ok(size)
+}
+
+/// A usage error saying `error`.
+pub(crate) fn usage(error: impl std::fmt::Display) -> CommandError {
+    CommandError::Usage(error.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::DEPTH;
+
+    #[test]
+    fn counts_and_sizes_are_checked() {
+        assert_eq!(parse_count("5", &DEPTH).ok(), Some(5));
+        assert!(parse_count("-1", &DEPTH).is_err());
+        assert!(parse_count("1001", &DEPTH).is_err());
+        assert!(parse_count("x", &DEPTH).is_err());
+        assert!(parse_size("0", "10").is_err());
+        assert!(parse_size("65535", "65535").is_err());
     }
 }

@@ -13,13 +13,13 @@ use image::RgbImage;
 use crate::playback::Timeline;
 use crate::settings::Limit;
 
-use super::commands::{explain_defaults, parse_count, render_frames, shown};
 use super::console::Console;
-use super::outcome::{CommandError, CommandResult, Flow};
+use super::outcome::{CommandError, CommandResult, Flow, parse_count};
 use super::preview::Preview;
+use super::render_steps::{explain_defaults, render_frames, shown};
 use super::rendering::Size;
+use super::report::show_scene_warnings;
 use super::session::Session;
-use super::show_scene_warnings;
 
 /// Frames played when none are asked for: two seconds at the default rate.
 const DEFAULT_FRAMES: u32 = 24;

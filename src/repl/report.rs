@@ -8,7 +8,10 @@ use crate::lang::number::Number;
 pub(crate) use crate::lang::number::format_number as number;
 use crate::scene::Counts;
 
+use crate::lint::Picture;
+
 use super::console::Console;
+use super::rendering::Size;
 use super::session::{Accepted, Session};
 
 /// Above this many definitions in one input, they are listed on one line.
@@ -143,6 +146,28 @@ impl Display for Counted<'_> {
             Counted(count, "box") => write!(f, "{count} boxes"),
             Counted(count, noun) => write!(f, "{count} {noun}s"),
         }
+    }
+}
+
+/// Shows what `print` wrote since the last time, and how many lines were
+/// left out past the limit.
+pub(crate) fn show_printed(session: &Session, console: &mut Console) {
+    let mut printed = session.take_printed();
+    for line in printed.take_lines() {
+        console.printed(line.render(session.sources()));
+    }
+    if let Some(note) = printed.hidden_note() {
+        console.printed_note(note);
+    }
+}
+
+/// Shows the warnings about the scene that a render of `size` (an
+/// animation's frames, if `animation`) should heed, each cause once.
+pub(crate) fn show_scene_warnings(session: &mut Session, console: &mut Console, size: Size, animation: bool) {
+    let screen = session.settings().screen;
+    let picture = Picture { width: size.width, height: size.height, screen, animation };
+    for warning in session.scene_warnings(&picture) {
+        console.diagnostic(&warning, session.sources());
     }
 }
 

@@ -15,8 +15,10 @@ use crate::lang::{Diagnostic, Entry, SourceId, parse_entries};
 use super::cancel::{ArmedSwitch, CancelSwitch};
 use super::commands::{self, Flow, is_command};
 use super::console::Console;
+use super::file_commands::load_reporting;
+use super::inputs::report_input;
+use super::options::{SessionOptions, new_session};
 use super::session::Session;
-use super::{SessionOptions, new_session, report_input};
 use crate::output::INTERRUPTED_EXIT_CODE;
 use lines::{Line, Lines};
 
@@ -83,7 +85,7 @@ fn run_in(session: &mut Session, console: &mut Console, input: impl BufRead, opt
     let mut script =
         Script { session, console, keep_going: options.keep_going, errors: 0, wrote: false, interrupted: false };
     if let Some(path) = &options.initial_file {
-        let loaded = commands::load_reporting(script.session, path, script.console);
+        let loaded = load_reporting(script.session, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
             return Ended::Status(1);
         }
@@ -232,7 +234,7 @@ impl Script<'_, '_> {
         match result {
             Ok(Flow::Quit) => Step::Stop,
             Ok(Flow::Continue) => {
-                self.wrote |= commands::writes_files(line);
+                self.wrote |= commands::writes_pictures(line);
                 self.after(true)
             }
             Err(()) => self.after(false),

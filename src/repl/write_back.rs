@@ -23,10 +23,10 @@ use crate::render::Screen;
 use crate::settings::RenderSettings;
 
 use super::cancel::cancel_flag;
-use super::commands::write_failure;
 use super::console::Console;
 use super::excerpt::{item_text, location, raw};
 use super::outcome::{CommandError, CommandResult, Flow};
+use super::render_steps::write_failure;
 use super::report::counted;
 use super::session::{Input, Session};
 

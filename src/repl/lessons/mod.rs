@@ -12,10 +12,10 @@ use image::RgbImage;
 
 use crate::lang::{Diagnostic, Limits};
 
-use super::commands::shown;
 use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::preview::{Preview, side_by_side};
+use super::render_steps::shown;
 use super::rendering::{RenderError, Size, render_image};
 use super::session::Session;
 use crate::render::SceneGeometry;

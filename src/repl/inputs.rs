@@ -1,0 +1,57 @@
+//! Running one input of program text and saying what it did, or its error.
+
+use crate::lang::Diagnostic;
+
+use super::commands;
+use super::console::Console;
+use super::lessons;
+use super::report::{self, show_printed};
+use super::session::{Accepted, Session};
+
+/// Runs one input of program text and prints what it did, or its error.
+/// `Err(())` tells the caller it failed (the session is unchanged).
+pub(crate) fn handle_input(
+    session: &mut Session,
+    console: &mut Console,
+    name: &str,
+    text: &str,
+    line_offset: usize,
+) -> Result<(), ()> {
+    let result = session.submit(name, text, line_offset);
+    report_input(session, console, text, result)
+}
+
+/// Prints what the input `text` did (`result`), or its error.
+/// `Err(())` tells the caller it failed (the session is unchanged).
+pub(crate) fn report_input(
+    session: &mut Session,
+    console: &mut Console,
+    text: &str,
+    result: Result<Accepted, Diagnostic>,
+) -> Result<(), ()> {
+    show_printed(session, console);
+    match result {
+        Ok(accepted) => {
+            for warning in &accepted.warnings {
+                console.diagnostic(warning, session.sources());
+            }
+            report::confirm(&accepted, session, console);
+            lessons::check_input(session, console);
+            Ok(())
+        }
+        Err(error) => {
+            console.diagnostic(&error, session.sources());
+            if let Some(command) = bare_command(text) {
+                console.note(format!("commands start with a colon: did you mean `{command}`?"));
+            }
+            Err(())
+        }
+    }
+}
+
+/// The command a learner probably meant by typing its name without the
+/// colon (`help`, `quit`), if the input is just that.
+fn bare_command(text: &str) -> Option<&'static str> {
+    let command = commands::find(&format!(":{}", text.trim()))?;
+    Some(command.topic.name)
+}

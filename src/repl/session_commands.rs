@@ -1,0 +1,47 @@
+//! The commands that change the session as a whole: `:undo`, `:reset` and
+//! `:quit`.
+
+use super::console::Console;
+use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
+use super::report::{self, counted};
+use super::session::{Session, Undone};
+
+pub(crate) fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
+        Undone::Nothing => console.say("nothing to undo"),
+        Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
+        Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
+        Undone::Reload(path) => console.say(format!("took back the :reload of {}", path.display())),
+    }
+    console.say(format!("{} in the scene", counted(report::objects(&session.counts()), "object")));
+    Ok(Flow::Continue)
+}
+
+pub(crate) fn reset(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    session.reset();
+    console.say("the session is empty again (`:undo` brings it all back)");
+    Ok(Flow::Continue)
+}
+
+pub(crate) fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) -> CommandResult {
+    no_arguments(arguments)?;
+    Ok(Flow::Quit)
+}
+
+fn first_line(text: &str) -> String {
+    let mut lines = text.lines().filter(|line| !line.trim().is_empty());
+    let first = lines.next().unwrap_or("").trim().to_string();
+    if lines.next().is_some() { format!("{first} ...") } else { first }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_input_is_named_by_its_first_line() {
+        assert_eq!(first_line("\nput sphere\n  center"), "put sphere ...");
+    }
+}
