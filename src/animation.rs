@@ -1,5 +1,6 @@
-//! Rendering an animation: frame `k` is the scene evaluated with
-//! `time = k`. Shared by the command line (`--anim`) and the session
+//! Rendering an animation: frame `k` is the scene evaluated at the time its
+//! timeline gives frame `k` (`time = k` unless `--time-start` or
+//! `--time-step` say otherwise). Shared by the command line (`--anim`) and the session
 //! (`:anim`).
 //!
 //! Three savings, each leaving every frame byte-identical to rendering it
@@ -46,7 +47,7 @@ impl<E> From<Cancelled> for AnimationError<E> {
 
 /// Renders the frames `frames` in order and hands each image to `sink`.
 ///
-/// `evaluate(k, skip_static)` gives the scene at `time = k`; with
+/// `evaluate(k, skip_static)` gives the scene of frame `k`; with
 /// `skip_static` it may leave out the primitives that do not depend on
 /// `time` (the first frame's are reused). Progress counts every pixel of
 /// every frame, copied or traced. Returns the rays traced over all frames.

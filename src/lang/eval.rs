@@ -13,9 +13,10 @@
 //!   animation can build the static part of the scene once;
 //! - atomicity: [`Interpreter::run`] either succeeds or leaves the interpreter
 //!   exactly as it was, which is what an interactive session needs (SPEC 7).
-//!   It is cheap: the maps of names are small and hold shared values, so they
-//!   are cloned; the scene's vectors only grow during a run, so their lengths
-//!   are recorded and they are truncated back on error.
+//!   It is cheap: each change a run makes to a map of names (globals,
+//!   procedures) is journaled with the value it replaced, and a failed run
+//!   undoes the journal newest first; the scene's vectors only grow during a
+//!   run, so their lengths are recorded and they are truncated back.
 
 mod env;
 mod errors;

@@ -52,10 +52,12 @@ struct GeometryHit {
 }
 
 impl GeometryHit {
-    /// Whether this hit of a timed object goes before `fixed`, a hit of a
-    /// fixed object at most [`bvh::reach_past`] nearer: when it is nearer
-    /// by more than that, or when it is on a sphere or a box and `fixed` on
-    /// a plane (the order of [`Geometry::closest_hit`] in one list).
+    /// Whether this hit, on an object that depends on `time`, goes before
+    /// `fixed`, the nearest hit on the static objects (which may be up to
+    /// [`bvh::reach_past`] farther than this one and still count as level
+    /// with it). It does when it is nearer by more than that tolerance, or
+    /// when it is on a sphere or a box and `fixed` is on a plane: the order
+    /// [`Geometry::closest_hit`] gives hits at the same distance in one list.
     fn goes_before_fixed(&self, fixed: GeometryHit) -> bool {
         self.t < bvh::nearer_than(fixed.t)
             || matches!((self.object, fixed.object), (ObjectId::Bounded(_), ObjectId::Plane(_)))
@@ -73,7 +75,7 @@ pub struct SurfaceHit {
     pub normal: DVec3,
     /// The material of the object hit.
     pub material: Material,
-    /// Whether the object hit depends on `time` (is in [`SceneGeometry::timed`]).
+    /// Whether the object hit depends on `time` (is in the part of the [`SceneGeometry`] rebuilt at every frame).
     pub timed: bool,
     /// Which object was hit: equal for two hits of one render exactly when
     /// they are on the same object.

@@ -17,9 +17,9 @@ use super::picture_commands;
 use super::play;
 use super::reload;
 use super::report::show_printed;
-use super::session::Session;
 use super::session_commands;
 use super::setting_commands;
+use super::shell::Shell;
 use super::write_back;
 
 /// The page in `help_pages/commands/NAME.txt`.
@@ -38,7 +38,7 @@ pub(crate) struct Command {
     /// What files its arguments name.
     pub files: Files,
     /// Runs it on its arguments.
-    run: fn(&mut Session, &[String], &mut Console) -> CommandResult,
+    run: fn(&mut Shell, &[String], &mut Console) -> CommandResult,
 }
 
 /// What files a command's arguments name, for file name completion and for
@@ -384,27 +384,26 @@ pub(crate) fn writes_pictures(line: &str) -> bool {
 
 /// Runs the command on `line`, reporting any failure on the console.
 /// Returns `Err(())` if it failed, so scripts can count errors.
-pub(crate) fn execute(session: &mut Session, line: &str, console: &mut Console) -> Result<Flow, ()> {
-    let result =
-        split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(session, &words, console));
-    show_printed(session, console);
+pub(crate) fn execute(shell: &mut Shell, line: &str, console: &mut Console) -> Result<Flow, ()> {
+    let result = split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(shell, &words, console));
+    show_printed(&shell.session, console);
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
-            error.report(session, console);
+            error.report(&shell.session, console);
             Err(())
         }
     }
 }
 
-fn dispatch(session: &mut Session, words: &[String], console: &mut Console) -> CommandResult {
+fn dispatch(shell: &mut Shell, words: &[String], console: &mut Console) -> CommandResult {
     let Some((name, arguments)) = words.split_first().filter(|(name, _)| name.as_str() != ":") else {
         return Err(CommandError::Failed("type a command name after `:`, for example `:help`".to_string()));
     };
     let Some(command) = find(name) else {
         return Err(unknown_command(name));
     };
-    (command.run)(session, arguments, console).map_err(|error| match error {
+    (command.run)(shell, arguments, console).map_err(|error| match error {
         CommandError::Usage(problem) => CommandError::Usage(format!("{problem}\nusage: {}", command.usage)),
         other => other,
     })
@@ -452,7 +451,7 @@ pub(crate) fn split_arguments(line: &str) -> Result<Vec<String>, String> {
 }
 
 /// `:help [NAME]`: the overview, or the page about one name.
-fn help_command(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+fn help_command(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
         [] => console.say(help::overview(&help_pages())),
         [name] => match help::find(name, &help_pages()) {

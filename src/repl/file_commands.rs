@@ -9,8 +9,10 @@ use super::picture_commands::render_command;
 use super::reload;
 use super::report::{self, show_printed};
 use super::session::Session;
+use super::shell::Shell;
 
-pub(crate) fn load(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn load(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let [file] = arguments else {
         let problem = if arguments.is_empty() {
             "give the file to load"
@@ -43,6 +45,6 @@ fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> Comma
 }
 
 /// `:watch FILE`, rendering each version as `:render` does.
-pub(crate) fn watch(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
-    reload::watch(session, arguments, console, render_command)
+pub(crate) fn watch(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    reload::watch(shell, arguments, console, render_command)
 }

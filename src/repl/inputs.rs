@@ -6,29 +6,31 @@ use super::commands;
 use super::console::Console;
 use super::lessons;
 use super::report::{self, show_printed};
-use super::session::{Accepted, Session};
+use super::session::Accepted;
+use super::shell::Shell;
 
 /// Runs one input of program text and prints what it did, or its error.
 /// `Err(())` tells the caller it failed (the session is unchanged).
 pub(crate) fn handle_input(
-    session: &mut Session,
+    shell: &mut Shell,
     console: &mut Console,
     name: &str,
     text: &str,
     line_offset: usize,
 ) -> Result<(), ()> {
-    let result = session.submit(name, text, line_offset);
-    report_input(session, console, text, result)
+    let result = shell.session.submit(name, text, line_offset);
+    report_input(shell, console, text, result)
 }
 
 /// Prints what the input `text` did (`result`), or its error.
 /// `Err(())` tells the caller it failed (the session is unchanged).
 pub(crate) fn report_input(
-    session: &mut Session,
+    shell: &mut Shell,
     console: &mut Console,
     text: &str,
     result: Result<Accepted, Diagnostic>,
 ) -> Result<(), ()> {
+    let session = &shell.session;
     show_printed(session, console);
     match result {
         Ok(accepted) => {
@@ -36,7 +38,7 @@ pub(crate) fn report_input(
                 console.diagnostic(warning, session.sources());
             }
             report::confirm(&accepted, session, console);
-            lessons::check_input(session, console);
+            lessons::check_input(shell, console);
             Ok(())
         }
         Err(error) => {

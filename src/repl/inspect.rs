@@ -17,11 +17,13 @@ use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
 use super::rendering::Size;
 use super::report::{self, counted, number};
 use super::session::Session;
+use super::shell::Shell;
 
 /// How many lines `:history` prints unless told.
 const HISTORY_SHOWN: usize = 20;
 
-pub(crate) fn env(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn env(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     no_arguments(arguments)?;
     let numbers: Vec<String> =
         session.numbers().iter().map(|(name, value)| format!("{name} = {}", number(*value))).collect();
@@ -50,7 +52,8 @@ fn or_none(items: &[String], none: &str) -> String {
     if items.is_empty() { none.to_string() } else { items.join(", ") }
 }
 
-pub(crate) fn scene(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn scene(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     no_arguments(arguments)?;
     let scene = session.scene();
     let default = |given: bool| {
@@ -100,7 +103,8 @@ pub(crate) fn scene(session: &mut Session, arguments: &[String], console: &mut C
 
 /// `:show NAME`: the latest definition of a procedure, object or number,
 /// with where it came from.
-pub(crate) fn show(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn show(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let [name] = arguments else {
         return Err(CommandError::Usage("give the name of a procedure, an object or a number".to_string()));
     };
@@ -163,7 +167,8 @@ fn not_defined(session: &Session, name: &str) -> CommandError {
 
 /// `:list`: the inputs the session holds, in the order they run, each named
 /// as messages name it (`<input 3>:1`, `<stdin>:12`) or by its file.
-pub(crate) fn list(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn list(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     no_arguments(arguments)?;
     let sources = session.sources();
     let rows: Vec<(String, String)> = session
@@ -191,7 +196,7 @@ pub(crate) fn list(session: &mut Session, arguments: &[String], console: &mut Co
 
 /// `:history [N]`: the last N lines typed in the line editor (in this
 /// session and the ones before), from its history file.
-pub(crate) fn history(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn history(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
     let shown = match arguments {
         [] => HISTORY_SHOWN,
         [count] => {

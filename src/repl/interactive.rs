@@ -25,6 +25,7 @@ use super::options::{SessionOptions, new_session};
 use super::preview::Preview;
 use super::report::counted;
 use super::session::Session;
+use super::shell::Shell;
 use super::syntax::continuation_prompt;
 use super::write_back;
 
@@ -103,11 +104,11 @@ pub fn run_typed(
 fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
     // A flag cannot be given any more: errors point to `:limits` instead.
     let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
-    let mut session = new_session(&SessionOptions { limits, ..options.clone() }, console.cancel);
+    let mut shell = Shell::new(new_session(&SessionOptions { limits, ..options.clone() }, console.cancel));
     if let Some(path) = &options.initial_file {
-        let _ = load_reporting(&mut session, path, console);
+        let _ = load_reporting(&mut shell.session, path, console);
     }
-    Repl { lines, session, inputs: 0 }.run(console)
+    Repl { lines, shell, inputs: 0 }.run(console)
 }
 
 /// Where the session's lines come from: the line editor, or lines given in
@@ -170,7 +171,7 @@ impl<I: Iterator<Item = String>> Lines for Typed<I> {
 /// The session and the lines that feed it.
 struct Repl<L> {
     lines: L,
-    session: Session,
+    shell: Shell,
     /// Inputs submitted so far, to name each one in diagnostics.
     inputs: usize,
 }
@@ -184,7 +185,7 @@ impl<L: Lines> Repl<L> {
         loop {
             let prompt = if pending.is_empty() { self.prompt() } else { continuation_prompt(&pending) };
             let fixing = !to_fix.is_empty();
-            match self.lines.read(&prompt, &std::mem::take(&mut to_fix), &pending, &self.session) {
+            match self.lines.read(&prompt, &std::mem::take(&mut to_fix), &pending, &self.shell.session) {
                 Ok(Line { text: line, typed }) => {
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
@@ -194,9 +195,9 @@ impl<L: Lines> Repl<L> {
                             self.inputs += 1;
                         }
                         let armed = console.cancel.map(|switch| switch.arm());
-                        let flow = commands::execute(&mut self.session, &line, console);
+                        let flow = commands::execute(&mut self.shell, &line, console);
                         drop(armed);
-                        let unwritten = self.session.unwritten();
+                        let unwritten = self.shell.session.unwritten();
                         if flow == Ok(Flow::Quit) && leave(&pending, unwritten, &mut quit_warned, ":quit", console) {
                             return Ok(());
                         }
@@ -234,7 +235,7 @@ impl<L: Lines> Repl<L> {
                     quit_warned = false;
                 }
                 Err(ReadlineError::Eof) => {
-                    if leave(&pending, self.session.unwritten(), &mut quit_warned, "Ctrl-D", console) {
+                    if leave(&pending, self.shell.session.unwritten(), &mut quit_warned, "Ctrl-D", console) {
                         return Ok(());
                     }
                 }
@@ -257,7 +258,7 @@ impl<L: Lines> Repl<L> {
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
         let _armed = console.cancel.map(|switch| switch.arm());
-        let _ = handle_input(&mut self.session, console, &name, input, 0);
+        let _ = handle_input(&mut self.shell, console, &name, input, 0);
     }
 }
 

@@ -41,6 +41,7 @@ mod script;
 mod session;
 mod session_commands;
 mod setting_commands;
+mod shell;
 mod syntax;
 mod write_back;
 

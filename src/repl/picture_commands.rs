@@ -16,9 +16,10 @@ use super::preview::{PreviewSize, mark_pixel};
 use super::render_steps::{duration, explain_defaults, render_frames, render_scene, shown, write_failure};
 use super::rendering::{Size, render_options};
 use super::report::{counted, show_scene_warnings};
-use super::session::Session;
+use super::shell::Shell;
 
-pub(crate) fn render_command(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn render_command(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let configured = Size { width: session.settings().width, height: session.settings().height };
     let size = match arguments {
         [] => shown(console).map_or(configured, |preview| preview.render_size(configured)),
@@ -30,7 +31,7 @@ pub(crate) fn render_command(session: &mut Session, arguments: &[String], consol
     explain_defaults(session, console);
     show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    session.remember_picture(&image);
+    shell.last_picture = Some(image.clone());
     match shown(console) {
         Some(preview) => {
             preview.show(&image).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
@@ -41,7 +42,7 @@ pub(crate) fn render_command(session: &mut Session, arguments: &[String], consol
     Ok(Flow::Continue)
 }
 
-pub(crate) fn preview_command(_session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn preview_command(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
     let Some(preview) = console.preview.as_mut() else {
         return Err(CommandError::Failed(
             "previews need a terminal on standard output (and no `--no-preview`)".to_string(),
@@ -62,11 +63,12 @@ pub(crate) fn preview_command(_session: &mut Session, arguments: &[String], cons
 
 /// `:pick X Y`: why pixel (X, Y) of the last picture has its colour, the
 /// pixel marked on the picture.
-pub(crate) fn pick(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn pick(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &shell.session;
     let [x, y] = arguments else {
         return Err(CommandError::Usage("give the pixel's X (from the left) and Y (from the top)".to_string()));
     };
-    let Some(picture) = session.last_picture() else {
+    let Some(picture) = &shell.last_picture else {
         return Err(CommandError::Failed("no picture yet: `:render` first, then pick one of its pixels".to_string()));
     };
     let size = Size { width: picture.width(), height: picture.height() };
@@ -81,7 +83,6 @@ pub(crate) fn pick(session: &mut Session, arguments: &[String], console: &mut Co
     let interpreter = session.replay_recording_calls().map_err(|d| CommandError::Program(Box::new(d)))?;
     let options = render_options(size, session.settings());
     let explanation = ExplainedScene::new(&interpreter, session.sources(), &options).explain(x, y);
-    let picture = session.last_picture().expect("checked above");
     if let Some(preview) = shown(console) {
         let marked = mark_pixel(picture, x, y);
         preview.show(&marked).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
@@ -94,7 +95,8 @@ pub(crate) fn pick(session: &mut Session, arguments: &[String], console: &mut Co
     Ok(Flow::Continue)
 }
 
-pub(crate) fn save(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn save(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let (file, size) = match arguments {
         [file] => (file, Size { width: session.settings().width, height: session.settings().height }),
         [file, width, height] => (file, parse_size(width, height)?),
@@ -110,13 +112,14 @@ pub(crate) fn save(session: &mut Session, arguments: &[String], console: &mut Co
     explain_defaults(session, console);
     show_scene_warnings(session, console, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
-    session.remember_picture(&image);
+    shell.last_picture = Some(image.clone());
     output::write_image_cancellable(&path, &image, cancel_flag(console.cancel)).map_err(write_failure)?;
     console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)
 }
 
-pub(crate) fn anim(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn anim(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let [frames, file, options @ ..] = arguments else {
         return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
     };

@@ -19,7 +19,7 @@ use super::preview::Preview;
 use super::render_steps::{explain_defaults, render_frames, shown};
 use super::rendering::Size;
 use super::report::show_scene_warnings;
-use super::session::Session;
+use super::shell::Shell;
 
 /// Frames played when none are asked for: two seconds at the default rate.
 const DEFAULT_FRAMES: u32 = 24;
@@ -36,7 +36,8 @@ const PLAY_BYTES: u64 = 512 << 20;
 const PLAY_FPS: Limit = Limit { name: "the frames a second", min: 1, max: 60, why: "a terminal redraws no faster" };
 
 /// `:play [FRAMES] [FPS]`.
-pub(crate) fn play(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn play(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let (frames, fps) = match arguments {
         [] => (DEFAULT_FRAMES, DEFAULT_FPS),
         [frames] => (parse_count(frames, &PLAY_FRAMES)?, DEFAULT_FPS),

@@ -12,12 +12,14 @@ use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::report::{self, counted};
 use super::session::Session;
+use super::shell::Shell;
 
 /// A command that renders the session, as `:render` does.
-pub(crate) type Render = fn(&mut Session, &[String], &mut Console) -> CommandResult;
+pub(crate) type Render = fn(&mut Shell, &[String], &mut Console) -> CommandResult;
 
 /// `:reload`: the file of the last `:load`, as it is now.
-pub(crate) fn reload(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn reload(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     if !arguments.is_empty() {
         return Err(CommandError::Usage("`:reload` reads the file of the last `:load` again".to_string()));
     }
@@ -34,12 +36,7 @@ pub(crate) fn reload(session: &mut Session, arguments: &[String], console: &mut 
 /// again at every save, rendering with `render` each time, until Ctrl-C. A
 /// version that fails is reported and leaves the session, and the last
 /// picture, as they were.
-pub(crate) fn watch(
-    session: &mut Session,
-    arguments: &[String],
-    console: &mut Console,
-    render: Render,
-) -> CommandResult {
+pub(crate) fn watch(shell: &mut Shell, arguments: &[String], console: &mut Console, render: Render) -> CommandResult {
     let [file] = arguments else {
         return Err(CommandError::Usage("give the file to watch".to_string()));
     };
@@ -68,24 +65,24 @@ pub(crate) fn watch(
                 Ok(new) if Some(&new) == last_text.as_ref() => continue,
                 Ok(new) => new,
                 Err(error) => {
-                    error.report(session, console);
+                    error.report(&shell.session, console);
                     continue;
                 }
             };
         }
-        let loaded = reload_text(session, &path, &text, console);
+        let loaded = reload_text(&mut shell.session, &path, &text, console);
         last_text = Some(std::mem::take(&mut text));
         let interrupted = armed.pressed();
         drop(armed);
         if interrupted {
             break Ok(Flow::Continue);
         }
-        match loaded.map(|_| render(session, &[], console)) {
+        match loaded.map(|_| render(shell, &[], console)) {
             Ok(Ok(_)) => {}
             Ok(Err(error @ CommandError::Cancelled(_))) => break Err(error),
-            Ok(Err(error)) => error.report(session, console),
+            Ok(Err(error)) => error.report(&shell.session, console),
             Err(error) => {
-                error.report(session, console);
+                error.report(&shell.session, console);
                 console.note("the last good version stays: fix the file and save it again");
             }
         }

@@ -1,5 +1,6 @@
-//! Turning the session's scene into images: the one call into the renderer,
-//! with progress and cancellation around it.
+//! Turning the session's scene into images with the session's settings:
+//! the render options they give, and a render with progress and
+//! cancellation around it.
 
 use std::sync::atomic::AtomicBool;
 

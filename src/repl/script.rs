@@ -19,6 +19,7 @@ use super::file_commands::load_reporting;
 use super::inputs::report_input;
 use super::options::{SessionOptions, new_session};
 use super::session::Session;
+use super::shell::Shell;
 use crate::output::INTERRUPTED_EXIT_CODE;
 use lines::{Line, Lines};
 
@@ -56,8 +57,8 @@ pub(crate) fn run_script_keeping_session(
 ) -> (i32, Session) {
     let mut console = Console::new(out, err);
     console.cancel = CancelSwitch::install();
-    let mut session = new_session(options, console.cancel);
-    let ended = run_in(&mut session, &mut console, input, options);
+    let mut shell = Shell::new(new_session(options, console.cancel));
+    let ended = run_in(&mut shell, &mut console, input, options);
     drop(console);
     let code = match ended {
         Ended::Status(code) => code,
@@ -69,7 +70,7 @@ pub(crate) fn run_script_keeping_session(
             0
         }
     };
-    (code, session)
+    (code, shell.session)
 }
 
 /// How a script ended.
@@ -80,12 +81,12 @@ enum Ended {
     WithoutPicture,
 }
 
-/// Runs the script in `session`, as [`run_script`] says.
-fn run_in(session: &mut Session, console: &mut Console, input: impl BufRead, options: &SessionOptions) -> Ended {
+/// Runs the script in `shell`, as [`run_script`] says.
+fn run_in(shell: &mut Shell, console: &mut Console, input: impl BufRead, options: &SessionOptions) -> Ended {
     let mut script =
-        Script { session, console, keep_going: options.keep_going, errors: 0, wrote: false, interrupted: false };
+        Script { shell, console, keep_going: options.keep_going, errors: 0, wrote: false, interrupted: false };
     if let Some(path) = &options.initial_file {
-        let loaded = load_reporting(script.session, path, script.console);
+        let loaded = load_reporting(&mut script.shell.session, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
             return Ended::Status(1);
         }
@@ -125,7 +126,7 @@ enum Step {
 
 /// A script being run.
 struct Script<'s, 'c> {
-    session: &'s mut Session,
+    shell: &'s mut Shell,
     console: &'s mut Console<'c>,
     keep_going: bool,
     errors: usize,
@@ -200,7 +201,9 @@ impl Script<'_, '_> {
         let Some(&first_line) = ready.first_lines.first() else { return Step::Next };
         let armed = self.console.cancel.map(|switch| switch.arm());
         let sources: Vec<SourceId> = (ready.entries.iter().zip(&ready.first_lines))
-            .map(|(entry, first_line)| self.session.add_source(SCRIPT_NAME, entry.text(), first_line.saturating_sub(1)))
+            .map(|(entry, first_line)| {
+                self.shell.session.add_source(SCRIPT_NAME, entry.text(), first_line.saturating_sub(1))
+            })
             .collect();
         let parsed = parse_entries(&mut ready.entries, &sources);
         if self.stopped_by_ctrl_c(armed, first_line) {
@@ -217,8 +220,8 @@ impl Script<'_, '_> {
 
     fn input(&mut self, text: &str, source: SourceId, parsed: Result<Program, Diagnostic>, first_line: usize) -> Step {
         let armed = self.console.cancel.map(|switch| switch.arm());
-        let accepted = self.session.submit_program(source, parsed);
-        let result = report_input(self.session, self.console, text, accepted);
+        let accepted = self.shell.session.submit_program(source, parsed);
+        let result = report_input(self.shell, self.console, text, accepted);
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;
         }
@@ -227,7 +230,7 @@ impl Script<'_, '_> {
 
     fn command(&mut self, line: &str, number: usize) -> Step {
         let armed = self.console.cancel.map(|switch| switch.arm());
-        let result = commands::execute(self.session, line, self.console);
+        let result = commands::execute(self.shell, line, self.console);
         if self.stopped_by_ctrl_c(armed, number) {
             return Step::Stop;
         }

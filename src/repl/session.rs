@@ -9,8 +9,6 @@ use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use image::RgbImage;
-
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items};
@@ -18,7 +16,6 @@ use crate::lint::{Allowed, Check, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
-use super::lessons::Tutor;
 use super::rendering::RenderSettings;
 
 /// One accepted input, kept so the session can be rebuilt without it, and
@@ -83,7 +80,10 @@ pub(crate) struct Vocabulary {
     pub procedures: Vec<(String, Vec<String>)>,
 }
 
-/// An interactive session or a script run: everything that accumulates.
+/// The state of the language in an interactive session or a script run:
+/// the inputs, the scene they build, the settings, history and undo. What a
+/// front-end keeps beside it (the lesson followed, the last picture) is in
+/// [`super::shell::Shell`].
 #[derive(Debug)]
 pub struct Session {
     interpreter: Interpreter,
@@ -112,10 +112,6 @@ pub struct Session {
     /// What `print` wrote and was not yet shown (also by the frames of an
     /// animation, which only read the session).
     printed: RefCell<PrintLog>,
-    /// The lesson being followed, if any (`:lesson`).
-    pub(crate) tutor: Tutor,
-    /// The last picture rendered or saved, whose pixels `:pick` explains.
-    last_picture: Option<RgbImage>,
 }
 
 impl Session {
@@ -136,8 +132,6 @@ impl Session {
             printed: RefCell::default(),
             counts: Counts::default(),
             interrupt: None,
-            tutor: Tutor::default(),
-            last_picture: None,
         }
     }
 
@@ -388,16 +382,6 @@ impl Session {
         let mut interpreter = self.replay(interpreter, &self.history)?;
         interpreter.take_printed();
         Ok(interpreter)
-    }
-
-    /// Keeps `image`, just rendered or saved, for `:pick`.
-    pub(crate) fn remember_picture(&mut self, image: &RgbImage) {
-        self.last_picture = Some(image.clone());
-    }
-
-    /// The last picture rendered or saved.
-    pub(crate) fn last_picture(&self) -> Option<&RgbImage> {
-        self.last_picture.as_ref()
     }
 
     /// Replaces the interpreter by one that ran `history` at the current

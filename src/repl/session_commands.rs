@@ -4,9 +4,11 @@
 use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
 use super::report::{self, counted};
-use super::session::{Session, Undone};
+use super::session::Undone;
+use super::shell::Shell;
 
-pub(crate) fn undo(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn undo(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     no_arguments(arguments)?;
     match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
         Undone::Nothing => console.say("nothing to undo"),
@@ -18,14 +20,15 @@ pub(crate) fn undo(session: &mut Session, arguments: &[String], console: &mut Co
     Ok(Flow::Continue)
 }
 
-pub(crate) fn reset(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn reset(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     no_arguments(arguments)?;
     session.reset();
     console.say("the session is empty again (`:undo` brings it all back)");
     Ok(Flow::Continue)
 }
 
-pub(crate) fn quit(_session: &mut Session, arguments: &[String], _console: &mut Console) -> CommandResult {
+pub(crate) fn quit(_shell: &mut Shell, arguments: &[String], _console: &mut Console) -> CommandResult {
     no_arguments(arguments)?;
     Ok(Flow::Quit)
 }

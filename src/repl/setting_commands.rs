@@ -8,8 +8,10 @@ use super::outcome::{CommandError, CommandResult, Flow, parse_count, parse_size,
 use super::rendering::{RenderSettings, Size};
 use super::report::number;
 use super::session::Session;
+use super::shell::Shell;
 
-pub(crate) fn time(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn time(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let [value] = arguments else {
         if arguments.is_empty() {
             console.say(format!("time = {}", number(session.settings().time)));
@@ -34,7 +36,8 @@ pub(crate) fn time(session: &mut Session, arguments: &[String], console: &mut Co
     Ok(Flow::Continue)
 }
 
-pub(crate) fn size(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn size(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     match arguments {
         [] => {}
         [width, height] => {
@@ -50,12 +53,14 @@ pub(crate) fn size(session: &mut Session, arguments: &[String], console: &mut Co
     Ok(Flow::Continue)
 }
 
-pub(crate) fn depth(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn depth(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let setting = CountSetting { name: "depth", limit: &DEPTH, set: Session::set_depth, get: |s| s.depth };
     count_setting(session, arguments, console, &setting)
 }
 
-pub(crate) fn samples(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn samples(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let setting = CountSetting { name: "samples", limit: &SAMPLES, set: Session::set_samples, get: |s| s.samples };
     count_setting(session, arguments, console, &setting)
 }
@@ -88,7 +93,8 @@ fn count_setting(
     Ok(Flow::Continue)
 }
 
-pub(crate) fn limits(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn limits(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let mut limits = session.limits();
     for pair in arguments.chunks(2) {
         let [name, value] = pair else {

@@ -29,9 +29,11 @@ use super::outcome::{CommandError, CommandResult, Flow};
 use super::render_steps::write_failure;
 use super::report::counted;
 use super::session::{Input, Session};
+use super::shell::Shell;
 
 /// `:write FILE.ray`.
-pub(crate) fn write(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn write(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let session = &mut shell.session;
     let [file] = arguments else {
         return Err(CommandError::Usage("give the name of the .ray file to write".to_string()));
     };

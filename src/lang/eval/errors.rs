@@ -13,7 +13,9 @@ pub(crate) struct EvalError {
     /// What is reported.
     pub diagnostic: Diagnostic,
     /// For a too deep recursion: every active call (procedure, call site),
-    /// outermost first, summarised into a note once the sources are known.
+    /// innermost first, as they are collected while the error unwinds; the
+    /// note that summarises them once the sources are known reads them
+    /// outermost first.
     pub chain: Vec<(Rc<str>, Span)>,
 }
 

@@ -5,6 +5,7 @@
 
 mod content;
 mod progress;
+pub(crate) mod tutor;
 
 use std::sync::atomic::AtomicBool;
 
@@ -18,9 +19,11 @@ use super::preview::{Preview, side_by_side};
 use super::render_steps::shown;
 use super::rendering::{RenderError, Size, render_image};
 use super::session::Session;
+use super::shell::Shell;
 use crate::render::SceneGeometry;
 use content::{LESSONS, Lesson, Step};
 use progress::Progress;
+use tutor::Tutor;
 
 /// The width lessons' texts are wrapped to.
 const TEXT_COLUMNS: usize = 76;
@@ -29,22 +32,13 @@ const TRIES_BEFORE_EXAMPLE: u32 = 2;
 /// Columns of background between the goal picture and the learner's.
 const PICTURE_GAP: u32 = 4;
 
-/// The lesson being followed in a session, if any.
-#[derive(Debug, Default)]
-pub(crate) struct Tutor {
-    /// The lesson and step (from 0) being worked on.
-    place: Option<(usize, usize)>,
-    /// Wrong tries of the current step.
-    wrong_tries: u32,
-}
-
 /// `:lesson` lists the lessons; `:lesson N` starts (or resumes) lesson N;
 /// `:lesson stop` leaves the lesson.
-pub(crate) fn lesson(session: &mut Session, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
     match arguments {
-        [] => list(session, console),
+        [] => list(shell, console),
         [word] if word == "stop" => {
-            session.tutor = Tutor::default();
+            shell.tutor = Tutor::default();
             console.say("left the lesson; `:lesson` lists them all");
         }
         [number] => {
@@ -53,7 +47,7 @@ pub(crate) fn lesson(session: &mut Session, arguments: &[String], console: &mut 
                 .ok()
                 .filter(|n| (1..=LESSONS.len()).contains(n))
                 .ok_or_else(|| CommandError::Usage(format!("the lessons are numbered 1 to {}", LESSONS.len())))?;
-            start(session, index - 1, console)?;
+            start(shell, index - 1, console)?;
         }
         _ => return Err(CommandError::Usage("give one lesson number, or nothing to list them".to_string())),
     }
@@ -62,29 +56,29 @@ pub(crate) fn lesson(session: &mut Session, arguments: &[String], console: &mut 
 
 /// After an accepted input: checks the scene against the current step, and
 /// moves on or gives the hint.
-pub(crate) fn check_input(session: &mut Session, console: &mut Console) {
-    let Some((lesson, step)) = session.tutor.place else {
+pub(crate) fn check_input(shell: &mut Shell, console: &mut Console) {
+    let Some((lesson, step)) = shell.tutor.place else {
         return;
     };
     let current = &LESSONS[lesson].steps[step];
-    match (current.check)(session) {
+    match (current.check)(&shell.session) {
         Ok(()) => {
             console.say(format!("✓ step {} done", step + 1));
-            advance(session, console, lesson, step);
+            advance(shell, console, lesson, step);
         }
         Err(missing) => {
-            show_pictures(session, console, lesson, step);
-            session.tutor.wrong_tries += 1;
+            show_pictures(&shell.session, console, lesson, step);
+            shell.tutor.wrong_tries += 1;
             console.say(format!("not yet: {missing} (`:undo` takes your last input back)"));
             console.say(wrap(current.hint, "hint: "));
-            if session.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front {
+            if shell.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front {
                 console.say(format!("for example:\n{}", indent(current.example)));
             }
         }
     }
 }
 
-fn list(session: &Session, console: &mut Console) {
+fn list(shell: &Shell, console: &mut Console) {
     let progress = Progress::load();
     console.say("lessons (`:lesson N` starts one):");
     for (index, lesson) in LESSONS.iter().enumerate() {
@@ -92,7 +86,7 @@ fn list(session: &Session, console: &mut Console) {
         let mark = if progress.done.contains(&number) { "✓" } else { " " };
         console.say(format!("  {mark} {number}. {} ({} steps)", lesson.title, lesson.steps.len()));
     }
-    match (session.tutor.place, progress.at) {
+    match (shell.tutor.place, progress.at) {
         (Some((lesson, step)), _) => {
             console.say(format!("you are at lesson {} step {}:", lesson + 1, step + 1));
             say_step(console, &LESSONS[lesson].steps[step], step, LESSONS[lesson].steps.len());
@@ -106,31 +100,31 @@ fn list(session: &Session, console: &mut Console) {
 
 /// Starts lesson `lesson` (from 0) on a scene of its own, at the step the
 /// learner last reached in it.
-fn start(session: &mut Session, lesson: usize, console: &mut Console) -> Result<(), CommandError> {
+fn start(shell: &mut Shell, lesson: usize, console: &mut Console) -> Result<(), CommandError> {
     let progress = Progress::load();
     let step = match progress.at {
         Some((at, step)) if at == lesson + 1 && (1..=LESSONS[lesson].steps.len()).contains(&step) => step - 1,
         _ => 0,
     };
     let setup = lesson_scene(&LESSONS[lesson], step);
-    session.reset();
+    shell.session.reset();
     let mut undo = "`:undo` brings yours back";
     if !setup.trim().is_empty() {
-        if let Err(error) = session.submit(&format!("<lesson {}>", lesson + 1), &setup, 0) {
+        if let Err(error) = shell.session.submit(&format!("<lesson {}>", lesson + 1), &setup, 0) {
             // Low `:limits` can stop the lesson's own program: leave the session as it was.
-            let _ = session.undo();
+            let _ = shell.session.undo();
             return Err(CommandError::Program(Box::new(error)));
         }
         undo = "`:undo` twice brings yours back";
     }
     console.say(format!("lesson {} of {}: {}", lesson + 1, LESSONS.len(), LESSONS[lesson].title));
-    let holds = session.counts();
+    let holds = shell.session.counts();
     let lights = super::report::counted(holds.lights, "light");
     console.say(format!("starting scene: {}, {lights} (`:list` shows it; {undo})", holds.primitives_in_words()));
     if step > 0 {
         console.say(format!("going on at step {}, where you stopped", step + 1));
     }
-    begin_step(session, console, lesson, step);
+    begin_step(shell, console, lesson, step);
     Ok(())
 }
 
@@ -147,19 +141,19 @@ fn lesson_scene(lesson: &Lesson, step: usize) -> String {
 
 /// Says what step `step` asks, shows its goal, and remembers where the
 /// learner is.
-fn begin_step(session: &mut Session, console: &mut Console, lesson: usize, step: usize) {
-    session.tutor = Tutor { place: Some((lesson, step)), wrong_tries: 0 };
+fn begin_step(shell: &mut Shell, console: &mut Console, lesson: usize, step: usize) {
+    shell.tutor = Tutor { place: Some((lesson, step)), wrong_tries: 0 };
     let steps = LESSONS[lesson].steps;
     say_step(console, &steps[step], step, steps.len());
     let mut progress = Progress::load();
     progress.at = Some((lesson + 1, step + 1));
     save(&progress, console);
-    if (steps[step].check)(session).is_ok() {
+    if (steps[step].check)(&shell.session).is_ok() {
         console.say(format!("✓ step {} done: your scene already does it", step + 1));
-        advance(session, console, lesson, step);
+        advance(shell, console, lesson, step);
         return;
     }
-    show_pictures(session, console, lesson, step);
+    show_pictures(&shell.session, console, lesson, step);
 }
 
 fn say_step(console: &mut Console, step: &Step, index: usize, steps: usize) {
@@ -171,13 +165,13 @@ fn say_step(console: &mut Console, step: &Step, index: usize, steps: usize) {
 
 /// Moves past step `step` of `lesson`: to the next step, or to the end of
 /// the lesson, which is then remembered as done.
-fn advance(session: &mut Session, console: &mut Console, lesson: usize, step: usize) {
+fn advance(shell: &mut Shell, console: &mut Console, lesson: usize, step: usize) {
     if step + 1 < LESSONS[lesson].steps.len() {
-        begin_step(session, console, lesson, step + 1);
+        begin_step(shell, console, lesson, step + 1);
         return;
     }
-    show_pictures(session, console, lesson, step);
-    session.tutor = Tutor::default();
+    show_pictures(&shell.session, console, lesson, step);
+    shell.tutor = Tutor::default();
     let mut progress = Progress::load();
     progress.done.insert(lesson + 1);
     progress.at = None;

@@ -1,0 +1,26 @@
+//! The session with what a front-end keeps beside it: the lesson being
+//! followed and the last picture. The [`Session`] itself holds the
+//! language's state only.
+
+use image::RgbImage;
+
+use super::lessons::tutor::Tutor;
+use super::session::Session;
+
+/// What the commands work on: the session, and the front-end's state.
+#[derive(Debug)]
+pub(crate) struct Shell {
+    /// The language's state: inputs, scene, settings, history, undo.
+    pub session: Session,
+    /// The lesson being followed, if any (`:lesson`).
+    pub tutor: Tutor,
+    /// The last picture rendered or saved, whose pixels `:pick` explains.
+    pub last_picture: Option<RgbImage>,
+}
+
+impl Shell {
+    /// `session`, with no lesson followed and no picture yet.
+    pub(crate) fn new(session: Session) -> Shell {
+        Shell { session, tutor: Tutor::default(), last_picture: None }
+    }
+}
