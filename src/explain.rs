@@ -1,5 +1,5 @@
 //! "Why is this pixel this colour?": the paths traced for a pixel
-//! ([`crate::render::explain`]) told with the program's own places, in
+//! ([`crate::render::pixel_paths`]) told with the program's own places, in
 //! words for a person and as one JSON object for tools.
 //!
 //! Each surface met is named by its kind and the `put` that placed it,
@@ -16,7 +16,7 @@ use serde_json::{Map, Value, json};
 use crate::lang::eval::{Call, Origins};
 use crate::lang::number::format_number;
 use crate::lang::{Interpreter, SourceMap, Span};
-use crate::render::explain::{Level, LightPart, SamplePath, Surface};
+use crate::render::pixel_paths::{Level, LightPart, SamplePath, Surface};
 use crate::render::{Explainer, PixelPaths, RenderOptions};
 use crate::scene::{Scene, Shape};
 

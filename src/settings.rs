@@ -26,15 +26,16 @@ pub struct RenderSettings {
     pub screen: Screen,
 }
 
-/// The settings used where none are given.
+/// The settings used where none are given: the renderer's defaults, at
+/// time 0.
 pub const DEFAULTS: RenderSettings = RenderSettings {
-    width: 800,
-    height: 600,
-    depth: 5,
-    samples: 1,
-    adaptive: false,
+    width: RenderOptions::DEFAULT.width,
+    height: RenderOptions::DEFAULT.height,
+    depth: RenderOptions::DEFAULT.depth,
+    samples: RenderOptions::DEFAULT.samples,
+    adaptive: RenderOptions::DEFAULT.adaptive,
     time: 0.0,
-    screen: Screen::Centered,
+    screen: RenderOptions::DEFAULT.screen,
 };
 
 impl Default for RenderSettings {

@@ -7,12 +7,12 @@
 //! into the AST. Keywords come from the table of [`super::words`].
 
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::rc::Rc;
 
 use unicode_width::UnicodeWidthChar;
 
 use super::diagnostic::Diagnostic;
+use super::fast_hash::FastHash;
 use super::source::{SourceId, Span};
 use super::token::Token;
 use super::words::{self, Word};
@@ -36,37 +36,14 @@ pub struct Lexer<'a> {
     /// The keywords, shared by every lexer of the thread.
     keywords: &'static KeywordTable,
     /// The names read so far, interned.
-    names: HashMap<&'a str, Rc<str>, BuildHasherDefault<NameHasher>>,
+    names: HashMap<&'a str, Rc<str>, FastHash>,
     /// Where the line of the last token starts.
     line_start: usize,
     failed: bool,
 }
 
-/// FNV-1a: names are short and come from the program itself, so a simple
-/// fast hash beats the default DoS-resistant one here.
-#[derive(Debug)]
-struct NameHasher(u64);
-
-impl Default for NameHasher {
-    fn default() -> NameHasher {
-        NameHasher(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Hasher for NameHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for &byte in bytes {
-            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
 /// The keywords, their tokens and rows of the words table.
-type KeywordTable = HashMap<&'static str, (Token, Option<&'static Word>), BuildHasherDefault<NameHasher>>;
+type KeywordTable = HashMap<&'static str, (Token, Option<&'static Word>), FastHash>;
 
 thread_local! {
     /// The keywords' table, built once per thread and kept to the end: a

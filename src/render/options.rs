@@ -124,17 +124,24 @@ impl RenderOptions {
     }
 }
 
+impl RenderOptions {
+    /// The options used where none are given: 800x600, 5 reflections, one
+    /// ray a pixel, every shortcut on. The command line's and the session's
+    /// defaults are these.
+    pub const DEFAULT: RenderOptions = RenderOptions {
+        width: 800,
+        height: 600,
+        depth: 5,
+        samples: 1,
+        screen: Screen::Centered,
+        skips: Skips::all(),
+        adaptive: false,
+    };
+}
+
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
-        RenderOptions {
-            width: 800,
-            height: 600,
-            depth: 5,
-            samples: 1,
-            screen: Screen::Centered,
-            skips: Skips::all(),
-            adaptive: false,
-        }
+        RenderOptions::DEFAULT
     }
 }
 

@@ -20,7 +20,7 @@ use crate::lang::{EntryState, entry_state};
 use super::commands::{self, COMMANDS, Files, help_pages, is_command};
 use super::help;
 use super::session::Vocabulary;
-use super::syntax::{TokenKind, is_word_char, tokens};
+use super::syntax::{PieceKind, is_word_char, pieces};
 use crate::lang::words::{self, Role};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
@@ -250,16 +250,16 @@ impl Helper for RayHelper {}
 /// commands (those the registry knows: a misspelt one stays plain).
 pub(crate) fn colorize(line: &str) -> String {
     let mut out = String::with_capacity(line.len() * 2);
-    for token in tokens(line) {
-        let text = &line[token.start..token.end];
-        let code = match token.kind {
-            TokenKind::Keyword => Some("1;34"),
-            TokenKind::Builtin => Some("36"),
-            TokenKind::Number => Some("33"),
-            TokenKind::Comment => Some("2;37"),
-            TokenKind::Command if commands::find(text).is_some() => Some("1;32"),
-            TokenKind::Command => None,
-            TokenKind::Ident | TokenKind::Other => None,
+    for piece in pieces(line) {
+        let text = &line[piece.start..piece.end];
+        let code = match piece.kind {
+            PieceKind::Keyword => Some("1;34"),
+            PieceKind::Builtin => Some("36"),
+            PieceKind::Number => Some("33"),
+            PieceKind::Comment => Some("2;37"),
+            PieceKind::Command if commands::find(text).is_some() => Some("1;32"),
+            PieceKind::Command => None,
+            PieceKind::Ident | PieceKind::Other => None,
         };
         match code {
             Some(code) => out.push_str(&format!("\x1b[{code}m{text}\x1b[0m")),

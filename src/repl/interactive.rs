@@ -101,7 +101,7 @@ pub fn run_typed(
 }
 
 /// Loads `options.initial_file`, then runs the session on what is typed.
-fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
+fn run_entries(lines: impl LineSource, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
     // A flag cannot be given any more: errors point to `:limits` instead.
     let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
     let mut shell = Shell::new(new_session(&SessionOptions { limits, ..options.clone() }, console.cancel));
@@ -113,12 +113,18 @@ fn run_entries(lines: impl Lines, console: &mut Console, options: &SessionOption
 
 /// Where the session's lines come from: the line editor, or lines given in
 /// advance.
-trait Lines {
+trait LineSource {
     /// The next line typed after `prompt`, starting from `initial` (an entry
     /// given back to fix), and whether a person typed it (rather than typed
     /// it ahead or pasted it). `pending` (the unfinished input) and `session`
     /// feed the editor's highlighting and completion.
-    fn read(&mut self, prompt: &str, initial: &str, pending: &str, session: &Session) -> Result<Line, ReadlineError>;
+    fn read(
+        &mut self,
+        prompt: &str,
+        initial: &str,
+        pending: &str,
+        session: &Session,
+    ) -> Result<EnteredLine, ReadlineError>;
 
     /// Keeps an entry in the history.
     fn remember(&mut self, entry: &str);
@@ -131,13 +137,19 @@ struct Terminal {
 }
 
 /// A line read, and whether a person typed it.
-struct Line {
+struct EnteredLine {
     text: String,
     typed: bool,
 }
 
-impl Lines for Terminal {
-    fn read(&mut self, prompt: &str, initial: &str, pending: &str, session: &Session) -> Result<Line, ReadlineError> {
+impl LineSource for Terminal {
+    fn read(
+        &mut self,
+        prompt: &str,
+        initial: &str,
+        pending: &str,
+        session: &Session,
+    ) -> Result<EnteredLine, ReadlineError> {
         let vocabulary = session.vocabulary();
         if let Some(helper) = self.editor.helper_mut() {
             helper.set_pending(pending);
@@ -145,7 +157,7 @@ impl Lines for Terminal {
         }
         let started = Instant::now();
         let text = self.editor.readline_with_initial(prompt, (initial, ""))?;
-        Ok(Line { text, typed: started.elapsed() >= TYPING })
+        Ok(EnteredLine { text, typed: started.elapsed() >= TYPING })
     }
 
     /// Adds an entry to the history, and to the history file.
@@ -160,9 +172,9 @@ impl Lines for Terminal {
 /// Lines given in advance, typed one after the other; Ctrl-D after the last.
 struct Typed<I>(I);
 
-impl<I: Iterator<Item = String>> Lines for Typed<I> {
-    fn read(&mut self, _: &str, _: &str, _: &str, _: &Session) -> Result<Line, ReadlineError> {
-        self.0.next().map(|text| Line { text, typed: true }).ok_or(ReadlineError::Eof)
+impl<I: Iterator<Item = String>> LineSource for Typed<I> {
+    fn read(&mut self, _: &str, _: &str, _: &str, _: &Session) -> Result<EnteredLine, ReadlineError> {
+        self.0.next().map(|text| EnteredLine { text, typed: true }).ok_or(ReadlineError::Eof)
     }
 
     fn remember(&mut self, _entry: &str) {}
@@ -176,7 +188,7 @@ struct Repl<L> {
     inputs: usize,
 }
 
-impl<L: Lines> Repl<L> {
+impl<L: LineSource> Repl<L> {
     fn run(&mut self, console: &mut Console) -> Result<(), ReplError> {
         let mut pending = String::new();
         // A broken entry of several lines, given back to the editor to fix.
@@ -186,7 +198,7 @@ impl<L: Lines> Repl<L> {
             let prompt = if pending.is_empty() { self.prompt() } else { continuation_prompt(&pending) };
             let fixing = !to_fix.is_empty();
             match self.lines.read(&prompt, &std::mem::take(&mut to_fix), &pending, &self.shell.session) {
-                Ok(Line { text: line, typed }) => {
+                Ok(EnteredLine { text: line, typed }) => {
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
                     if is_command(&line) {

@@ -21,7 +21,7 @@ use super::options::{SessionOptions, new_session};
 use super::session::Session;
 use super::shell::Shell;
 use crate::output::INTERRUPTED_EXIT_CODE;
-use lines::{Line, Lines};
+use lines::{ScriptLine, ScriptLines};
 
 mod lines;
 
@@ -138,14 +138,14 @@ struct Script<'s, 'c> {
 
 impl Script<'_, '_> {
     fn run(&mut self, input: impl BufRead) {
-        let mut lines = Lines::new(input);
+        let mut lines = ScriptLines::new(input);
         let mut ready = ReadAhead::default();
         let mut pending: Option<Entry> = None;
         let mut first_line = 0;
         let mut number = 0;
         while let Some(line) = lines.next_line() {
             number += 1;
-            let Ok(Line { text: line, next_ready }) = line else {
+            let Ok(ScriptLine { text: line, next_ready }) = line else {
                 if self.run_ready(&mut ready) == Step::Next {
                     self.console.error(format!("line {number} of the script cannot be read as text"));
                     self.errors += 1;

@@ -8,7 +8,7 @@ use crate::lang::words::{self, Kind, Role};
 
 /// What a piece of text is, for colouring.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum TokenKind {
+pub(crate) enum PieceKind {
     /// A reserved word such as `sphere` or `end`.
     Keyword,
     /// `time`, `sin`, `cos`, `sqrt`, `pi`.
@@ -27,47 +27,47 @@ pub(crate) enum TokenKind {
 
 /// One piece of the scanned text: `text[start..end]` is of kind `kind`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Token {
+pub(crate) struct Piece {
     /// Its kind.
-    pub kind: TokenKind,
+    pub kind: PieceKind,
     /// First byte.
     pub start: usize,
     /// One past the last byte.
     pub end: usize,
 }
 
-/// Splits `text` into tokens covering every byte, in order.
-pub(crate) fn tokens(text: &str) -> Vec<Token> {
-    let mut tokens = Vec::new();
+/// Splits `text` into pieces covering every byte, in order.
+pub(crate) fn pieces(text: &str) -> Vec<Piece> {
+    let mut pieces = Vec::new();
     let mut rest = text.char_indices().peekable();
     let mut at_line_start = true;
     while let Some(&(start, c)) = rest.peek() {
         let kind = if c == '#' {
             take_while(&mut rest, |c| c != '\n');
-            TokenKind::Comment
+            PieceKind::Comment
         } else if c == ':' && at_line_start {
             rest.next();
             take_while(&mut rest, is_word_char);
-            TokenKind::Command
+            PieceKind::Command
         } else if c.is_ascii_digit() || (c == '.' && next_is_digit(text, start)) {
             take_while(&mut rest, |c| c.is_ascii_digit() || c == '.');
-            TokenKind::Number
+            PieceKind::Number
         } else if c.is_ascii_alphabetic() || c == '_' {
             take_while(&mut rest, is_word_char);
-            TokenKind::Ident
+            PieceKind::Ident
         } else {
             rest.next();
-            TokenKind::Other
+            PieceKind::Other
         };
         let end = rest.peek().map_or(text.len(), |&(i, _)| i);
-        let kind = if kind == TokenKind::Ident { classify_word(&text[start..end]) } else { kind };
+        let kind = if kind == PieceKind::Ident { classify_word(&text[start..end]) } else { kind };
         at_line_start = match kind {
-            TokenKind::Other => c == '\n' || (at_line_start && c.is_whitespace()),
+            PieceKind::Other => c == '\n' || (at_line_start && c.is_whitespace()),
             _ => false,
         };
-        tokens.push(Token { kind, start, end });
+        pieces.push(Piece { kind, start, end });
     }
-    tokens
+    pieces
 }
 
 /// Whether `c` can be part of a name.
@@ -79,11 +79,11 @@ pub(crate) fn is_word_char(c: char) -> bool {
 /// first: for `proc p() put sphere` it is `["proc", "sphere"]`.
 pub(crate) fn open_constructs(text: &str) -> Vec<&'static str> {
     let mut open = Vec::new();
-    for token in tokens(text) {
-        if token.kind != TokenKind::Keyword {
+    for piece in pieces(text) {
+        if piece.kind != PieceKind::Keyword {
             continue;
         }
-        let word = &text[token.start..token.end];
+        let word = &text[piece.start..piece.end];
         if word == "end" {
             open.pop();
         } else if let Some(opener) = words::lookup(word).filter(|word| word.opens()) {
@@ -105,11 +105,11 @@ pub(crate) fn continuation_prompt(pending: &str) -> String {
 
 /// The colour of a word: the built-in functions, `pi` and `time` apart from
 /// the other keywords.
-fn classify_word(word: &str) -> TokenKind {
+fn classify_word(word: &str) -> PieceKind {
     match words::lookup(word).map(|word| &word.kind) {
-        Some(Kind::Keyword { role: Role::Function | Role::Constant, .. } | Kind::Predefined) => TokenKind::Builtin,
-        Some(Kind::Keyword { .. }) => TokenKind::Keyword,
-        _ => TokenKind::Ident,
+        Some(Kind::Keyword { role: Role::Function | Role::Constant, .. } | Kind::Predefined) => PieceKind::Builtin,
+        Some(Kind::Keyword { .. }) => PieceKind::Keyword,
+        _ => PieceKind::Ident,
     }
 }
 
@@ -127,8 +127,8 @@ fn take_while(chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>, keep: 
 mod tests {
     use super::*;
 
-    fn kinds(text: &str) -> Vec<(TokenKind, &str)> {
-        tokens(text)
+    fn kinds(text: &str) -> Vec<(PieceKind, &str)> {
+        pieces(text)
             .into_iter()
             .filter(|t| !text[t.start..t.end].trim().is_empty())
             .map(|t| (t.kind, &text[t.start..t.end]))
@@ -138,18 +138,18 @@ mod tests {
     #[test]
     fn tokens_cover_every_byte_in_order() {
         let text = "put sphere center 1.5,0,-2 # a ball\n  radius r*2 é end";
-        let tokens = tokens(text);
+        let all = pieces(text);
         let mut at = 0;
-        for token in &tokens {
-            assert_eq!(token.start, at);
-            at = token.end;
+        for piece in &all {
+            assert_eq!(piece.start, at);
+            at = piece.end;
         }
         assert_eq!(at, text.len());
     }
 
     #[test]
     fn words_numbers_comments_and_commands_are_told_apart() {
-        use TokenKind::*;
+        use PieceKind::*;
         assert_eq!(
             kinds("let r = sqrt(2) * time # half"),
             vec![

@@ -7,60 +7,13 @@
 //! beats hashing, and nothing is allocated per call beyond the stack's growth.
 
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::rc::Rc;
 
 use super::value::{Kind, Value};
-
-/// A fast, non-cryptographic hasher for short names (the `FxHash` of rustc):
-/// the maps it serves hold names chosen by the program's author, so there is
-/// no adversary to defend against.
-#[derive(Debug, Default, Clone, Copy)]
-pub(crate) struct NameHasher {
-    hash: u64,
-}
-
-/// rustc's Fx multiplier.
-const SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
-
-impl NameHasher {
-    fn add(&mut self, word: u64) {
-        self.hash = (self.hash.rotate_left(5) ^ word).wrapping_mul(SEED);
-    }
-}
-
-impl Hasher for NameHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        let mut chunks = bytes.chunks_exact(8);
-        for chunk in &mut chunks {
-            let mut word = [0u8; 8];
-            word.copy_from_slice(chunk);
-            self.add(u64::from_le_bytes(word));
-        }
-        for &byte in chunks.remainder() {
-            self.add(u64::from(byte));
-        }
-    }
-
-    fn write_u8(&mut self, byte: u8) {
-        self.add(u64::from(byte));
-    }
-
-    fn write_u32(&mut self, value: u32) {
-        self.add(u64::from(value));
-    }
-
-    fn write_usize(&mut self, value: usize) {
-        self.add(value as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        self.hash
-    }
-}
+use crate::lang::fast_hash::FastHash;
 
 /// A map keyed by names, with the fast hasher.
-pub(crate) type NameMap<V> = HashMap<Rc<str>, V, BuildHasherDefault<NameHasher>>;
+pub(crate) type NameMap<V> = HashMap<Rc<str>, V, FastHash>;
 
 /// Where the current frame lies in the locals stack, saved across a call.
 #[derive(Debug, Clone, Copy)]

@@ -9,11 +9,10 @@
 //! records the procedure calls that led to each `put` ([`PutCalls`]).
 
 use std::collections::HashMap;
-use std::hash::BuildHasherDefault;
 use std::ops::Range;
 use std::rc::Rc;
 
-use super::env::NameHasher;
+use crate::lang::fast_hash::FastHash;
 use crate::lang::source::Span;
 
 /// Where the parts of a scene come from, indexed like the scene's parts.
@@ -193,7 +192,7 @@ pub struct PutSpans {
     /// The distinct `put` instructions.
     puts: Vec<Span>,
     /// Index of each span in `puts`.
-    index: HashMap<Span, u32, BuildHasherDefault<NameHasher>>,
+    index: HashMap<Span, u32, FastHash>,
 }
 
 impl PutSpans {
@@ -259,7 +258,7 @@ pub struct ObjectDefinition {
 pub struct ObjectDefinitions {
     list: Vec<ObjectDefinition>,
     /// Index in `list` by the span of the name.
-    index: HashMap<Span, u32, BuildHasherDefault<NameHasher>>,
+    index: HashMap<Span, u32, FastHash>,
     /// How many are not used (yet).
     unused: usize,
     /// How many definitions there were at [`ObjectDefinitions::begin`].

@@ -5,7 +5,7 @@
 use std::io::{self, BufRead};
 
 /// One line of the script.
-pub(super) struct Line<'l> {
+pub(super) struct ScriptLine<'l> {
     /// Its text, without `\n` or `\r\n`, as [`BufRead::lines`] gives it.
     pub text: &'l str,
     /// Whether the whole next line is in the reader's buffer already.
@@ -13,19 +13,19 @@ pub(super) struct Line<'l> {
 }
 
 /// The lines of a reader, as [`BufRead::lines`] reads them.
-pub(super) struct Lines<R> {
+pub(super) struct ScriptLines<R> {
     input: R,
     bytes: Vec<u8>,
 }
 
-impl<R: BufRead> Lines<R> {
-    pub(super) fn new(input: R) -> Lines<R> {
-        Lines { input, bytes: Vec::new() }
+impl<R: BufRead> ScriptLines<R> {
+    pub(super) fn new(input: R) -> ScriptLines<R> {
+        ScriptLines { input, bytes: Vec::new() }
     }
 
     /// The next line, `None` at the end of the input; an error if it cannot
     /// be read or is not UTF-8.
-    pub(super) fn next_line(&mut self) -> Option<io::Result<Line<'_>>> {
+    pub(super) fn next_line(&mut self) -> Option<io::Result<ScriptLine<'_>>> {
         self.bytes.clear();
         let mut next_ready = false;
         loop {
@@ -56,7 +56,7 @@ impl<R: BufRead> Lines<R> {
         }
         let text = std::str::from_utf8(&self.bytes)
             .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"));
-        Some(text.map(|text| Line { text, next_ready }))
+        Some(text.map(|text| ScriptLine { text, next_ready }))
     }
 }
 
@@ -67,7 +67,7 @@ mod tests {
     /// Each line with whether the next was ready, reading `text` through a
     /// buffer of `capacity` bytes.
     fn lines(text: &str, capacity: usize) -> Vec<(String, bool)> {
-        let mut lines = Lines::new(io::BufReader::with_capacity(capacity, text.as_bytes()));
+        let mut lines = ScriptLines::new(io::BufReader::with_capacity(capacity, text.as_bytes()));
         let mut read = Vec::new();
         while let Some(line) = lines.next_line() {
             let line = line.expect("the text is UTF-8");
@@ -96,7 +96,7 @@ mod tests {
 
     #[test]
     fn text_that_is_not_utf8_is_an_error() {
-        let mut lines = Lines::new(&b"ok\n\xff\n"[..]);
+        let mut lines = ScriptLines::new(&b"ok\n\xff\n"[..]);
         assert!(lines.next_line().is_some_and(|line| line.is_ok()));
         assert!(lines.next_line().is_some_and(|line| line.is_err()));
     }

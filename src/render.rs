@@ -29,17 +29,17 @@
 //! a path's colour by SPEC 6, and `pixels` turns the samples into the bytes
 //! of the image, in parallel. [`adaptive`] (anti-aliasing only where it
 //! shows) and [`reuse`] (animation frames that copy what did not change)
-//! watch the paths through [`shade`]'s observer, and so does [`explain`],
+//! watch the paths through [`shade`]'s observer, and so does [`pixel_paths`],
 //! which records why a pixel has its colour.
 
 pub mod adaptive;
 pub mod bvh;
 pub mod camera;
-pub mod explain;
 pub mod geometry;
 pub mod intersect;
 pub mod moving_bounds;
 mod options;
+pub mod pixel_paths;
 mod pixels;
 pub mod reuse;
 pub mod shade;
@@ -50,12 +50,12 @@ use image::RgbImage;
 
 pub use adaptive::{ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, FINE_DETAIL, Glimpse, glimpse_pass, refinement_mask};
 pub use camera::{PrimaryRays, Screen, sample_offsets};
-pub use explain::{Explainer, PixelPaths};
 pub use geometry::{Geometry, SceneGeometry, SurfaceHit};
 pub use intersect::Ray;
 pub use options::{
     Cancelled, MAX_DEPTH, REFERENCE_SAMPLES, RayCounts, RenderControl, RenderOptions, RenderStats, Skips,
 };
+pub use pixel_paths::{Explainer, PixelPaths};
 pub use pixels::TILE;
 pub use reuse::FrameReuse;
 

@@ -4,6 +4,7 @@
 pub mod ast;
 pub mod diagnostic;
 pub mod eval;
+pub(crate) mod fast_hash;
 pub mod lexer;
 pub mod number;
 pub mod parser;
