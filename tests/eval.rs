@@ -767,8 +767,17 @@ fn observe(i: &Interpreter) -> String {
         .iter()
         .map(|n| format!("{n}={:?}/{:?}", i.global_number(n), i.global_object_size(n)))
         .collect();
+    // The places in the program of every part of the scene (camera,
+    // ambient, lights, puts, objects): source positions too must come back
+    // as they were.
+    let o = i.origins();
+    let objects: Vec<_> = o.objects.iter().collect();
+    let places = format!(
+        "{:?} {:?} {:?} {:?} {:?} {objects:?} {}",
+        o.camera, o.ambient, o.lights, o.primitives, o.timed_primitives, o.branched_on_time
+    );
     format!(
-        "{:?} {:?} {} {} {} {:?}",
+        "{:?} {:?} {} {} {} {:?} {places}",
         i.scene(),
         names,
         i.procedure_names().join(","),

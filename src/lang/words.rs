@@ -31,12 +31,22 @@ pub enum Role {
 /// What a word of the table is.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Kind {
-    /// A reserved word of SPEC 1; `opens` when it opens a construct that `end` closes.
-    Keyword { token: Token, role: Role, opens: bool },
+    /// A reserved word of SPEC 1.
+    Keyword {
+        /// The token the lexer gives it.
+        token: Token,
+        /// What it does in a program.
+        role: Role,
+        /// Whether it opens a construct that `end` closes.
+        opens: bool,
+    },
     /// A name the language gives a value without reserving it: `time`.
     Predefined,
     /// A word learners bring from elsewhere, where the language says `means`.
-    Elsewhere { means: &'static str },
+    Elsewhere {
+        /// The word of the language it stands for.
+        means: &'static str,
+    },
     /// A function other languages have and this one has not.
     MissingFunction,
 }

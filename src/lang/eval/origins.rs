@@ -221,10 +221,19 @@ impl PutSpans {
         self.runs.push((saturating_u32(range.start), put));
     }
 
-    /// Forgets the primitives from index `len` on (a failed run took them back).
+    /// Forgets the primitives from index `len` on (a failed run took them
+    /// back), and the `put`s that only they came from: distinct `put`s are
+    /// numbered in the order they first ran, so those are the last ones.
     pub(crate) fn truncate(&mut self, len: usize) {
         let kept = self.runs.partition_point(|&(start, _)| (start as usize) < len);
+        if kept == self.runs.len() {
+            return;
+        }
         self.runs.truncate(kept);
+        let used = self.runs.iter().map(|&(_, put)| put as usize + 1).max().unwrap_or(0);
+        for span in self.puts.drain(used..) {
+            self.index.remove(&span);
+        }
     }
 
     /// The `put` that made primitive `index`, if it was recorded.
