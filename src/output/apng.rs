@@ -8,7 +8,8 @@ use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use super::{Cancellable, OutputError, PendingFile, format_error, io_error};
+use super::atomic::{Cancellable, PendingFile};
+use super::error::{OutputError, format_error, io_error};
 use crate::playback::{Loops, Playback};
 
 /// An animated PNG being written.

@@ -9,7 +9,8 @@ use std::sync::atomic::AtomicBool;
 use image::RgbImage;
 use rayon::prelude::*;
 
-use super::{Cancellable, OutputError, PendingFile, format_error, io_error};
+use super::atomic::{Cancellable, PendingFile};
+use super::error::{OutputError, format_error, io_error};
 use crate::playback::{Loops, Playback};
 
 /// An animated GIF being written.

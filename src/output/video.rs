@@ -13,7 +13,9 @@ use std::time::Duration;
 
 use image::RgbImage;
 
-use super::{Cancellable, ImageFormat, OutputError, PendingFile, io_error};
+use super::atomic::{Cancellable, PendingFile};
+use super::error::{OutputError, io_error};
+use super::formats::ImageFormat;
 use crate::playback::{Loops, Playback};
 
 /// The program that encodes videos.
@@ -47,7 +49,7 @@ impl VideoStream {
     /// Starts ffmpeg on a video at `path` in `format` (MP4 or WebM) of frames
     /// the size of `first`, played as `playback` says (a count of plays is
     /// written out in full; a video cannot loop forever, which
-    /// [`super::check_playback`] refuses before), until `cancel` is raised.
+    /// [`check_animation_output`](super::checks::check_animation_output) refuses before), until `cancel` is raised.
     pub(super) fn start(
         path: &Path,
         format: ImageFormat,

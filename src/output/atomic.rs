@@ -1,0 +1,148 @@
+//! Atomic, cancellable files: written into a temporary file in the target's
+//! folder, then renamed over the target, and removed on an interruption.
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use super::error::{OutputError, io_error};
+
+/// A cancel flag that is never raised, for writes that Ctrl-C does not stop
+/// (it ends the process instead, see [`exit_discarding_unfinished`]).
+pub(crate) static NEVER_CANCELLED: AtomicBool = AtomicBool::new(false);
+
+/// The temporary files being written, which an interruption removes.
+static UNFINISHED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn unfinished() -> MutexGuard<'static, Vec<PathBuf>> {
+    UNFINISHED.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// The exit code after Ctrl-C or `kill` (128 + SIGINT, as shells report it).
+pub(crate) const INTERRUPTED_EXIT_CODE: i32 = 130;
+
+/// Removes the temporary files of unfinished writes and ends the process
+/// with `code`: what an interruption (Ctrl-C, `kill`) does, so that it
+/// leaves no temporary file behind and every target as it was.
+pub(crate) fn exit_discarding_unfinished(code: i32) -> ! {
+    // The lock is held until the end: no write starts or finishes meanwhile.
+    let unfinished = unfinished();
+    for path in unfinished.iter() {
+        let _ = std::fs::remove_file(path);
+    }
+    std::process::exit(code)
+}
+
+/// A file being written: a temporary file next to its target, which
+/// [`PendingFile::commit`] renames over the target. Dropped without a
+/// commit, the temporary file is removed and the target left as it was.
+pub(super) struct PendingFile {
+    pub(super) path: PathBuf,
+    pub(super) temp_path: PathBuf,
+    temp: Option<tempfile::NamedTempFile>,
+    pub(super) cancel: &'static AtomicBool,
+}
+
+impl PendingFile {
+    /// A temporary file for `path`, and a writer into it that fails as soon
+    /// as `cancel` is raised.
+    pub(super) fn create(
+        path: &Path,
+        cancel: &'static AtomicBool,
+    ) -> Result<(PendingFile, BufWriter<Cancellable<File>>), OutputError> {
+        let mut unfinished = unfinished();
+        let temp = temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
+        unfinished.push(temp.path().to_owned());
+        let file = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
+        let pending =
+            PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp), cancel };
+        Ok((pending, BufWriter::new(Cancellable { inner: file, cancel })))
+    }
+
+    /// Whether `cancel` was raised: the file is not to be put in place.
+    pub(super) fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::SeqCst)
+    }
+
+    /// `error`, or [`OutputError::Cancelled`] if the write failed because
+    /// `cancel` was raised (encoders pass the writer's error on in their own
+    /// words).
+    pub(super) fn failure(&self, error: OutputError) -> OutputError {
+        if self.cancelled() { OutputError::Cancelled { path: self.path.clone() } } else { error }
+    }
+
+    /// Puts the written file in place of the target, with the target's
+    /// permissions if it existed; not if `cancel` was raised meanwhile
+    /// (syncing a large file to disk can take a while).
+    pub(super) fn commit(mut self) -> Result<(), OutputError> {
+        let temp = self.temp.take().expect("a pending file is committed once");
+        temp.as_file().sync_all().map_err(|e| io_error(&self.path, e))?;
+        if self.cancelled() {
+            return Err(OutputError::Cancelled { path: self.path.clone() });
+        }
+        if let Ok(existing) = std::fs::metadata(&self.path) {
+            temp.as_file().set_permissions(existing.permissions()).map_err(|e| io_error(&self.path, e))?;
+        }
+        let mut unfinished = unfinished();
+        let persisted = temp.persist(&self.path);
+        unfinished.retain(|p| *p != self.temp_path);
+        persisted.map(drop).map_err(|e| io_error(&self.path, e.error))
+    }
+}
+
+impl Drop for PendingFile {
+    fn drop(&mut self) {
+        let mut unfinished = unfinished();
+        drop(self.temp.take());
+        unfinished.retain(|p| *p != self.temp_path);
+    }
+}
+
+/// The largest piece written at once, so that a large image written in one
+/// call still sees Ctrl-C within a few milliseconds.
+const CANCELLABLE_PIECE: usize = 1 << 20;
+
+/// A file (or a pipe) whose writes fail once `cancel` is raised. It sits
+/// under a `BufWriter`, so the flag is read once per buffer's worth, not
+/// per byte.
+pub(super) struct Cancellable<W> {
+    pub(super) inner: W,
+    pub(super) cancel: &'static AtomicBool,
+}
+
+impl<W: Write> Write for Cancellable<W> {
+    fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+        if self.cancel.load(Ordering::Relaxed) {
+            // Not `ErrorKind::Interrupted`: `write_all` would retry it.
+            return Err(io::Error::other("cancelled"));
+        }
+        self.inner.write(&bytes[..bytes.len().min(CANCELLABLE_PIECE)])
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// The folder a file at `path` goes into.
+pub(super) fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    }
+}
+
+/// A temporary file in `dir`, readable by others like an ordinary new file
+/// (tempfile's default is owner-only).
+pub(super) fn temp_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".rayrepl-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    builder.tempfile_in(dir)
+}
