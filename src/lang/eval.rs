@@ -368,9 +368,9 @@ impl Interpreter {
     }
 
     /// Records a warning, once per source spot.
-    fn warn(&mut self, span: Span, code: &'static str, message: String) {
-        if self.warned.insert(span) {
-            self.warnings.push(Diagnostic::warning(span, message).with_code(code));
+    fn warn(&mut self, warning: Diagnostic) {
+        if self.warned.insert(warning.span) {
+            self.warnings.push(warning);
         }
     }
 

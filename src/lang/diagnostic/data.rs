@@ -105,7 +105,11 @@ impl Diagnostic {
 
 #[cfg(test)]
 mod tests {
+    use std::collections::BTreeSet;
+    use std::path::PathBuf;
+
     use super::*;
+    use crate::lint::Check;
 
     #[test]
     fn columns_count_characters_and_utf16_code_units() {
@@ -145,18 +149,53 @@ mod tests {
         }
     }
 
+    /// The codes the sources give to `with_code` as literals, and the
+    /// scene checks' names.
+    fn codes_in_the_sources() -> BTreeSet<String> {
+        let mut codes: BTreeSet<String> = Check::ALL.iter().map(|check| check.name().to_string()).collect();
+        let mut folders = vec![PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/src"))];
+        while let Some(folder) = folders.pop() {
+            for entry in std::fs::read_dir(&folder).expect("src is readable") {
+                let path = entry.expect("an entry of src").path();
+                if path.is_dir() {
+                    folders.push(path);
+                } else if path.extension().is_some_and(|extension| extension == "rs") {
+                    let text = std::fs::read_to_string(&path).expect("a source file is text");
+                    for (at, _) in text.match_indices("with_code(\"") {
+                        let rest = &text[at + "with_code(\"".len()..];
+                        codes.insert(rest[..rest.find('"').expect("the literal ends")].to_string());
+                    }
+                }
+            }
+        }
+        codes
+    }
+
+    #[test]
+    fn the_readme_lists_every_code_and_no_other() {
+        let readme = include_str!("../../../README.md");
+        let table = readme.split_once("| from | severity | codes |").expect("the README has a table of codes").1;
+        let rows = table.lines().skip(2).take_while(|line| line.starts_with('|'));
+        let listed: BTreeSet<String> = rows
+            .flat_map(|row| row.split('|').nth(3).expect("a third column").split(','))
+            .map(|code| code.trim().trim_matches('`').to_string())
+            .collect();
+        assert_eq!(listed, codes_in_the_sources());
+        assert!(listed.iter().all(|code| code.chars().all(|c| c.is_ascii_lowercase() || c == '-')), "{listed:?}");
+    }
+
     #[test]
     fn the_json_has_every_part() {
         let mut map = SourceMap::new();
         let id = map.add("a.ray", "put spehre end", 0);
         let diagnostic = Diagnostic::error(Span::new(id, 4, 10), "unknown object `spehre`")
-            .with_code("syntax")
+            .with_code("unexpected-token")
             .with_label("not defined")
             .with_related(Span::new(id, 0, 3), "this `put`")
             .with_note("a note")
             .with_help("did you mean `sphere`?")
             .with_replacement(Span::new(id, 4, 10), "sphere");
-        let expected = r#"{"severity":"error","code":"syntax","message":"unknown object `spehre`","place":{"source":"a.ray","line":1,"column":5,"column_utf16":5,"end_line":1,"end_column":11,"end_column_utf16":11,"bytes":[4,10],"label":"not defined"},"related":[{"source":"a.ray","line":1,"column":1,"column_utf16":1,"end_line":1,"end_column":4,"end_column_utf16":4,"bytes":[0,3],"label":"this `put`"}],"notes":["a note"],"help":[{"message":"did you mean `sphere`?","replacements":[{"text":"sphere","place":{"source":"a.ray","line":1,"column":5,"column_utf16":5,"end_line":1,"end_column":11,"end_column_utf16":11,"bytes":[4,10],"label":null}}]}]}"#;
+        let expected = r#"{"severity":"error","code":"unexpected-token","message":"unknown object `spehre`","place":{"source":"a.ray","line":1,"column":5,"column_utf16":5,"end_line":1,"end_column":11,"end_column_utf16":11,"bytes":[4,10],"label":"not defined"},"related":[{"source":"a.ray","line":1,"column":1,"column_utf16":1,"end_line":1,"end_column":4,"end_column_utf16":4,"bytes":[0,3],"label":"this `put`"}],"notes":["a note"],"help":[{"message":"did you mean `sphere`?","replacements":[{"text":"sphere","place":{"source":"a.ray","line":1,"column":5,"column_utf16":5,"end_line":1,"end_column":11,"end_column_utf16":11,"bytes":[4,10],"label":null}}]}]}"#;
         assert_eq!(diagnostic.to_json(&map).to_string(), expected);
     }
 }

@@ -180,9 +180,11 @@ impl Interpreter {
         let clamped = n.value.clamp(0.0, 1.0);
         if clamped != n.value {
             self.warn(
-                expr.span,
-                "clamped-coefficient",
-                format!("`{name}` should be between 0 and 1, but it is {}; {clamped} is used", n.value),
+                Diagnostic::warning(
+                    expr.span,
+                    format!("`{name}` should be between 0 and 1, but it is {}; {clamped} is used", n.value),
+                )
+                .with_code("clamped-coefficient"),
             );
         }
         Ok(Num { value: clamped, ..n })
@@ -194,9 +196,11 @@ impl Interpreter {
         let clamped = n.value.clamp(0.0, 255.0);
         if clamped != n.value {
             self.warn(
-                expr.span,
-                "clamped-colour",
-                format!("a colour component should be between 0 and 255, but it is {}; {clamped} is used", n.value),
+                Diagnostic::warning(
+                    expr.span,
+                    format!("a colour component should be between 0 and 255, but it is {}; {clamped} is used", n.value),
+                )
+                .with_code("clamped-colour"),
             );
         }
         Ok(Num { value: clamped, ..n })
