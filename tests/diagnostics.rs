@@ -172,6 +172,13 @@ fn json_places_agree_with_the_rendering_for_every_invalid_case() {
             assert_eq!(json_code, code, "{path} {args:?}");
             let places: Vec<String> = objects.iter().map(|object| json_place(&object["place"])).collect();
             assert_eq!(places, rendered_places(&stderr), "{path} {args:?}");
+            // Every diagnostic has a code of its own, not the constructors' default.
+            assert!(
+                objects
+                    .iter()
+                    .all(|object| !["error", "warning"].contains(&object["code"].as_str().unwrap_or("error"))),
+                "{path}"
+            );
             let last = objects.last().expect("an invalid case has an error");
             assert_eq!(last["severity"], "error", "{path}");
             assert!(stderr.contains(&format!("error: {}", last["message"].as_str().expect("a message"))), "{path}");
@@ -225,6 +232,12 @@ fn json_lines_and_columns_are_those_of_the_caret() {
         (
             format!("{start}put sphere center 0, 0, -1 radius 1 kd 2 ks 0 phong 1 color 255, 0, 0 end\n"),
             ("clamped-coefficient", (3, 40, 40), '2'),
+        ),
+        // A warning of the scene checks: the `0` of `ambient 0`, with no light.
+        (
+            "camera distance 10 angle 1 end\nambient 0\nput sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end\n"
+                .to_string(),
+            ("no-light", (2, 9, 9), '0'),
         ),
         // CRLF line ends.
         (
