@@ -6,7 +6,9 @@
 //! then `= note:` and `= help:` lines. Positions are never part of the text:
 //! they are read from spans when the diagnostic is rendered, in the
 //! coordinates of the source the user sees. [`emit`] is how every mode
-//! prints a diagnostic.
+//! prints a diagnostic. For tools, [`Diagnostic::to_json`] gives it as data
+//! (its code, its [`Place`]s as the rendering shows them, the edits its help
+//! proposes).
 
 use std::io::Write;
 use std::ops::Range;
