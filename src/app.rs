@@ -53,7 +53,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(path) if !cli.interactive => {
             // Sessions and scripts install it too, and arm it for each entry.
             let switch = CancelSwitch::install();
-            pool.install(|| exit_code(run_file(&cli, &path, switch)))
+            pool.install(|| exit_code(run_file(&cli, &path, switch), DiagnosticFormat::of(&cli)))
         }
         _ => pool.install(|| repl::run(&session_options(&cli))),
     }
@@ -94,12 +94,39 @@ impl From<String> for BatchError {
     }
 }
 
+/// How diagnostics are shown.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum DiagnosticFormat {
+    /// Drawn for people, on standard error.
+    Rendered,
+    /// One JSON object per line, on standard output (`--check --json`).
+    JsonLines,
+}
+
+impl DiagnosticFormat {
+    /// The format the command line asks for.
+    fn of(cli: &Cli) -> DiagnosticFormat {
+        if cli.check && cli.json { DiagnosticFormat::JsonLines } else { DiagnosticFormat::Rendered }
+    }
+
+    /// Shows `diagnostic`, which points into `sources`, in this format.
+    fn show(self, diagnostic: &Diagnostic, sources: &SourceMap) {
+        match self {
+            DiagnosticFormat::Rendered => emit(&mut anstream::stderr(), diagnostic, sources),
+            DiagnosticFormat::JsonLines => {
+                // A reader that stopped early (`| head`) is no failure.
+                let _ = writeln!(std::io::stdout().lock(), "{}", diagnostic.to_json(sources));
+            }
+        }
+    }
+}
+
 /// Prints a batch error, if any, and gives the exit code.
-fn exit_code(result: Result<(), BatchError>) -> ExitCode {
+fn exit_code(result: Result<(), BatchError>, format: DiagnosticFormat) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
-            print_error(&error);
+            print_error(&error, format);
             match error {
                 BatchError::Interrupted(_) => ExitCode::from(output::INTERRUPTED_EXIT_CODE as u8),
                 _ => ExitCode::FAILURE,
@@ -108,10 +135,10 @@ fn exit_code(result: Result<(), BatchError>) -> ExitCode {
     }
 }
 
-/// Prints a batch error on stderr.
-fn print_error(error: &BatchError) {
+/// Prints a batch error on stderr (a diagnostic in `format`).
+fn print_error(error: &BatchError, format: DiagnosticFormat) {
     match error {
-        BatchError::Scene(diagnostic, sources) => emit(&mut anstream::stderr(), diagnostic, sources),
+        BatchError::Scene(diagnostic, sources) => format.show(diagnostic, sources),
         BatchError::Other(message) => eprintln!("{}", message.trim_end()),
         BatchError::Interrupted(written) if written.is_empty() => {
             eprintln!("rayrepl: interrupted: no file was written")
@@ -136,7 +163,9 @@ fn run_file(cli: &Cli, path: &Path, switch: Option<&'static CancelSwitch>) -> Re
         export_pov(cli, &parsed, id, pov, path)
     } else if cli.check {
         parsed.evaluate(cli.settings().time, false).map(|scene| {
-            println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
+            if parsed.diagnostics == DiagnosticFormat::Rendered {
+                println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
+            }
         })
     } else if let Some((x, y)) = cli.explain {
         explain(cli, &parsed, x, y)
@@ -172,6 +201,8 @@ struct ParsedScene {
     printed: RefCell<PrintLog>,
     /// Raised by Ctrl-C while a render is under way: stops an evaluation.
     cancel: &'static AtomicBool,
+    /// How the warnings are shown.
+    diagnostics: DiagnosticFormat,
 }
 
 impl ParsedScene {
@@ -201,6 +232,7 @@ impl ParsedScene {
             allowed: cli.allowed(),
             printed: RefCell::default(),
             cancel,
+            diagnostics: DiagnosticFormat::of(cli),
         })
     }
 
@@ -231,7 +263,7 @@ impl ParsedScene {
         }
         for warning in warnings {
             if self.warned.borrow_mut().insert((warning.span, warning.message.clone())) {
-                emit(&mut anstream::stderr(), &warning, &self.sources);
+                self.diagnostics.show(&warning, &self.sources);
             }
         }
         match result {
@@ -435,7 +467,7 @@ fn watch(cli: &Cli, path: &Path) -> Result<(), BatchError> {
             Ok(id) => {
                 shown = Some(Arc::clone(&sources.get(id).text));
                 if let Err(error) = render_version(cli, sources, id, output.as_deref(), preview) {
-                    print_error(&error);
+                    print_error(&error, DiagnosticFormat::Rendered);
                     eprintln!("note: the last good picture stays: fix {} and save it again", path.display());
                 }
             }

@@ -139,8 +139,9 @@ pub struct Cli {
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["output", "anim", "frames", "watch"])]
     pub explain: Option<(u32, u32)>,
 
-    /// With --explain: print the explanation as one JSON object.
-    #[arg(long, requires = "explain")]
+    /// With --explain: print the explanation as one JSON object. With --check: print each diagnostic as one
+    /// JSON object, one per line, on standard output.
+    #[arg(long)]
     pub json: bool,
 
     /// Turn off warnings about the scene, by name, comma separated (`all`: every one).
@@ -226,6 +227,9 @@ impl Cli {
     /// A flag that would do nothing with the others given, said in words,
     /// or a setting out of its limits.
     pub(crate) fn misuse(&self) -> Option<String> {
+        if self.json && !self.check && self.explain.is_none() {
+            return Some("--json is for --check (the diagnostics) and --explain X,Y (the explanation)".into());
+        }
         let animation_flag = self.animation_flags().next();
         let session_flags = [
             (self.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),

@@ -154,6 +154,7 @@ pub fn check_scene(scene: &Scene, origins: &Origins, picture: &Picture, allowed:
             Check::UnusedObject => subject.unused_objects(),
         };
         for (k, diagnostic) in diagnostics.into_iter().enumerate() {
+            let diagnostic = diagnostic.with_code(check.name());
             let diagnostic = if k == 0 {
                 diagnostic.with_note(format!("`--allow {}` turns this warning off", check.name()))
             } else {

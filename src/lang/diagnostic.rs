@@ -6,7 +6,9 @@
 //! then `= note:` and `= help:` lines. Positions are never part of the text:
 //! they are read from spans when the diagnostic is rendered, in the
 //! coordinates of the source the user sees. [`emit`] is how every mode
-//! prints a diagnostic.
+//! prints a diagnostic. For tools, [`Diagnostic::to_json`] gives it as data
+//! (its code, its [`Place`]s as the rendering shows them, the edits its help
+//! proposes).
 
 use std::io::Write;
 use std::ops::Range;
@@ -16,6 +18,10 @@ use anstream::AutoStream;
 use anstream::stream::RawStream;
 
 use super::source::{SourceId, SourceMap, Span};
+
+mod data;
+
+pub use data::{Place, Position};
 
 /// How serious a diagnostic is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,6 +37,10 @@ pub enum Severity {
 pub struct Diagnostic {
     /// Error or warning.
     pub severity: Severity,
+    /// What kind of diagnostic this is, stable and kebab-case
+    /// (`unknown-variable`), for tools that read diagnostics as data
+    /// (`--check --json`); the README lists them.
+    pub code: &'static str,
     /// What is wrong, in plain words ("expected `end` to close the `sphere`").
     pub message: String,
     /// The spot the caret points at.
@@ -43,6 +53,18 @@ pub struct Diagnostic {
     pub notes: Vec<Note>,
     /// An obvious fix ("did you mean `sphere`?").
     pub help: Option<String>,
+    /// The edits the help proposes, when it proposes some (`sphere` for
+    /// `spehre`): never drawn, for tools that apply them.
+    pub replacements: Vec<Replacement>,
+}
+
+/// Text the help proposes to put in place of a span.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Replacement {
+    /// What is replaced.
+    pub span: Span,
+    /// What replaces it.
+    pub text: String,
 }
 
 impl Diagnostic {
@@ -50,18 +72,32 @@ impl Diagnostic {
     pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
+            code: "error",
             message: message.into(),
             span,
             label: None,
             related: Vec::new(),
             notes: Vec::new(),
             help: None,
+            replacements: Vec::new(),
         }
     }
 
     /// A warning at `span`.
     pub fn warning(span: Span, message: impl Into<String>) -> Diagnostic {
-        Diagnostic { severity: Severity::Warning, ..Diagnostic::error(span, message) }
+        Diagnostic { severity: Severity::Warning, code: "warning", ..Diagnostic::error(span, message) }
+    }
+
+    /// Names the kind of diagnostic (see [`Diagnostic::code`]).
+    pub fn with_code(mut self, code: &'static str) -> Diagnostic {
+        self.code = code;
+        self
+    }
+
+    /// Adds an edit that the help proposes: `text` in place of `span`.
+    pub fn with_replacement(mut self, span: Span, text: impl Into<String>) -> Diagnostic {
+        self.replacements.push(Replacement { span, text: text.into() });
+        self
     }
 
     /// Adds the text shown next to the caret.

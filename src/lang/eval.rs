@@ -369,9 +369,9 @@ impl Interpreter {
     }
 
     /// Records a warning, once per source spot.
-    fn warn(&mut self, span: Span, message: String) {
-        if self.warned.insert(span) {
-            self.warnings.push(Diagnostic::warning(span, message));
+    fn warn(&mut self, warning: Diagnostic) {
+        if self.warned.insert(warning.span) {
+            self.warnings.push(warning);
         }
     }
 

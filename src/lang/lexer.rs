@@ -185,6 +185,7 @@ impl<'a> Lexer<'a> {
             Ok(value) if value.is_finite() => Ok((start, Token::Number(value), end)),
             _ => Err(Box::new(
                 Diagnostic::error(Span::new(self.source, start, end), format!("the number `{literal}` is too large"))
+                    .with_code("number-too-large")
                     .with_label("too large for a number"),
             )),
         }
@@ -197,6 +198,7 @@ impl<'a> Lexer<'a> {
         let written = &self.text[start..self.pos];
         Box::new(
             Diagnostic::error(Span::new(self.source, start, self.pos), format!("`{written}` does not start a comment"))
+                .with_code("not-a-comment")
                 .with_label("not a comment in this language")
                 .with_help("comments start with `#` and run to the end of the line"),
         )
@@ -217,31 +219,45 @@ impl<'a> Lexer<'a> {
             };
             return Box::new(
                 Diagnostic::error(span, format!("invisible character U+{:04X}", u32::from(character)))
+                    .with_code("invisible-character")
                     .with_label("an invisible character is here")
                     .with_help(help),
             );
         }
         let diagnostic = Diagnostic::error(span, format!("unexpected character `{character}`"))
+            .with_code("unexpected-character")
             .with_label("this character is not part of the language");
         let help = if character.is_alphabetic() {
             Some(self.accented_word_help(start, end))
         } else {
             character_help(character).map(str::to_string)
         };
-        Box::new(match help {
+        let diagnostic = match help {
             Some(help) => diagnostic.with_help(help),
             None => diagnostic,
+        };
+        let (word, word_span) = self.word_around(start, end);
+        Box::new(match words::keyword_meant(word).filter(|_| character.is_alphabetic()) {
+            Some(keyword) => diagnostic.with_replacement(word_span, keyword),
+            None => diagnostic,
         })
+    }
+
+    /// The word (letters, digits and `_`) around the character at
+    /// `start..end`, and its span.
+    fn word_around(&self, start: usize, end: usize) -> (&str, Span) {
+        let is_letter = |c: char| c.is_alphanumeric() || c == '_';
+        let before = self.text[..start].trim_end_matches(is_letter);
+        let after = self.text[end..].trim_start_matches(is_letter);
+        let (first, last) = (before.len(), self.text.len() - after.len());
+        (&self.text[first..last], Span::new(self.source, first, last))
     }
 
     /// The help for a letter outside a to z at `start..end`: what the whole
     /// word around it means if it is a French keyword (`sphère`), otherwise
     /// which letters names may use.
     fn accented_word_help(&self, start: usize, end: usize) -> String {
-        let is_letter = |c: char| c.is_alphanumeric() || c == '_';
-        let before = self.text[..start].trim_end_matches(is_letter);
-        let after = self.text[end..].trim_start_matches(is_letter);
-        let word = &self.text[before.len()..self.text.len() - after.len()];
+        let (word, _) = self.word_around(start, end);
         words::hint_for_name(word)
             .unwrap_or_else(|| "names use only the letters a to z without accents, digits and `_`".to_string())
     }

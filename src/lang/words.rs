@@ -233,9 +233,22 @@ pub fn hint_for_name(text: &str) -> Option<String> {
     if let Some(keyword) = in_lower_case(text) {
         return Some(format!("keywords are written in lower case: `{keyword}`"));
     }
+    let (word, means) = from_elsewhere(text)?;
+    Some(format!("`{text}` is {}: the keyword is `{means}`", word.about))
+}
+
+/// The keyword that [`hint_for_name`] proposes for `text`, if it proposes
+/// one: the keyword in lower case, or the one a word from elsewhere means.
+pub fn keyword_meant(text: &str) -> Option<&'static str> {
+    in_lower_case(text).or_else(|| from_elsewhere(text).map(|(_, means)| means))
+}
+
+/// The word of the table from another language that `text` is (in any
+/// case), and the keyword it means.
+fn from_elsewhere(text: &str) -> Option<(&'static Word, &'static str)> {
     let word = lookup(text).or_else(|| lookup(&text.to_lowercase()))?;
     match word.kind {
-        Kind::Elsewhere { means } => Some(format!("`{text}` is {}: the keyword is `{means}`", word.about)),
+        Kind::Elsewhere { means } => Some((word, means)),
         _ => None,
     }
 }
@@ -341,6 +354,9 @@ mod tests {
         assert_eq!(hint_for_name("Couleur").as_deref(), Some("`Couleur` is French: the keyword is `color`"));
         assert_eq!(hint_for_name("ball"), None);
         assert_eq!(hint_for_name("sphere"), None);
+        assert_eq!(keyword_meant("Couleur"), Some("color"));
+        assert_eq!(keyword_meant("CAMERA"), Some("camera"));
+        assert_eq!(keyword_meant("ball"), None);
     }
 
     #[test]

@@ -47,6 +47,7 @@ fn bad_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
     let a = format_number(angle);
     let diagnostic = if (std::f64::consts::PI..180.0).contains(&angle) {
         Diagnostic::error(span, format!("the camera angle {a} looks like degrees, but angles are in radians"))
+            .with_code("angle-in-degrees")
             .with_label(format!("read as {a} radians, more than half a turn"))
             .with_help(format!(
                 "for {a} degrees, write `angle {a} * pi / 180` (that is {} radians)",
@@ -54,6 +55,7 @@ fn bad_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
             ))
     } else {
         Diagnostic::error(span, format!("the camera angle must be between 0 and pi, but it is {a}"))
+            .with_code("angle-out-of-range")
             .with_label("the field of view, in radians: no picture has this one")
             .with_help("1 (about 57 degrees) is a usual field of view; a smaller angle zooms in")
     };
@@ -67,7 +69,10 @@ pub(crate) fn with_suggestion<'a>(
     candidates: impl IntoIterator<Item = &'a str>,
 ) -> Diagnostic {
     match suggest::closest(name, candidates) {
-        Some(close) => diagnostic.with_help(format!("did you mean `{close}`?")),
+        Some(close) => {
+            let span = diagnostic.span;
+            diagnostic.with_help(format!("did you mean `{close}`?")).with_replacement(span, close)
+        }
         None => diagnostic,
     }
 }
@@ -75,6 +80,7 @@ pub(crate) fn with_suggestion<'a>(
 /// "`x` is a number, but an object is needed here".
 pub(crate) fn wrong_kind(span: Span, name: &str, found: &str, needed: &str) -> Diagnostic {
     Diagnostic::error(span, format!("`{name}` is {found}, but {needed} is needed here"))
+        .with_code("wrong-kind")
         .with_label(format!("this is {found}"))
 }
 
@@ -85,7 +91,7 @@ pub(crate) fn wrong_arity(span: Span, name: &str, params: &[&str], given: usize)
         1 => format!("1 argument ({})", params[0]),
         n => format!("{n} arguments ({})", params.join(", ")),
     };
-    Diagnostic::error(span, format!("`{name}` takes {takes} but was given {given}"))
+    Diagnostic::error(span, format!("`{name}` takes {takes} but was given {given}")).with_code("wrong-arity")
 }
 
 /// The summary of a call chain, outermost call first, each call named with

@@ -19,7 +19,9 @@ impl Interpreter {
     pub(crate) fn eval_expr(&mut self, expr: &Expr) -> EvalResult<Num> {
         match &expr.kind {
             ExprKind::Number(value) if value.is_finite() => Ok(Num::constant(*value)),
-            ExprKind::Number(_) => fail(Diagnostic::error(expr.span, "this number is too large")),
+            ExprKind::Number(_) => {
+                fail(Diagnostic::error(expr.span, "this number is too large").with_code("number-too-large"))
+            }
             ExprKind::Pi => Ok(Num::constant(PI)),
             ExprKind::Var(name) => self.number_variable(name, expr.span),
             _ => grow(|| self.eval_compound(expr)),
@@ -65,7 +67,9 @@ impl Interpreter {
 
     /// "unknown variable `x`", with a suggestion among the visible names.
     pub(crate) fn unknown_variable(&self, name: &str, span: Span) -> Diagnostic {
-        let diagnostic = Diagnostic::error(span, format!("unknown variable `{name}`")).with_label("not defined here");
+        let diagnostic = Diagnostic::error(span, format!("unknown variable `{name}`"))
+            .with_code("unknown-variable")
+            .with_label("not defined here");
         if self.procs.contains_key(name) {
             return diagnostic.with_note(format!("`{name}` is a procedure; procedures are called as instructions"));
         }
@@ -130,7 +134,7 @@ fn binary(op: BinOp, a: f64, b: f64, span: Span) -> EvalResult<f64> {
 #[cold]
 #[inline(never)]
 fn division_by_zero<T>(span: Span) -> EvalResult<T> {
-    fail(Diagnostic::error(span, "division by zero").with_label("the divisor is 0"))
+    fail(Diagnostic::error(span, "division by zero").with_code("division-by-zero").with_label("the divisor is 0"))
 }
 
 /// `sin`, `cos` or `sqrt` of `x`.
@@ -140,6 +144,7 @@ fn function(func: Func, x: f64, span: Span) -> EvalResult<f64> {
         Func::Cos => Ok(x.cos()),
         Func::Sqrt if x < 0.0 => fail(
             Diagnostic::error(span, format!("square root of a negative number ({x})"))
+                .with_code("negative-square-root")
                 .with_label("the argument is negative"),
         ),
         Func::Sqrt => Ok(x.sqrt()),
@@ -158,6 +163,7 @@ fn finite(value: f64, span: Span) -> EvalResult<f64> {
 fn overflow<T>(span: Span) -> EvalResult<T> {
     fail(
         Diagnostic::error(span, "this operation overflows: its result is too large to be a number")
+            .with_code("overflow")
             .with_label("not a finite number"),
     )
 }

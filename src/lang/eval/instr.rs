@@ -192,6 +192,7 @@ impl Interpreter {
         if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
             return fail(
                 Diagnostic::error(span, "stopped by Ctrl-C")
+                    .with_code("interrupted")
                     .with_label(format!("it was calling `{}` here", name.name))
                     .with_note("nothing of this input was kept"),
             );
@@ -252,8 +253,9 @@ impl Interpreter {
 
     /// "unknown procedure `orbt`", with a suggestion among the defined ones.
     fn unknown_procedure(&self, name: &Ident) -> Diagnostic {
-        let diagnostic =
-            Diagnostic::error(name.span, format!("unknown procedure `{}`", name.name)).with_label("no such procedure");
+        let diagnostic = Diagnostic::error(name.span, format!("unknown procedure `{}`", name.name))
+            .with_code("unknown-procedure")
+            .with_label("no such procedure");
         if let Some(value) = self.env.lookup(&name.name) {
             let kind = value.kind_name();
             return diagnostic.with_note(format!("`{}` is {kind}, not a procedure", name.name));
@@ -265,6 +267,7 @@ impl Interpreter {
     fn too_deep(&self, name: &Ident, span: Span) -> Box<EvalError> {
         let limit = self.limits.max_call_depth;
         let diagnostic = Diagnostic::error(span, format!("recursion deeper than {limit} calls"))
+            .with_code("recursion-too-deep")
             .with_label("this call goes too deep")
             .with_help(format!(
                 "check that the recursion stops (an `if` whose condition becomes false), or raise the limit ({})",

@@ -78,6 +78,7 @@ impl Interpreter {
                 if k.value == 0.0 {
                     return fail(
                         Diagnostic::error(by.span, "cannot scale by 0")
+                            .with_code("scale-by-zero")
                             .with_label("this is 0")
                             .with_note("a scale of 0 would shrink the object to a single point"),
                     );
@@ -126,6 +127,7 @@ impl Interpreter {
                         self.limits.max_primitives
                     ),
                 )
+                .with_code("too-many-primitives")
                 .with_label(format!("{n} more here"))
                 .with_help(format!(
                     "make fewer objects, or raise the limit ({})",
@@ -178,8 +180,11 @@ impl Interpreter {
         let clamped = n.value.clamp(0.0, 1.0);
         if clamped != n.value {
             self.warn(
-                expr.span,
-                format!("`{name}` should be between 0 and 1, but it is {}; {clamped} is used", n.value),
+                Diagnostic::warning(
+                    expr.span,
+                    format!("`{name}` should be between 0 and 1, but it is {}; {clamped} is used", n.value),
+                )
+                .with_code("clamped-coefficient"),
             );
         }
         Ok(Num { value: clamped, ..n })
@@ -191,8 +196,11 @@ impl Interpreter {
         let clamped = n.value.clamp(0.0, 255.0);
         if clamped != n.value {
             self.warn(
-                expr.span,
-                format!("a colour component should be between 0 and 255, but it is {}; {clamped} is used", n.value),
+                Diagnostic::warning(
+                    expr.span,
+                    format!("a colour component should be between 0 and 255, but it is {}; {clamped} is used", n.value),
+                )
+                .with_code("clamped-colour"),
             );
         }
         Ok(Num { value: clamped, ..n })
@@ -210,7 +218,9 @@ fn positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
 #[inline(never)]
 fn not_positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
     fail(
-        Diagnostic::error(span, format!("{what} must be positive, but it is {value}")).with_label("not greater than 0"),
+        Diagnostic::error(span, format!("{what} must be positive, but it is {value}"))
+            .with_code("not-positive")
+            .with_label("not greater than 0"),
     )
 }
 
@@ -225,6 +235,7 @@ fn transform(primitives: &mut [Primitive], span: Span, f: impl Fn(&mut Primitive
     } else {
         fail(
             Diagnostic::error(span, "this transformation moves the object out of range")
+                .with_code("out-of-range")
                 .with_label("coordinates are no longer finite numbers"),
         )
     }

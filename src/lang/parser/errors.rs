@@ -61,12 +61,12 @@ pub(super) fn syntax_error(
         }
         ParseError::ExtraToken { token: (start, _, end) } => {
             let span = Span::new(source, start, end);
-            Diagnostic::error(span, format!("unexpected `{}`", place.slice(span)))
+            Diagnostic::error(span, format!("unexpected `{}`", place.slice(span))).with_code("unexpected-token")
         }
         // Only lalrpop's own lexer reports invalid tokens; ours reports
         // unexpected characters as user errors.
         ParseError::InvalidToken { location } => {
-            Diagnostic::error(last_character(place, location), "unexpected character")
+            Diagnostic::error(last_character(place, location), "unexpected character").with_code("unexpected-character")
         }
     }
 }
@@ -191,7 +191,8 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
         }
         None => format!("unexpected end of file: expected {what}"),
     };
-    let diagnostic = Diagnostic::error(span, message).with_label("the file ends here");
+    let diagnostic =
+        Diagnostic::error(span, message).with_code("unexpected-end-of-file").with_label("the file ends here");
     match colour_help(place, context, place.text.len()) {
         Some(help) => diagnostic.with_help(help),
         None => diagnostic,
@@ -220,6 +221,7 @@ fn unclosed_error(place: Place<'_>, blame: Blame<'_>, at: Span, found: Option<&F
                 None => "the file ends here".to_string(),
             };
             let diagnostic = Diagnostic::error(at, format!("{prefix}expected `end` to close this {construct}"))
+                .with_code("unclosed-block")
                 .with_label(label)
                 .with_related(open.span, format!("this {construct} is not closed"));
             (open, diagnostic)
@@ -254,6 +256,7 @@ fn misclosed_error(
         None => format!("the file ends here, with {outer} still open"),
     };
     let diagnostic = Diagnostic::error(at, format!("{prefix}expected `end` to close this {construct}"))
+        .with_code("unclosed-block")
         .with_label(label)
         .with_related(misclosed.construct.span, format!("this {construct} is not closed"))
         .with_related(misclosed.end, format!("this `end`, lined up with {outer}, closed the {construct}"));
@@ -288,13 +291,20 @@ fn token_error(place: Place<'_>, mode: Mode, context: &Context, expected: &Expec
         return diagnostic;
     }
     if let Some(help) = common_mistake(place, context, expected, found) {
-        return diagnostic.with_help(help);
+        let diagnostic = diagnostic.with_help(help);
+        return match decimal_comma(place, context, found) {
+            Some((span, number)) => diagnostic.with_replacement(span, number),
+            None => diagnostic,
+        };
     }
-    match spelling_help(place, context, expected, found) {
-        Some((help, Some((span, text)))) => diagnostic.with_related(span, text).with_help(help),
-        Some((help, None)) => diagnostic.with_help(help),
+    let Some(spelling) = spelling_help(place, context, expected, found) else { return diagnostic };
+    let diagnostic = match spelling.related {
+        Some((span, text)) => diagnostic.with_related(span, text),
         None => diagnostic,
-    }
+    };
+    spelling.replacements.into_iter().fold(diagnostic.with_help(spelling.help), |diagnostic, (span, keyword)| {
+        diagnostic.with_replacement(span, keyword)
+    })
 }
 
 /// A hint for mistakes learners often make, recognised from the unexpected
@@ -333,13 +343,20 @@ fn common_mistake(place: Place<'_>, context: &Context, expected: &Expected, foun
 /// "decimal numbers are written with a point", when `found` is a comma
 /// between digits, as in `0,5`.
 fn decimal_comma_help(place: Place<'_>, context: &Context, found: &Found) -> Option<String> {
+    decimal_comma(place, context, found)
+        .map(|(_, number)| format!("decimal numbers are written with a point: `{number}`"))
+}
+
+/// The number written with a point, and the span of the number written
+/// with a comma (`0,5`), when `found` is a comma between digits.
+fn decimal_comma(place: Place<'_>, context: &Context, found: &Found) -> Option<(Span, String)> {
     let (Token::Number(_), number) = place.previous(context)? else { return None };
     if found.token != Token::Comma || number.end != found.span.start {
         return None;
     }
     let fraction: String = place.text[found.span.end as usize..].chars().take_while(char::is_ascii_digit).collect();
-    (!fraction.is_empty())
-        .then(|| format!("decimal numbers are written with a point: `{}.{fraction}`", place.slice(number)))
+    let span = Span { end: found.span.end + fraction.len() as u32, ..number };
+    (!fraction.is_empty()).then(|| (span, format!("{}.{fraction}", place.slice(number))))
 }
 
 /// "colours are three numbers", when a `#ff0000` colour (read as a comment)
@@ -366,10 +383,12 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
     let innermost = context.open.last();
     if found.token == Token::End && innermost.is_none() {
         return Diagnostic::error(span, "unexpected `end`: nothing is open here")
+            .with_code("unmatched-end")
             .with_label("this `end` closes nothing");
     }
     if found.token == Token::Else && innermost.is_none_or(|open| open.word.text != "if") {
         return Diagnostic::error(span, "unexpected `else`: it belongs between `if ... then` and `end`")
+            .with_code("unmatched-else")
             .with_label("this `else` has no `if`");
     }
     if mode == Mode::File && context.previous().is_none() {
@@ -382,11 +401,13 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
         && expected.has("*")
     {
         return Diagnostic::error(name_span, format!("unknown function `{name}`"))
+            .with_code("unknown-function")
             .with_label("not a function of the language")
             .with_help(words::hint_for_function(&name));
     }
     if expected.has("let") && found.token.is_keyword() && starts_object(found_text) {
         return Diagnostic::error(span, format!("expected an instruction, found the object `{found_text}`"))
+            .with_code("object-as-instruction")
             .with_label("an object is not an instruction")
             .with_help("write `put` before it to add it to the scene, or `object name =` to give it a name");
     }
@@ -395,15 +416,18 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
         [","] if context.triple.is_some() => {
             let triple = context.triple.unwrap_or("the triple");
             return Diagnostic::error(span, format!("expected `,` between the parts of {triple}"))
+                .with_code("missing-comma")
                 .with_label("expected `,` before this");
         }
         ["then"] => {
             return Diagnostic::error(span, "expected `then` after the condition of `if`")
+                .with_code("missing-then")
                 .with_label("expected `then` before this");
         }
         [")"] => {
             if let Some((paren, _)) = context.parens.last() {
                 return Diagnostic::error(span, "expected `)` to close the parenthesis")
+                    .with_code("unclosed-parenthesis")
                     .with_label("expected `)` before this")
                     .with_related(*paren, "the parenthesis opened here");
             }
@@ -428,7 +452,7 @@ fn token_message(place: Place<'_>, mode: Mode, context: &Context, expected: &Exp
         }
         _ => format!("expected {what}"),
     };
-    let diagnostic = Diagnostic::error(span, message).with_label(unexpected);
+    let diagnostic = Diagnostic::error(span, message).with_code("unexpected-token").with_label(unexpected);
     match innermost {
         Some(open) if closes => {
             diagnostic.with_related(open.span, format!("this {} is not closed", place.construct(open)))
@@ -451,24 +475,30 @@ fn texture_error(place: Place<'_>, expected: &Expected, found: &Found) -> Option
         let part = texture[wanted];
         return Some(
             Diagnostic::error(found.span, format!("missing `{part}`: a texture is {TEXTURE_SHAPE}, in this order"))
+                .with_code("texture-part-missing")
                 .with_label(format!("expected `{part}` before this")),
         );
     }
     texture.contains(&found_text).then(|| {
         Diagnostic::error(found.span, format!("the texture must be {TEXTURE_SHAPE} in this order"))
+            .with_code("texture-out-of-order")
             .with_label("out of order")
     })
+}
+
+/// A help about the spelling of a name: its text, the place to point at
+/// (when the name is not the error spot), and the keywords it proposes in
+/// place of names.
+struct SpellingHelp {
+    help: String,
+    related: Option<(Span, String)>,
+    replacements: Vec<(Span, String)>,
 }
 
 /// The help for names near the error that the words table knows (a keyword
 /// in capitals, a word of the French course) or that look like a misspelt
 /// keyword, and the place to point at when the name is not the error spot.
-fn spelling_help(
-    place: Place<'_>,
-    context: &Context,
-    expected: &Expected,
-    found: &Found,
-) -> Option<(String, Option<(Span, String)>)> {
+fn spelling_help(place: Place<'_>, context: &Context, expected: &Expected, found: &Found) -> Option<SpellingHelp> {
     let earlier = [place.token(context.before_previous()), place.previous(context)];
     let names: Vec<(&str, Span)> = earlier
         .into_iter()
@@ -477,24 +507,29 @@ fn spelling_help(
         .filter(|(token, _)| matches!(token, Token::Ident(_)))
         .map(|(_, span)| (place.slice(span), span))
         .collect();
-    let in_capitals: Vec<String> =
-        names.iter().filter_map(|(name, _)| words::in_lower_case(name)).map(|k| format!("`{k}`")).collect();
+    let in_capitals: Vec<(Span, String)> =
+        names.iter().filter_map(|(name, span)| Some((*span, words::in_lower_case(name)?.to_string()))).collect();
     if !in_capitals.is_empty() {
-        return Some((format!("keywords are written in lower case: {}", in_capitals.join(", ")), None));
+        let keywords: Vec<String> = in_capitals.iter().map(|(_, keyword)| format!("`{keyword}`")).collect();
+        let help = format!("keywords are written in lower case: {}", keywords.join(", "));
+        return Some(SpellingHelp { help, related: None, replacements: in_capitals });
     }
     let not_a_keyword = |name: &str, span: Span| {
         (span != found.span).then(|| (span, format!("`{name}` is not a keyword, so it is read as a name")))
     };
     for (name, span) in names.iter().rev() {
         if let Some(hint) = words::hint_for_name(name) {
-            return Some((hint, not_a_keyword(name, *span)));
+            let replacements =
+                words::keyword_meant(name).map(|keyword| (*span, keyword.to_string())).into_iter().collect();
+            return Some(SpellingHelp { help: hint, related: not_a_keyword(name, *span), replacements });
         }
     }
     if let Token::Ident(name) = &found.token {
         let suggestion = suggest::closest(name, expected.keywords())
             .or_else(|| suggest::closest(name, words::keyword_names()).filter(|_| name.len() >= 3));
         if let Some(keyword) = suggestion {
-            return Some((format!("did you mean `{keyword}`?"), None));
+            let help = format!("did you mean `{keyword}`?");
+            return Some(SpellingHelp { help, related: None, replacements: vec![(found.span, keyword.to_string())] });
         }
     }
     for (name, span) in names.iter().rev().filter(|(_, span)| *span != found.span) {
@@ -502,7 +537,12 @@ fn spelling_help(
             continue;
         }
         if let Some(keyword) = suggest::closest(name, words::keyword_names()) {
-            return Some((format!("did you mean `{keyword}`?"), not_a_keyword(name, *span)));
+            let help = format!("did you mean `{keyword}`?");
+            return Some(SpellingHelp {
+                help,
+                related: not_a_keyword(name, *span),
+                replacements: vec![(*span, keyword.to_string())],
+            });
         }
     }
     None

@@ -54,6 +54,7 @@ pub(super) fn check(source: SourceId, text: &str, program: &Program) -> Result<(
         Phase::Start => Err(start_error(end).with_label("the file ends here").with_note(ORDER_NOTE)),
         Phase::Camera => {
             Err(Diagnostic::error(end, "unexpected end of file: `ambient` must come right after the camera")
+                .with_code("ambient-missing")
                 .with_label("the file ends here")
                 .with_note(ORDER_NOTE))
         }
@@ -114,7 +115,9 @@ fn advance(item: &Item, at: Span, firsts: &mut Firsts) -> Phase {
 
 /// The error for a second `camera` or `ambient`.
 fn only_one(at: Span, what: &str, first: Option<Span>) -> Diagnostic {
-    let error = Diagnostic::error(at, format!("a file has only one `{what}`")).with_label(format!("a second `{what}`"));
+    let error = Diagnostic::error(at, format!("a file has only one `{what}`"))
+        .with_code("only-one")
+        .with_label(format!("a second `{what}`"));
     match first {
         Some(first) => error.with_related(first, format!("the first `{what}`")),
         None => error,
@@ -123,7 +126,7 @@ fn only_one(at: Span, what: &str, first: Option<Span>) -> Diagnostic {
 
 /// An item that should have come before `earlier`.
 fn out_of_place(at: Span, message: &str, label: &str, earlier: Option<Span>, earlier_name: &str) -> Diagnostic {
-    let error = Diagnostic::error(at, message).with_label(label);
+    let error = Diagnostic::error(at, message).with_code("out-of-order").with_label(label);
     match earlier {
         Some(earlier) => error.with_related(earlier, format!("{earlier_name} is here")),
         None => error,
@@ -133,13 +136,16 @@ fn out_of_place(at: Span, message: &str, label: &str, earlier: Option<Span>, ear
 /// The error for a file that does not start with the camera.
 pub(super) fn start_error(at: Span) -> Diagnostic {
     Diagnostic::error(at, "a scenario file must start with `camera ... end`")
+        .with_code("camera-first")
         .with_label("expected `camera` here")
         .with_help("begin the file with, for example, `camera distance 10 angle 1 end` then `ambient 0.2`")
 }
 
 /// The error for a file whose camera is not followed by `ambient`.
 fn ambient_missing(at: Span) -> Diagnostic {
-    Diagnostic::error(at, "`ambient` must come right after the camera").with_label("expected `ambient` here")
+    Diagnostic::error(at, "`ambient` must come right after the camera")
+        .with_code("ambient-missing")
+        .with_label("expected `ambient` here")
 }
 
 /// The span of the first word of the item spanning `span` in `text`.
