@@ -16,6 +16,7 @@ use image::RgbImage;
 use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::explain::ExplainedScene;
+use crate::failure::report_failure;
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
 use crate::lang::eval::PrintLog;
@@ -39,13 +40,13 @@ const USAGE_EXIT_CODE: u8 = 2;
 /// terminal, a script otherwise); with a scene, a check or a render.
 pub fn run(cli: Cli) -> ExitCode {
     if let Some(misuse) = cli.misuse() {
-        eprintln!("rayrepl: {misuse}");
+        report_failure(misuse);
         return ExitCode::from(USAGE_EXIT_CODE);
     }
     let pool = match rayon::ThreadPoolBuilder::new().num_threads(cli.threads.unwrap_or(0) as usize).build() {
         Ok(pool) => pool,
         Err(e) => {
-            eprintln!("rayrepl: cannot start worker threads: {e}");
+            report_failure(format_args!("cannot start worker threads: {e}"));
             return ExitCode::FAILURE;
         }
     };
@@ -81,7 +82,8 @@ fn limits(cli: &Cli) -> Limits {
 enum BatchError {
     /// A diagnostic about the scene, with the texts it points into.
     Scene(Box<Diagnostic>, SourceMap),
-    /// Any other problem, in one message (`rayrepl: cannot read ...`).
+    /// Any other problem, in one message (`cannot read ...`), which
+    /// [`report_failure`] writes after the program's name.
     Other(String),
     /// Ctrl-C or `kill` stopped a render or a write: the files written
     /// before it, each whole (no other file changed).
@@ -139,12 +141,10 @@ fn exit_code(result: Result<(), BatchError>, format: DiagnosticFormat) -> ExitCo
 fn print_error(error: &BatchError, format: DiagnosticFormat) {
     match error {
         BatchError::Scene(diagnostic, sources) => format.show(diagnostic, sources),
-        BatchError::Other(message) => eprintln!("{}", message.trim_end()),
-        BatchError::Interrupted(written) if written.is_empty() => {
-            eprintln!("rayrepl: interrupted: no file was written")
-        }
+        BatchError::Other(message) => report_failure(message),
+        BatchError::Interrupted(written) if written.is_empty() => report_failure("interrupted: no file was written"),
         BatchError::Interrupted(written) => {
-            eprintln!("rayrepl: interrupted: {} written before it stopped", output::describe_files(written))
+            report_failure(format_args!("interrupted: {} written before it stopped", output::describe_files(written)))
         }
     }
 }
@@ -292,11 +292,11 @@ fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
         let mut text = String::new();
         std::io::stdin()
             .read_to_string(&mut text)
-            .map_err(|e| format!("rayrepl: cannot read the scene from standard input: {}", output::io_reason(&e)))?;
+            .map_err(|e| format!("cannot read the scene from standard input: {}", output::io_reason(&e)))?;
         return Ok(sources.add("<stdin>", text, 0));
     }
     let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("rayrepl: cannot read `{}`: {}", path.display(), output::io_reason(&e)))?;
+        .map_err(|e| format!("cannot read `{}`: {}", path.display(), output::io_reason(&e)))?;
     Ok(sources.add(path.display().to_string(), text, 0))
 }
 
@@ -324,31 +324,30 @@ fn output_path(cli: &Cli, scene: &Path) -> Result<PathBuf, String> {
     };
     if path == Path::new("-") {
         if cli.anim.is_some() {
-            return Err("rayrepl: `-o -` writes a single image; give a file name for an animation".into());
+            return Err("`-o -` writes a single image; give a file name for an animation".into());
         }
         if std::io::stdout().is_terminal() {
-            return Err("rayrepl: `-o -` writes binary image data, not for a terminal: \
+            return Err("`-o -` writes binary image data, not for a terminal: \
                         redirect it (`> out.ppm`, `| display`) or give a file name"
                 .into());
         }
         return Ok(path);
     }
     if output::same_file(&path, scene) {
-        return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", path.display()));
+        return Err(format!("`{}` is the scene file itself; give another output name", path.display()));
     }
     if cli.anim.is_none() {
-        output::check_output(&path, Content::Still).map_err(|e| format!("rayrepl: {e}"))?;
+        output::check_output(&path, Content::Still).map_err(|e| e.to_string())?;
     }
     Ok(path)
 }
 
 /// The format of the animation's `output`, checked before any work.
 fn animation_format(cli: &Cli, output: &Path) -> Result<ImageFormat, BatchError> {
-    let format =
-        output::check_animation_output(output, &cli.animation_options()).map_err(|e| format!("rayrepl: {e}"))?;
+    let format = output::check_animation_output(output, &cli.animation_options()).map_err(|e| e.to_string())?;
     if format.holds_every_frame() && cli.frames.is_some() {
         return Err(BatchError::Other(
-            "rayrepl: --frames writes numbered images: use a .png or .ppm name with it, and put the \
+            "--frames writes numbered images: use a .png or .ppm name with it, and put the \
              frames together afterwards with ffmpeg (the README's \"Many machines\" shows how)"
                 .into(),
         ));
@@ -372,7 +371,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
 fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_path: &Path) -> Result<(), BatchError> {
     let start = Instant::now();
     if output::same_file(pov, scene_path) {
-        return Err(format!("rayrepl: `{}` is the scene file itself; give another output name", pov.display()).into());
+        return Err(format!("`{}` is the scene file itself; give another output name", pov.display()).into());
     }
     let scene = parsed.evaluate(cli.settings().time, false)?;
     let export = pov::Export {
@@ -385,12 +384,13 @@ fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_p
     let text = pov::to_pov(&scene, &export);
     let name = if pov == Path::new("-") {
         let mut stdout = std::io::stdout().lock();
-        stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()).map_err(|e| {
-            format!("rayrepl: cannot write the POV-Ray scene to standard output: {}", output::io_reason(&e))
-        })?;
+        stdout
+            .write_all(text.as_bytes())
+            .and_then(|()| stdout.flush())
+            .map_err(|e| format!("cannot write the POV-Ray scene to standard output: {}", output::io_reason(&e)))?;
         "standard output".to_string()
     } else {
-        output::write_text(pov, &text, &output::NEVER_CANCELLED).map_err(|e| format!("rayrepl: {e}"))?;
+        output::write_text(pov, &text, &output::NEVER_CANCELLED).map_err(|e| e.to_string())?;
         pov.display().to_string()
     };
     if !cli.quiet {
@@ -415,10 +415,10 @@ fn write_still(output: &Path, image: &RgbImage, cancel: &'static AtomicBool) -> 
         let mut stdout = std::io::stdout().lock();
         output::write_ppm(&mut stdout, image)
             .and_then(|()| stdout.flush())
-            .map_err(|e| format!("rayrepl: cannot write the image to standard output: {}", output::io_reason(&e)))?;
+            .map_err(|e| format!("cannot write the image to standard output: {}", output::io_reason(&e)))?;
         return Ok("standard output".to_string());
     }
-    output::write_image_cancellable(output, image, cancel).map_err(|e| format!("rayrepl: {e}"))?;
+    output::write_image_cancellable(output, image, cancel).map_err(|e| e.to_string())?;
     Ok(output.display().to_string())
 }
 
@@ -452,7 +452,7 @@ fn watch(cli: &Cli, path: &Path) -> Result<(), BatchError> {
         None => None,
     };
     let preview = repl::Preview::new(cli.no_preview);
-    let watcher = FileWatcher::new(path).map_err(|e| format!("rayrepl: {e}"))?;
+    let watcher = FileWatcher::new(path).map_err(|e| e.to_string())?;
     eprintln!("watching {}: every save renders it again; Ctrl-C stops", path.display());
     // A batch process ends at Ctrl-C: nothing raises this flag.
     let never = AtomicBool::new(false);
@@ -462,7 +462,7 @@ fn watch(cli: &Cli, path: &Path) -> Result<(), BatchError> {
         let mut sources = SourceMap::new();
         match load(&mut sources, path) {
             Err(message) if shown.is_none() => return Err(message.into()),
-            Err(message) => eprintln!("{message}"),
+            Err(message) => report_failure(message),
             Ok(id) if shown.as_ref() == Some(&sources.get(id).text) => {}
             Ok(id) => {
                 shown = Some(Arc::clone(&sources.get(id).text));
@@ -472,7 +472,7 @@ fn watch(cli: &Cli, path: &Path) -> Result<(), BatchError> {
                 }
             }
         }
-        watcher.wait(&never).map_err(|e| format!("rayrepl: {e}"))?;
+        watcher.wait(&never).map_err(|e| e.to_string())?;
     }
 }
 
@@ -490,11 +490,11 @@ fn render_version(
     let parsed = ParsedScene::parse(sources, id, cli, &output::NEVER_CANCELLED)?;
     let image = render_still(cli, &parsed, &output::NEVER_CANCELLED)?;
     if let Some(preview) = preview {
-        preview.show(&image).map_err(|e| format!("rayrepl: cannot show the picture here: {e}"))?;
+        preview.show(&image).map_err(|e| format!("cannot show the picture here: {e}"))?;
     }
     let done = match output {
         Some(output) => {
-            output::write_image(output, &image).map_err(|e| format!("rayrepl: {e}"))?;
+            output::write_image(output, &image).map_err(|e| e.to_string())?;
             format!("wrote {}", output.display())
         }
         None => format!("rendered {name}"),
@@ -564,7 +564,7 @@ fn animate(
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
         return Err(BatchError::Other(format!(
-            "rayrepl: --frames {}..{} goes past the last frame, {count}",
+            "--frames {}..{} goes past the last frame, {count}",
             frames.start(),
             frames.end()
         )));
@@ -577,9 +577,8 @@ fn animate(
     let animation = cli.animation_options();
     let mut frames_out = FrameSink::new(output, format, count as usize, animation.playback, cancel);
     let evaluate = |k: u32, skip_static: bool| parsed.evaluate(animation.timeline.time_of(k), skip_static);
-    let sink = |k: u32, image: RgbImage| {
-        frames_out.add(k as usize, image).map_err(|e| BatchError::Other(format!("rayrepl: {e}")))
-    };
+    let sink =
+        |k: u32, image: RgbImage| frames_out.add(k as usize, image).map_err(|e| BatchError::Other(format!("{e}")));
     let total = match render_animation(frames.clone(), evaluate, &options, &control, sink) {
         Ok(total) => total,
         Err(AnimationError::Failed(error)) => return Err(unless_interrupted(error, cancel, frames_out.written())),
@@ -590,7 +589,7 @@ fn animate(
         print_stats(&total, frames.clone().count());
     }
     let written = frames_out.finish();
-    let written = written.map_err(|e| unless_interrupted(format!("rayrepl: {e}").into(), cancel, &[]))?;
+    let written = written.map_err(|e| unless_interrupted(format!("{e}").into(), cancel, &[]))?;
     let what = format!("{} of {}", counted(frames.count(), "frame", "frames"), image_size(cli));
     report_done(cli, &format!("wrote {}", output::describe_files(&written)), &what, start);
     Ok(())

@@ -11,6 +11,7 @@ pub mod animation;
 pub mod app;
 pub mod cli;
 pub mod explain;
+pub mod failure;
 pub mod lang;
 pub mod lint;
 pub mod output;

@@ -8,6 +8,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rayrepl::cli::{Cli, translate_legacy_args};
+use rayrepl::failure::report_failure;
 
 fn main() -> ExitCode {
     keep_freed_memory();
@@ -15,7 +16,7 @@ fn main() -> ExitCode {
     match catch_unwind(AssertUnwindSafe(|| rayrepl::app::run(cli))) {
         Ok(code) => code,
         Err(_) => {
-            eprintln!("rayrepl: internal error (please report it with the input that caused it)");
+            report_failure("internal error (please report it with the input that caused it)");
             ExitCode::from(2)
         }
     }

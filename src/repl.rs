@@ -66,7 +66,7 @@ pub fn run(options: &SessionOptions) -> ExitCode {
         match run_interactive(options) {
             Ok(()) => 0,
             Err(error) => {
-                eprintln!("rayrepl: {error}");
+                crate::failure::report_failure(error);
                 1
             }
         }
