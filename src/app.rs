@@ -9,12 +9,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 
 use image::RgbImage;
 
 use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
+use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
 use crate::failure::report_failure;
 use crate::lang::ast::Program;
@@ -369,7 +369,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
 /// Writes the scene evaluated at `--time` as a POV-Ray scene to `pov`
 /// (`-`: standard output).
 fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_path: &Path) -> Result<(), BatchError> {
-    let start = Instant::now();
+    let start = Stopwatch::start();
     if output::same_file(pov, scene_path) {
         return Err(format!("`{}` is the scene file itself; give another output name", pov.display()).into());
     }
@@ -401,7 +401,7 @@ fn export_pov(cli: &Cli, parsed: &ParsedScene, id: SourceId, pov: &Path, scene_p
 
 /// Renders one image at `--time`, unless `cancel` is raised.
 fn still(cli: &Cli, parsed: &ParsedScene, output: &Path, cancel: &'static AtomicBool) -> Result<(), BatchError> {
-    let start = Instant::now();
+    let start = Stopwatch::start();
     let written = render_still(cli, parsed, cancel).and_then(|image| write_still(output, &image, cancel));
     let name = written.map_err(|e| unless_interrupted(e, cancel, &[]))?;
     report_done(cli, &format!("wrote {name}"), &image_size(cli), start);
@@ -425,7 +425,7 @@ fn write_still(output: &Path, image: &RgbImage, cancel: &'static AtomicBool) -> 
 /// Evaluates the scene at `--time` and renders it, with the progress bar
 /// and `--stats`, unless `cancel` is raised.
 fn render_still(cli: &Cli, parsed: &ParsedScene, cancel: &AtomicBool) -> Result<RgbImage, BatchError> {
-    let start = Instant::now();
+    let start = Stopwatch::start();
     let scene = parsed.evaluate(cli.settings().time, false)?;
     let evaluated = start.elapsed();
     let prepared = SceneGeometry::new(&scene);
@@ -485,7 +485,7 @@ fn render_version(
     output: Option<&Path>,
     preview: Option<repl::Preview>,
 ) -> Result<(), BatchError> {
-    let start = Instant::now();
+    let start = Stopwatch::start();
     let name = sources.get(id).name.clone();
     let parsed = ParsedScene::parse(sources, id, cli, &output::NEVER_CANCELLED)?;
     let image = render_still(cli, &parsed, &output::NEVER_CANCELLED)?;
@@ -510,7 +510,7 @@ fn image_size(cli: &Cli) -> String {
 
 /// Says on stderr, unless `--quiet`, what was `done` ("wrote out.png"):
 /// `what` ("800x600"), the reflections, the samples and the time since `start`.
-fn report_done(cli: &Cli, done: &str, what: &str, start: Instant) {
+fn report_done(cli: &Cli, done: &str, what: &str, start: Stopwatch) {
     if cli.quiet {
         return;
     }
@@ -560,7 +560,7 @@ fn animate(
     format: ImageFormat,
     cancel: &'static AtomicBool,
 ) -> Result<(), BatchError> {
-    let start = Instant::now();
+    let start = Stopwatch::start();
     let frames = cli.frames.clone().unwrap_or(1..=count);
     if *frames.end() > count {
         return Err(BatchError::Other(format!(

@@ -10,6 +10,7 @@
 pub mod animation;
 pub mod app;
 pub mod cli;
+pub mod clock;
 pub mod explain;
 pub mod failure;
 pub mod lang;

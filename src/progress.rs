@@ -3,9 +3,11 @@
 
 use std::io::IsTerminal;
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::clock::Stopwatch;
 
 /// How long work runs silently before a bar appears.
 const SHOW_AFTER: Duration = Duration::from_millis(500);
@@ -15,7 +17,7 @@ const SHOW_AFTER: Duration = Duration::from_millis(500);
 #[derive(Debug)]
 pub struct Progress {
     bar: ProgressBar,
-    start: Instant,
+    start: Stopwatch,
     shown: OnceLock<()>,
     enabled: bool,
 }
@@ -40,7 +42,7 @@ impl Progress {
             bar.set_style(style.progress_chars("=> "));
         }
         let enabled = visible && std::io::stderr().is_terminal();
-        Progress { bar, start: Instant::now(), shown: OnceLock::new(), enabled }
+        Progress { bar, start: Stopwatch::start(), shown: OnceLock::new(), enabled }
     }
 
     /// Records `units` more done; shows the bar once the work is slow enough to need it.

@@ -44,8 +44,6 @@ mod pixels;
 pub mod reuse;
 pub mod shade;
 
-use std::time::Instant;
-
 use image::RgbImage;
 
 pub use adaptive::{ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, FINE_DETAIL, Glimpse, glimpse_pass, refinement_mask};
@@ -59,6 +57,7 @@ pub use pixel_paths::{Explainer, PixelPaths};
 pub use pixels::TILE;
 pub use reuse::FrameReuse;
 
+use crate::clock::Stopwatch;
 use crate::scene::Scene;
 
 /// Renders `scene` (whose geometry is `prepared`) into an image of
@@ -105,7 +104,7 @@ fn render_with(
     control: &RenderControl,
     given: Option<&[bool]>,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
-    let start = Instant::now();
+    let start = Stopwatch::start();
     let mut image = RgbImage::new(options.width, options.height);
     let mut stats = if options.is_adaptive() {
         adaptive::render_two_passes(scene, prepared, options, control, given, &mut image)?

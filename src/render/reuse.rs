@@ -19,8 +19,6 @@
 //! # }
 //! ```
 
-use std::time::Instant;
-
 use image::RgbImage;
 
 use super::geometry::{Blocker, SceneGeometry, SurfaceHit};
@@ -29,6 +27,7 @@ use super::moving_bounds::MovingBounds;
 use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
 use super::pixels::Pass;
 use super::shade::PathObserver;
+use crate::clock::Stopwatch;
 use crate::scene::{Scene, Shape};
 
 /// The state carried from one frame of a run to the next.
@@ -117,7 +116,7 @@ impl FrameReuse {
             self.watching = false;
             return super::render(scene, prepared, &self.options, control);
         }
-        let start = Instant::now();
+        let start = Stopwatch::start();
         let last_frame = self.moving_bounds.frames() - 1;
         let watch = ValidityWatch { moving_bounds: &self.moving_bounds, frame, valid_until: last_frame };
         let mut watches = vec![watch; pixels];

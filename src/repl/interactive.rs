@@ -3,7 +3,7 @@
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anstream::stream::RawStream;
 use anstream::{AutoStream, ColorChoice};
@@ -12,6 +12,7 @@ use rustyline::config::{ColorMode, CompletionType, Config};
 use rustyline::error::ReadlineError;
 use rustyline::history::FileHistory;
 
+use crate::clock::Stopwatch;
 use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 
 use super::cancel::CancelSwitch;
@@ -155,7 +156,7 @@ impl LineSource for Terminal {
             helper.set_pending(pending);
             helper.set_names(&vocabulary);
         }
-        let started = Instant::now();
+        let started = Stopwatch::start();
         let text = self.editor.readline_with_initial(prompt, (initial, ""))?;
         Ok(EnteredLine { text, typed: started.elapsed() >= TYPING })
     }

@@ -2,8 +2,8 @@
 //! and `:preview`.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
+use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
 use crate::output::{self, Content, FrameSink};
 use crate::playback::AnimationOptions;
@@ -130,7 +130,7 @@ pub(crate) fn anim(shell: &mut Shell, arguments: &[String], console: &mut Consol
     explain_defaults(session, console);
     let size = Size { width: session.settings().width, height: session.settings().height };
     show_scene_warnings(session, console, size, true);
-    let started = Instant::now();
+    let started = Stopwatch::start();
     let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback, cancel_flag(console.cancel));
     let rendered = render_frames(session, frames, animation.timeline, size, console, &mut |frame, image| {
         sink.add(frame, image).map_err(write_failure)

@@ -3,11 +3,12 @@
 //! progress and Ctrl-C, and how their failures read.
 
 use std::sync::atomic::AtomicBool;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use image::RgbImage;
 
 use crate::animation::{AnimationError, render_animation};
+use crate::clock::Stopwatch;
 use crate::lang::Diagnostic;
 use crate::output::OutputError;
 use crate::playback::Timeline;
@@ -54,7 +55,7 @@ pub(crate) fn render_scene(
     settings: &RenderSettings,
     console: &Console,
 ) -> Result<(RgbImage, Duration), CommandError> {
-    let started = Instant::now();
+    let started = Stopwatch::start();
     let total = size.width as usize * size.height as usize;
     let progress = Progress::in_session(total as u64, "rendering", console.progress);
     let armed = console.cancel.map(|switch| switch.arm());
