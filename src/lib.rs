@@ -23,4 +23,6 @@ pub mod render;
 pub mod repl;
 pub mod scene;
 mod settings;
+#[cfg(test)]
+mod source_tree;
 mod watch;

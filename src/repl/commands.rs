@@ -8,7 +8,7 @@ use crate::lang::suggest::closest;
 
 use super::console::Console;
 use super::file_commands;
-use super::help::{self, Group, Topic};
+use super::help::{self, Group, Topic, help_page};
 use super::inspect;
 use super::lessons;
 pub(crate) use super::outcome::Flow;
@@ -21,13 +21,6 @@ use super::session_commands;
 use super::setting_commands;
 use super::shell::Shell;
 use super::write_back;
-
-/// The page in `help_pages/commands/NAME.txt`.
-macro_rules! command_page {
-    ($name:literal) => {
-        include_str!(concat!("help_pages/commands/", $name, ".txt")).trim_ascii_end()
-    };
-}
 
 /// A command of the session.
 pub(crate) struct Command {
@@ -63,7 +56,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &["lessons", "learn", "tutorial"],
             summary: "guided lessons, from a first sphere to an animation",
             group: Group::Learning,
-            text: command_page!("lesson"),
+            text: help_page!("commands/lesson"),
         },
         usage: ":lesson [NUMBER|stop]",
         files: Files::None,
@@ -75,7 +68,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "draw the scene in the terminal",
             group: Group::Pictures,
-            text: command_page!("render"),
+            text: help_page!("commands/render"),
         },
         usage: ":render [WIDTH HEIGHT]",
         files: Files::None,
@@ -87,7 +80,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "write the scene to an image file",
             group: Group::Pictures,
-            text: command_page!("save"),
+            text: help_page!("commands/save"),
         },
         usage: ":save FILE [WIDTH HEIGHT]",
         files: Files::WritesPictures,
@@ -99,7 +92,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &["animation"],
             summary: "write an animation, with time = 1, 2, ... N",
             group: Group::Pictures,
-            text: command_page!("anim"),
+            text: help_page!("commands/anim"),
         },
         usage: ":anim FRAMES FILE [--fps F] [--loop N|forever] [--time-start A] [--time-step S] [--apng]",
         files: Files::WritesPictures,
@@ -111,7 +104,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "play the animation in the terminal, until a key",
             group: Group::Pictures,
-            text: command_page!("play"),
+            text: help_page!("commands/play"),
         },
         usage: ":play [FRAMES [FPS]]",
         files: Files::None,
@@ -123,7 +116,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "set the value of time",
             group: Group::Pictures,
-            text: command_page!("time"),
+            text: help_page!("commands/time"),
         },
         usage: ":time [NUMBER]",
         files: Files::None,
@@ -135,7 +128,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "set the image size for :save and :anim",
             group: Group::Pictures,
-            text: command_page!("size"),
+            text: help_page!("commands/size"),
         },
         usage: ":size [WIDTH HEIGHT]",
         files: Files::None,
@@ -147,7 +140,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "set how many mirror reflections are followed",
             group: Group::Pictures,
-            text: command_page!("depth"),
+            text: help_page!("commands/depth"),
         },
         usage: ":depth [REFLECTIONS]",
         files: Files::None,
@@ -159,7 +152,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "set how many rays each pixel averages (smoother edges)",
             group: Group::Pictures,
-            text: command_page!("samples"),
+            text: help_page!("commands/samples"),
         },
         usage: ":samples [RAYS PER PIXEL]",
         files: Files::None,
@@ -171,7 +164,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "choose how big the picture of `:render` is in the terminal",
             group: Group::Pictures,
-            text: command_page!("preview"),
+            text: help_page!("commands/preview"),
         },
         usage: ":preview [fit|small|off]",
         files: Files::None,
@@ -183,7 +176,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &["why"],
             summary: "why a pixel of the last picture has its colour",
             group: Group::Pictures,
-            text: command_page!("pick"),
+            text: help_page!("commands/pick"),
         },
         usage: ":pick X Y",
         files: Files::None,
@@ -195,7 +188,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "run a .ray file into the session",
             group: Group::Files,
-            text: command_page!("load"),
+            text: help_page!("commands/load"),
         },
         usage: ":load FILE",
         files: Files::Reads,
@@ -207,7 +200,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "run the file of the last :load again, as it is now",
             group: Group::Files,
-            text: command_page!("reload"),
+            text: help_page!("commands/reload"),
         },
         usage: ":reload",
         files: Files::None,
@@ -219,7 +212,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "render a file again every time it is saved",
             group: Group::Files,
-            text: command_page!("watch"),
+            text: help_page!("commands/watch"),
         },
         usage: ":watch FILE",
         files: Files::Reads,
@@ -231,7 +224,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "write what the session holds as a .ray file",
             group: Group::Files,
-            text: command_page!("write"),
+            text: help_page!("commands/write"),
         },
         usage: ":write FILE.ray",
         files: Files::WritesScene,
@@ -243,7 +236,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "list the names and procedures defined",
             group: Group::LookingInside,
-            text: command_page!("env"),
+            text: help_page!("commands/env"),
         },
         usage: ":env",
         files: Files::None,
@@ -255,7 +248,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "show the camera, lights and what was put",
             group: Group::LookingInside,
-            text: command_page!("scene"),
+            text: help_page!("commands/scene"),
         },
         usage: ":scene",
         files: Files::None,
@@ -267,7 +260,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "print how a procedure, object or number was defined",
             group: Group::LookingInside,
-            text: command_page!("show"),
+            text: help_page!("commands/show"),
         },
         usage: ":show NAME",
         files: Files::None,
@@ -279,7 +272,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "list the inputs the session holds, in order",
             group: Group::LookingInside,
-            text: command_page!("list"),
+            text: help_page!("commands/list"),
         },
         usage: ":list",
         files: Files::None,
@@ -291,7 +284,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "list the lines you typed (this session and earlier ones)",
             group: Group::LookingInside,
-            text: command_page!("history"),
+            text: help_page!("commands/history"),
         },
         usage: ":history [LINES]",
         files: Files::None,
@@ -303,7 +296,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[":h", ":?"],
             summary: "this help, or help on one word",
             group: Group::TheSession,
-            text: command_page!("help"),
+            text: help_page!("commands/help"),
         },
         usage: ":help [NAME]",
         files: Files::None,
@@ -315,7 +308,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "take back the last input that changed the session",
             group: Group::TheSession,
-            text: command_page!("undo"),
+            text: help_page!("commands/undo"),
         },
         usage: ":undo",
         files: Files::None,
@@ -327,7 +320,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[],
             summary: "start again from an empty session",
             group: Group::TheSession,
-            text: command_page!("reset"),
+            text: help_page!("commands/reset"),
         },
         usage: ":reset",
         files: Files::None,
@@ -339,7 +332,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &["max-calls", "max-primitives"],
             summary: "raise the limits on recursion and on primitives",
             group: Group::TheSession,
-            text: command_page!("limits"),
+            text: help_page!("commands/limits"),
         },
         usage: ":limits [calls N] [primitives N]",
         files: Files::None,
@@ -351,7 +344,7 @@ pub(crate) const COMMANDS: &[Command] = &[
             aliases: &[":q", ":exit"],
             summary: "leave (Ctrl-D does too)",
             group: Group::TheSession,
-            text: command_page!("quit"),
+            text: help_page!("commands/quit"),
         },
         usage: ":quit",
         files: Files::None,
@@ -359,11 +352,18 @@ pub(crate) const COMMANDS: &[Command] = &[
     },
 ];
 
-/// The command named `name` (or one of its other names that start with `:`).
+impl Command {
+    /// The names it is typed by: its name, and its other names that start
+    /// with `:` (the rest are only for `:help`).
+    pub(crate) fn typed_names(&self) -> impl Iterator<Item = &'static str> {
+        let aliases = self.topic.aliases.iter().copied().filter(|alias| alias.starts_with(':'));
+        std::iter::once(self.topic.name).chain(aliases)
+    }
+}
+
+/// The command typed as `name`.
 pub(crate) fn find(name: &str) -> Option<&'static Command> {
-    let typed_as =
-        |command: &Command| command.topic.aliases.iter().any(|alias| alias.starts_with(':') && *alias == name);
-    COMMANDS.iter().find(|command| command.topic.name == name || typed_as(command))
+    COMMANDS.iter().find(|command| command.typed_names().any(|typed| typed == name))
 }
 
 /// Every page `:help` knows: the language's, then the commands'.
@@ -410,9 +410,7 @@ fn dispatch(shell: &mut Shell, words: &[String], console: &mut Console) -> Comma
 }
 
 fn unknown_command(name: &str) -> CommandError {
-    let aliases =
-        COMMANDS.iter().flat_map(|command| command.topic.aliases.iter().filter(|alias| alias.starts_with(':')));
-    let names = COMMANDS.iter().map(|command| command.topic.name).chain(aliases.copied());
+    let names = COMMANDS.iter().flat_map(Command::typed_names);
     let mut message = format!("there is no command `{name}`");
     if let Some(close) = closest(name, names) {
         message.push_str(&format!("; did you mean `{close}`?"));
@@ -452,13 +450,13 @@ pub(crate) fn split_arguments(line: &str) -> Result<Vec<String>, String> {
 
 /// `:help [NAME]`: the overview, or the page about one name.
 fn help_command(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+    let pages = help_pages();
     match arguments {
-        [] => console.say(help::overview(&help_pages())),
-        [name] => match help::find(name, &help_pages()) {
+        [] => console.say(help::overview(&pages)),
+        [name] => match help::find(name, &pages) {
             Some(topic) => console.say(topic.text),
             None => {
-                let hint =
-                    help::suggestion(name, &help_pages()).map(|s| format!("; did you mean `{s}`?")).unwrap_or_default();
+                let hint = help::suggestion(name, &pages).map(|s| format!("; did you mean `{s}`?")).unwrap_or_default();
                 return Err(CommandError::Failed(format!(
                     "no help about `{name}`{hint}\n`:help` lists what it explains"
                 )));
@@ -491,9 +489,8 @@ mod tests {
     fn names_and_other_names_of_commands_are_distinct() {
         let mut seen = std::collections::HashSet::new();
         for command in COMMANDS {
-            let typed = command.topic.aliases.iter().filter(|alias| alias.starts_with(':'));
-            for name in std::iter::once(&command.topic.name).chain(typed) {
-                assert!(seen.insert(*name), "`{name}` names two commands");
+            for name in command.typed_names() {
+                assert!(seen.insert(name), "`{name}` names two commands");
                 assert_eq!(find(name).map(|found| found.topic.name), Some(command.topic.name));
             }
         }

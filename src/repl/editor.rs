@@ -101,11 +101,11 @@ impl RayHelper {
             let names = COMMANDS.iter().map(|command| command.topic.name).filter(|name| name.starts_with(typed));
             return Ok((start, names.map(|name| plain(name, &format!("{name} "))).collect()));
         };
-        let command = commands::find(&before[start..command_end]).map(|command| (command.topic.name, command.files));
-        if command.is_some_and(|(_, files)| files != Files::None) {
+        let command = commands::find(&before[start..command_end]);
+        if command.is_some_and(|command| command.files != Files::None) {
             return self.files.complete(line, pos, ctx);
         }
-        if command.is_some_and(|(name, _)| name == ":help") {
+        if command.is_some_and(|command| command.topic.name == ":help") {
             let word_start = word_start(before);
             let typed = &before[word_start..];
             let mut topics: Vec<&str> = help::all_names(&help_pages()).filter(|name| name.starts_with(typed)).collect();

@@ -9,12 +9,14 @@
 use crate::lang::suggest::closest;
 use crate::lang::words::{self, Kind};
 
-/// The page in `help_pages/language/NAME.txt`.
-macro_rules! language_page {
-    ($name:literal) => {
-        include_str!(concat!("help_pages/language/", $name, ".txt")).trim_ascii_end()
+/// The help page in `help_pages/PATH.txt`, as a `&'static str` without
+/// the file's last newline.
+macro_rules! help_page {
+    ($path:literal) => {
+        include_str!(concat!("help_pages/", $path, ".txt")).trim_ascii_end()
     };
 }
+pub(crate) use help_page;
 
 /// One help page.
 #[derive(Debug, Clone, Copy)]
@@ -90,182 +92,182 @@ pub(crate) const LANGUAGE: &[Topic] = &[
         aliases: &[],
         summary: "where the eye is and how wide it sees",
         group: Group::SceneSetUp,
-        text: language_page!("camera"),
+        text: help_page!("language/camera"),
     },
     Topic {
         name: "ambient",
         aliases: &[],
         summary: "light that reaches every surface, even in shadow",
         group: Group::SceneSetUp,
-        text: language_page!("ambient"),
+        text: help_page!("language/ambient"),
     },
     Topic {
         name: "light",
         aliases: &[],
         summary: "a far away light shining from one direction",
         group: Group::SceneSetUp,
-        text: language_page!("light"),
+        text: help_page!("language/light"),
     },
     Topic {
         name: "sphere",
         aliases: &[],
         summary: "a ball: center and radius",
         group: Group::Shapes,
-        text: language_page!("sphere"),
+        text: help_page!("language/sphere"),
     },
     Topic {
         name: "plane",
         aliases: &[],
         summary: "a flat floor, wall or ceiling that goes on forever",
         group: Group::Shapes,
-        text: language_page!("plane"),
+        text: help_page!("language/plane"),
     },
     Topic {
         name: "box",
         aliases: &[],
         summary: "a box: center and sizes along x, y and z",
         group: Group::Shapes,
-        text: language_page!("box"),
+        text: help_page!("language/box"),
     },
     Topic {
         name: "texture",
         aliases: &[],
         summary: "how a surface looks: kd ks phong color",
         group: Group::Shapes,
-        text: language_page!("texture"),
+        text: help_page!("language/texture"),
     },
     Topic {
         name: "translate",
         aliases: &[],
         summary: "move an object",
         group: Group::MovingShapes,
-        text: language_page!("translate"),
+        text: help_page!("language/translate"),
     },
     Topic {
         name: "rotate",
         aliases: &[],
         summary: "turn an object about the origin",
         group: Group::MovingShapes,
-        text: language_page!("rotate"),
+        text: help_page!("language/rotate"),
     },
     Topic {
         name: "scale",
         aliases: &[],
         summary: "make an object bigger or smaller",
         group: Group::MovingShapes,
-        text: language_page!("scale"),
+        text: help_page!("language/scale"),
     },
     Topic {
         name: "group",
         aliases: &[],
         summary: "several objects treated as one",
         group: Group::MovingShapes,
-        text: language_page!("group"),
+        text: help_page!("language/group"),
     },
     Topic {
         name: "by",
         aliases: &[],
         summary: "how much translate, rotate and scale change an object",
         group: Group::MovingShapes,
-        text: language_page!("by"),
+        text: help_page!("language/by"),
     },
     Topic {
         name: "rotation",
         aliases: &[],
         summary: "three angles: about x, then y, then z",
         group: Group::MovingShapes,
-        text: language_page!("rotation"),
+        text: help_page!("language/rotation"),
     },
     Topic {
         name: "put",
         aliases: &[],
         summary: "add an object to the scene",
         group: Group::BuildingTheScene,
-        text: language_page!("put"),
+        text: help_page!("language/put"),
     },
     Topic {
         name: "object",
         aliases: &[],
         summary: "give an object a name (without putting it)",
         group: Group::BuildingTheScene,
-        text: language_page!("object"),
+        text: help_page!("language/object"),
     },
     Topic {
         name: "let",
         aliases: &[],
         summary: "give a number a name",
         group: Group::BuildingTheScene,
-        text: language_page!("let"),
+        text: help_page!("language/let"),
     },
     Topic {
         name: "proc",
         aliases: &[],
         summary: "a procedure: instructions to run again with other numbers",
         group: Group::BuildingTheScene,
-        text: language_page!("proc"),
+        text: help_page!("language/proc"),
     },
     Topic {
         name: "if",
         aliases: &[],
         summary: "do something only when a condition holds",
         group: Group::BuildingTheScene,
-        text: language_page!("if"),
+        text: help_page!("language/if"),
     },
     Topic {
         name: "conditions",
         aliases: &["=", "<", "&", "|", "!", "condition"],
         summary: "comparisons and & | ! in an if",
         group: Group::BuildingTheScene,
-        text: language_page!("conditions"),
+        text: help_page!("language/conditions"),
     },
     Topic {
         name: "end",
         aliases: &[],
         summary: "closes what camera, light, shapes, transformations, group, proc and if open",
         group: Group::BuildingTheScene,
-        text: language_page!("end"),
+        text: help_page!("language/end"),
     },
     Topic {
         name: "numbers",
         aliases: &["+", "-", "*", "/", "arithmetic", "expressions"],
         summary: "arithmetic: + - * / and parentheses",
         group: Group::Numbers,
-        text: language_page!("numbers"),
+        text: help_page!("language/numbers"),
     },
     Topic {
         name: "time",
         aliases: &[],
         summary: "the frame number of an animation",
         group: Group::Numbers,
-        text: language_page!("time"),
+        text: help_page!("language/time"),
     },
     Topic {
         name: "functions",
         aliases: &[],
         summary: "sin, cos and sqrt",
         group: Group::Numbers,
-        text: language_page!("functions"),
+        text: help_page!("language/functions"),
     },
     Topic {
         name: "pi",
         aliases: &[],
         summary: "the number pi, half a turn in radians",
         group: Group::Numbers,
-        text: language_page!("pi"),
+        text: help_page!("language/pi"),
     },
     Topic {
         name: "comments",
         aliases: &["#", "comment"],
         summary: "# starts a note to the end of the line",
         group: Group::Numbers,
-        text: language_page!("comments"),
+        text: help_page!("language/comments"),
     },
     Topic {
         name: "print",
         aliases: &[],
         summary: "show values while the program runs",
         group: Group::Numbers,
-        text: language_page!("print"),
+        text: help_page!("language/print"),
     },
 ];
 

@@ -106,10 +106,10 @@ impl Diagnostic {
 #[cfg(test)]
 mod tests {
     use std::collections::BTreeSet;
-    use std::path::PathBuf;
 
     use super::*;
     use crate::lint::Check;
+    use crate::source_tree::rust_sources;
 
     #[test]
     fn columns_count_characters_and_utf16_code_units() {
@@ -153,19 +153,10 @@ mod tests {
     /// scene checks' names.
     fn codes_in_the_sources() -> BTreeSet<String> {
         let mut codes: BTreeSet<String> = Check::ALL.iter().map(|check| check.name().to_string()).collect();
-        let mut folders = vec![PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/src"))];
-        while let Some(folder) = folders.pop() {
-            for entry in std::fs::read_dir(&folder).expect("src is readable") {
-                let path = entry.expect("an entry of src").path();
-                if path.is_dir() {
-                    folders.push(path);
-                } else if path.extension().is_some_and(|extension| extension == "rs") {
-                    let text = std::fs::read_to_string(&path).expect("a source file is text");
-                    for (at, _) in text.match_indices("with_code(\"") {
-                        let rest = &text[at + "with_code(\"".len()..];
-                        codes.insert(rest[..rest.find('"').expect("the literal ends")].to_string());
-                    }
-                }
+        for (_, text) in rust_sources() {
+            for (at, _) in text.match_indices("with_code(\"") {
+                let rest = &text[at + "with_code(\"".len()..];
+                codes.insert(rest[..rest.find('"').expect("the literal ends")].to_string());
             }
         }
         codes
