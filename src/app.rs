@@ -164,7 +164,9 @@ fn run_file(cli: &Cli, path: &Path, switch: Option<&'static CancelSwitch>) -> Re
     } else if cli.check {
         parsed.evaluate(cli.settings().time, false).map(|scene| {
             if parsed.diagnostics == DiagnosticFormat::Rendered {
-                println!("{}: {}", parsed.sources.get(id).name, summary(&scene));
+                // A closed pipe or a full disk loses the summary, as it
+                // would the JSON or an explanation: the check itself is done.
+                let _ = writeln!(std::io::stdout().lock(), "{}: {}", parsed.sources.get(id).name, summary(&scene));
             }
         })
     } else if let Some((x, y)) = cli.explain {

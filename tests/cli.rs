@@ -94,6 +94,19 @@ fn check_prints_a_summary_and_writes_nothing() {
 }
 
 #[test]
+fn check_to_a_full_disk_ends_without_a_panic() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return; // Not on this platform.
+    };
+    let (dir, path) = scene(SPHERE);
+    let binary = assert_cmd::cargo::cargo_bin("rayrepl");
+    let mut checked = std::process::Command::new(binary);
+    let output = checked.current_dir(dir.path()).arg("--check").arg(&path).stdout(full).output().expect("rayrepl runs");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
 fn without_dash_o_the_image_is_named_after_the_scene() {
     let (dir, path) = scene(SPHERE);
     rayrepl().current_dir(dir.path()).arg(&path).args(["--width", "8", "--height", "8"]).assert().success();
