@@ -24,11 +24,13 @@ use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, pa
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::pov;
-use crate::progress::Progress;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
-use crate::repl::{self, CancelSwitch, SessionOptions, cancel_flag};
+use crate::repl::{CancelSwitch, SessionOptions, cancel_flag};
 use crate::scene::Scene;
-use crate::watch::FileWatcher;
+use crate::terminal::preview::Preview;
+use crate::terminal::progress::Progress;
+use crate::terminal::watch::FileWatcher;
+use crate::terminal::{ctrl_c, run_session};
 
 /// The exit code of a command line that asks for something impossible or
 /// meaningless (the same as clap's for its own usage errors).
@@ -53,10 +55,10 @@ pub fn run(cli: Cli) -> ExitCode {
     match cli.scene.clone() {
         Some(path) if !cli.interactive => {
             // Sessions and scripts install it too, and arm it for each entry.
-            let switch = CancelSwitch::install();
+            let switch = ctrl_c::install();
             pool.install(|| exit_code(run_file(&cli, &path, switch), DiagnosticFormat::of(&cli)))
         }
-        _ => pool.install(|| repl::run(&session_options(&cli))),
+        _ => pool.install(|| run_session(&session_options(&cli))),
     }
 }
 
@@ -453,7 +455,7 @@ fn watch(cli: &Cli, path: &Path) -> Result<(), BatchError> {
         Some(_) => Some(output_path(cli, path)?),
         None => None,
     };
-    let preview = repl::Preview::new(cli.no_preview);
+    let preview = Preview::new(cli.no_preview);
     let watcher = FileWatcher::new(path).map_err(|e| e.to_string())?;
     eprintln!("watching {}: every save renders it again; Ctrl-C stops", path.display());
     // A batch process ends at Ctrl-C: nothing raises this flag.
@@ -485,7 +487,7 @@ fn render_version(
     sources: SourceMap,
     id: SourceId,
     output: Option<&Path>,
-    preview: Option<repl::Preview>,
+    preview: Option<Preview>,
 ) -> Result<(), BatchError> {
     let start = Stopwatch::start();
     let name = sources.get(id).name.clone();

@@ -7,10 +7,17 @@
 //! image file ([`output`]) or terminal preview ([`repl`]). [`explain`] tells
 //! why a pixel has its colour.
 
+// Without the terminal (a core-only or wasm32 build), the parts of the
+// session core that only the terminal's front-end uses today are unused.
+#![cfg_attr(not(feature = "terminal"), allow(dead_code, unused_imports))]
+
 pub mod animation;
+#[cfg(feature = "terminal")]
 pub mod app;
+#[cfg(feature = "terminal")]
 pub mod cli;
 pub mod clock;
+mod data_dir;
 pub mod explain;
 pub mod failure;
 pub mod lang;
@@ -18,11 +25,11 @@ pub mod lint;
 pub mod output;
 pub mod playback;
 mod pov;
-mod progress;
 pub mod render;
 pub mod repl;
 pub mod scene;
 mod settings;
 #[cfg(test)]
 mod source_tree;
-mod watch;
+#[cfg(feature = "terminal")]
+pub mod terminal;

@@ -78,8 +78,8 @@ pub struct SourceMap {
 
 impl SourceMap {
     /// An empty map.
-    pub fn new() -> SourceMap {
-        SourceMap::default()
+    pub const fn new() -> SourceMap {
+        SourceMap { files: Vec::new() }
     }
 
     /// Adds a text and returns its id.

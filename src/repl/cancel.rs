@@ -1,21 +1,14 @@
-//! Stopping what an entry does with Ctrl-C without leaving the session.
-//!
-//! At the prompt the terminal is in raw mode and rustyline reads Ctrl-C as a
-//! key. While an entry runs (evaluation, a render, the writing of a file) it
-//! is not, so Ctrl-C raises SIGINT. One handler is installed per process (the
-//! `ctrlc` crate allows no more); while the switch is armed it raises the
-//! cancel flag that evaluation and renders poll, and at any other time it
-//! does what Ctrl-C does by default: end the program.
+//! Stopping what an entry does without leaving the session: a switch that
+//! is armed while a job runs, and whose flag evaluation and renders poll.
+//! The front-end raises it (the terminal's Ctrl-C handler,
+//! `crate::terminal::ctrl_c`); at any other time the front-end does what
+//! it would do anyway.
 
-use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-/// The switch, once the handler is installed; `None` inside if installing failed.
-static SWITCH: OnceLock<Option<CancelSwitch>> = OnceLock::new();
-
-/// The process-wide Ctrl-C switch.
+/// The switch that stops a running job.
 #[derive(Debug, Default)]
-pub(crate) struct CancelSwitch {
+pub struct CancelSwitch {
     /// Raised by Ctrl-C while armed; polled by evaluation and renders.
     cancel: AtomicBool,
     /// How many cancellable jobs are running (an entry, a render inside it).
@@ -23,10 +16,13 @@ pub(crate) struct CancelSwitch {
 }
 
 impl CancelSwitch {
-    /// The switch, with its Ctrl-C handler installed on first use. `None` if
-    /// the handler could not be installed (another one was set already).
-    pub(crate) fn install() -> Option<&'static CancelSwitch> {
-        SWITCH.get_or_init(|| ctrlc::set_handler(on_ctrl_c).is_ok().then(CancelSwitch::default)).as_ref()
+    /// Raises the flag if a job is running; says whether one was.
+    pub(crate) fn cancel_if_armed(&self) -> bool {
+        let armed = self.armed.load(Ordering::SeqCst) > 0;
+        if armed {
+            self.cancel.store(true, Ordering::SeqCst);
+        }
+        armed
     }
 
     /// Arms the switch for one job; it is disarmed when the guard drops. A
@@ -73,12 +69,5 @@ impl Drop for ArmedSwitch {
         if self.switch.armed.fetch_sub(1, Ordering::SeqCst) == 1 {
             self.switch.cancel.store(false, Ordering::SeqCst);
         }
-    }
-}
-
-fn on_ctrl_c() {
-    match SWITCH.get() {
-        Some(Some(switch)) if switch.armed.load(Ordering::SeqCst) > 0 => switch.cancel.store(true, Ordering::SeqCst),
-        _ => crate::output::exit_discarding_unfinished(crate::output::INTERRUPTED_EXIT_CODE),
     }
 }

@@ -6,13 +6,13 @@
 
 use crate::lang::suggest::closest;
 
-use super::console::Console;
 use super::file_commands;
 use super::help::{self, Group, Topic, help_page};
 use super::inspect;
 use super::lessons;
 pub(crate) use super::outcome::Flow;
 use super::outcome::{CommandError, CommandResult};
+use super::outputs::FrontEnd;
 use super::picture_commands;
 use super::play;
 use super::reload;
@@ -31,7 +31,7 @@ pub(crate) struct Command {
     /// What files its arguments name.
     pub files: Files,
     /// Runs it on its arguments.
-    run: fn(&mut Shell, &[String], &mut Console) -> CommandResult,
+    run: fn(&mut Shell, &[String], &mut dyn FrontEnd) -> CommandResult,
 }
 
 /// What files a command's arguments name, for file name completion and for
@@ -382,28 +382,28 @@ pub(crate) fn writes_pictures(line: &str) -> bool {
     command.is_some_and(|command| command.files == Files::WritesPictures)
 }
 
-/// Runs the command on `line`, reporting any failure on the console.
+/// Runs the command on `line`, reporting any failure on the front.
 /// Returns `Err(())` if it failed, so scripts can count errors.
-pub(crate) fn execute(shell: &mut Shell, line: &str, console: &mut Console) -> Result<Flow, ()> {
-    let result = split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(shell, &words, console));
-    show_printed(&shell.session, console);
+pub(crate) fn execute(shell: &mut Shell, line: &str, front: &mut dyn FrontEnd) -> Result<Flow, ()> {
+    let result = split_arguments(line).map_err(CommandError::Failed).and_then(|words| dispatch(shell, &words, front));
+    show_printed(&shell.session, front);
     match result {
         Ok(flow) => Ok(flow),
         Err(error) => {
-            error.report(&shell.session, console);
+            error.report(&shell.session, front);
             Err(())
         }
     }
 }
 
-fn dispatch(shell: &mut Shell, words: &[String], console: &mut Console) -> CommandResult {
+fn dispatch(shell: &mut Shell, words: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let Some((name, arguments)) = words.split_first().filter(|(name, _)| name.as_str() != ":") else {
         return Err(CommandError::Failed("type a command name after `:`, for example `:help`".to_string()));
     };
     let Some(command) = find(name) else {
         return Err(unknown_command(name));
     };
-    (command.run)(shell, arguments, console).map_err(|error| match error {
+    (command.run)(shell, arguments, front).map_err(|error| match error {
         CommandError::Usage(problem) => CommandError::Usage(format!("{problem}\nusage: {}", command.usage)),
         other => other,
     })
@@ -449,12 +449,12 @@ pub(crate) fn split_arguments(line: &str) -> Result<Vec<String>, String> {
 }
 
 /// `:help [NAME]`: the overview, or the page about one name.
-fn help_command(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+fn help_command(_shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let pages = help_pages();
     match arguments {
-        [] => console.say(help::overview(&pages)),
+        [] => front.say(help::overview(&pages)),
         [name] => match help::find(name, &pages) {
-            Some(topic) => console.say(topic.text),
+            Some(topic) => front.say(topic.text),
             None => {
                 let hint = help::suggestion(name, &pages).map(|s| format!("; did you mean `{s}`?")).unwrap_or_default();
                 return Err(CommandError::Failed(format!(

@@ -1,5 +1,7 @@
-//! Where the session writes: messages to one stream, errors and diagnostics
-//! to another, each with colours where anstream finds they belong.
+//! The session's outputs as text: messages to one stream, errors and
+//! diagnostics to another, each with colours where anstream finds they
+//! belong. Piped scripts show their outputs with it, and the terminal
+//! session their text.
 
 use std::fmt::Display;
 use std::io::Write;
@@ -12,22 +14,16 @@ use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
 
 use super::cancel::CancelSwitch;
-use super::preview::Preview;
+use super::outputs::{FrontEnd, Output, TextRole};
 
-/// The session's output and what it may do on the terminal.
+/// The outputs written as text, and the switch Ctrl-C raises.
 pub(crate) struct Console<'a> {
     /// The stream for messages, and whether it wants them styled.
     out: &'a mut (dyn Write + 'static),
     out_choice: ColorChoice,
     err: AutoStream<&'a mut (dyn Write + 'static)>,
-    /// Where renders are shown; `None` when previews are off.
-    pub preview: Option<Preview>,
-    /// Progress bars on standard error for long renders.
-    pub progress: bool,
     /// Ctrl-C stops what an entry does through this switch, when installed.
     pub cancel: Option<&'static CancelSwitch>,
-    /// A person at a terminal types the entries (not a script).
-    pub interactive: bool,
     /// The line being written, kept to reuse its allocation.
     line: String,
 }
@@ -35,18 +31,14 @@ pub(crate) struct Console<'a> {
 impl<'a> Console<'a> {
     /// A console writing messages to `out` and errors to `err`, each styled
     /// only if it is a terminal that wants colours (`NO_COLOR`,
-    /// `CLICOLOR_FORCE` and `CLICOLOR` are followed); no previews, progress
-    /// bars or Ctrl-C handling.
+    /// `CLICOLOR_FORCE` and `CLICOLOR` are followed); no Ctrl-C handling.
     pub(crate) fn new<O: RawStream + 'static, E: RawStream + 'static>(out: &'a mut O, err: &'a mut E) -> Console<'a> {
         let (out_choice, err_choice) = (AutoStream::choice(&*out), AutoStream::choice(&*err));
         Console {
             out,
             out_choice,
             err: AutoStream::new(err as &mut dyn Write, err_choice),
-            preview: None,
-            progress: false,
             cancel: None,
-            interactive: false,
             line: String::new(),
         }
     }
@@ -70,7 +62,7 @@ impl<'a> Console<'a> {
 
     /// Writes a one-line note that helps a learner along, styled as the
     /// notes of diagnostics.
-    pub(crate) fn note(&mut self, text: impl Display) {
+    fn note(&mut self, text: impl Display) {
         self.say(format_args!("{DEFAULT_NOTE_STYLE}note:{DEFAULT_NOTE_STYLE:#} {text}"));
     }
 
@@ -83,18 +75,40 @@ impl<'a> Console<'a> {
     }
 
     /// Writes a note about what the program printed, with the diagnostics.
-    pub(crate) fn printed_note(&mut self, text: impl Display) {
+    fn printed_note(&mut self, text: impl Display) {
         self.printed(format_args!("{DEFAULT_NOTE_STYLE}note:{DEFAULT_NOTE_STYLE:#} {text}"));
     }
 
     /// Writes a line the program printed (`print`), with the diagnostics.
-    pub(crate) fn printed(&mut self, line: impl Display) {
+    fn printed(&mut self, line: impl Display) {
         let _ = writeln!(self.err, "{line}");
         let _ = self.err.flush();
     }
 
     /// Writes a diagnostic about program text.
-    pub(crate) fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
+    fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
         emit(&mut self.err, diagnostic, sources);
+    }
+}
+
+impl FrontEnd for Console<'_> {
+    /// Writes text and diagnostics; a picture, an animation or frames to
+    /// play have no text of their own (their confirmation is a message).
+    fn show(&mut self, output: Output, sources: &SourceMap) -> Result<(), String> {
+        match output {
+            Output::Text { role: TextRole::Message, text } => self.say(text),
+            Output::Text { role: TextRole::Note, text } => self.note(text),
+            Output::Text { role: TextRole::Error, text } => self.error(text),
+            Output::Text { role: TextRole::Printed, text } => self.printed(text),
+            Output::Text { role: TextRole::PrintedNote, text } => self.printed_note(text),
+            Output::Diagnostic(diagnostic) => self.diagnostic(&diagnostic, sources),
+            Output::Explanation(explanation) => self.say(&explanation.text),
+            Output::Picture(_) | Output::Frames { .. } | Output::AnimationFile(_) => {}
+        }
+        Ok(())
+    }
+
+    fn cancel(&self) -> Option<&'static CancelSwitch> {
+        self.cancel
     }
 }

@@ -3,15 +3,15 @@
 
 use std::path::Path;
 
-use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow};
+use super::outputs::FrontEnd;
 use super::picture_commands::render_command;
 use super::reload;
 use super::report::{self, show_printed};
 use super::session::Session;
 use super::shell::Shell;
 
-pub(crate) fn load(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn load(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let [file] = arguments else {
         let problem = if arguments.is_empty() {
@@ -21,30 +21,30 @@ pub(crate) fn load(shell: &mut Shell, arguments: &[String], console: &mut Consol
         };
         return Err(CommandError::Usage(problem.to_string()));
     };
-    load_file(session, Path::new(file), console)
+    load_file(session, Path::new(file), front)
 }
 
 /// Runs the file at `path` into the session, reporting any failure on the
-/// console; `Err(())` if it failed (the session is then unchanged).
-pub(crate) fn load_reporting(session: &mut Session, path: &Path, console: &mut Console) -> Result<(), ()> {
-    let loaded = load_file(session, path, console);
-    show_printed(session, console);
-    loaded.map(|_| ()).map_err(|error| error.report(session, console))
+/// front; `Err(())` if it failed (the session is then unchanged).
+pub(crate) fn load_reporting(session: &mut Session, path: &Path, front: &mut dyn FrontEnd) -> Result<(), ()> {
+    let loaded = load_file(session, path, front);
+    show_printed(session, front);
+    loaded.map(|_| ()).map_err(|error| error.report(session, front))
 }
 
 /// Runs the file at `path` into the session, as one input.
-fn load_file(session: &mut Session, path: &Path, console: &mut Console) -> CommandResult {
+fn load_file(session: &mut Session, path: &Path, front: &mut dyn FrontEnd) -> CommandResult {
     let text = reload::read(path)?;
     let accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     for warning in &accepted.warnings {
-        console.diagnostic(warning, session.sources());
+        front.diagnostic(warning, session.sources());
     }
-    console.say(format!("loaded {}", path.display()));
-    report::confirm(&accepted, session, console);
+    front.say(format!("loaded {}", path.display()));
+    report::confirm(&accepted, session, front);
     Ok(Flow::Continue)
 }
 
 /// `:watch FILE`, rendering each version as `:render` does.
-pub(crate) fn watch(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
-    reload::watch(shell, arguments, console, render_command)
+pub(crate) fn watch(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
+    reload::watch(shell, arguments, front, render_command)
 }

@@ -3,8 +3,8 @@
 use crate::lang::Diagnostic;
 
 use super::commands;
-use super::console::Console;
 use super::lessons;
+use super::outputs::FrontEnd;
 use super::report::{self, show_printed};
 use super::session::Accepted;
 use super::shell::Shell;
@@ -13,38 +13,38 @@ use super::shell::Shell;
 /// `Err(())` tells the caller it failed (the session is unchanged).
 pub(crate) fn handle_input(
     shell: &mut Shell,
-    console: &mut Console,
+    front: &mut dyn FrontEnd,
     name: &str,
     text: &str,
     line_offset: usize,
 ) -> Result<(), ()> {
     let result = shell.session.submit(name, text, line_offset);
-    report_input(shell, console, text, result)
+    report_input(shell, front, text, result)
 }
 
 /// Prints what the input `text` did (`result`), or its error.
 /// `Err(())` tells the caller it failed (the session is unchanged).
 pub(crate) fn report_input(
     shell: &mut Shell,
-    console: &mut Console,
+    front: &mut dyn FrontEnd,
     text: &str,
     result: Result<Accepted, Diagnostic>,
 ) -> Result<(), ()> {
     let session = &shell.session;
-    show_printed(session, console);
+    show_printed(session, front);
     match result {
         Ok(accepted) => {
             for warning in &accepted.warnings {
-                console.diagnostic(warning, session.sources());
+                front.diagnostic(warning, session.sources());
             }
-            report::confirm(&accepted, session, console);
-            lessons::check_input(shell, console);
+            report::confirm(&accepted, session, front);
+            lessons::check_input(shell, front);
             Ok(())
         }
         Err(error) => {
-            console.diagnostic(&error, session.sources());
+            front.diagnostic(&error, session.sources());
             if let Some(command) = bare_command(text) {
-                console.note(format!("commands start with a colon: did you mean `{command}`?"));
+                front.note(format!("commands start with a colon: did you mean `{command}`?"));
             }
             Err(())
         }

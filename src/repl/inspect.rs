@@ -3,17 +3,13 @@
 //! written, `:list` the inputs the session holds, `:history` the lines
 //! typed in the line editor.
 
-use std::path::PathBuf;
-
-use rustyline::history::{FileHistory, History};
-
 use crate::lang::ast::{Instr, Item, ProcDef};
 use crate::lang::suggest::closest;
 use crate::lang::walk::{bound_name, same_level};
 
-use super::console::Console;
 use super::excerpt::{item_text, location};
 use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
+use super::outputs::FrontEnd;
 use super::rendering::Size;
 use super::report::{self, counted, number};
 use super::session::Session;
@@ -22,7 +18,7 @@ use super::shell::Shell;
 /// How many lines `:history` prints unless told.
 const HISTORY_SHOWN: usize = 20;
 
-pub(crate) fn env(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn env(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     no_arguments(arguments)?;
     let numbers: Vec<String> =
@@ -30,11 +26,11 @@ pub(crate) fn env(shell: &mut Shell, arguments: &[String], console: &mut Console
     let objects: Vec<String> = session.objects().iter().map(|(name, what)| format!("{name} ({what})")).collect();
     let procedures: Vec<String> =
         session.procedures().iter().map(|(name, params)| format!("{name}({})", params.join(", "))).collect();
-    console.say(format!("numbers:    {}", numbers.join(", ")));
+    front.say(format!("numbers:    {}", numbers.join(", ")));
     let no_objects = format!("none yet: `object {} = sphere ... end` names one", free_name(session, "ball"));
-    console.say(format!("objects:    {}", or_none(&objects, &no_objects)));
+    front.say(format!("objects:    {}", or_none(&objects, &no_objects)));
     let no_procedures = "none yet: see `:help proc`";
-    console.say(format!("procedures: {}", or_none(&procedures, no_procedures)));
+    front.say(format!("procedures: {}", or_none(&procedures, no_procedures)));
     Ok(Flow::Continue)
 }
 
@@ -52,24 +48,24 @@ fn or_none(items: &[String], none: &str) -> String {
     if items.is_empty() { none.to_string() } else { items.join(", ") }
 }
 
-pub(crate) fn scene(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn scene(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     no_arguments(arguments)?;
     let scene = session.scene();
     let default = |given: bool| {
         if given { "" } else { " (default: none given yet)" }
     };
-    console.say(format!(
+    front.say(format!(
         "camera:   distance {}, angle {}{}",
         number(scene.camera.distance),
         number(scene.camera.angle),
         default(session.has_camera())
     ));
-    console.say(format!("ambient:  {}{}", number(scene.ambient), default(session.has_ambient())));
-    console.say(format!("lights:   {}", scene.lights.len()));
+    front.say(format!("ambient:  {}{}", number(scene.ambient), default(session.has_ambient())));
+    front.say(format!("lights:   {}", scene.lights.len()));
     for (index, light) in scene.lights.iter().enumerate() {
         let d = light.direction;
-        console.say(format!(
+        front.say(format!(
             "  {}. towards ({}, {}, {}), intensity {}",
             index + 1,
             number(d.x),
@@ -89,9 +85,9 @@ pub(crate) fn scene(shell: &mut Shell, arguments: &[String], console: &mut Conso
     if !scene.timed_primitives.is_empty() {
         objects.push_str(&format!(", {} depending on time", scene.timed_primitives.len()));
     }
-    console.say(objects);
+    front.say(objects);
     let s = session.settings();
-    console.say(format!(
+    front.say(format!(
         "settings: time {}, size {}, depth {}, samples {}",
         number(s.time),
         Size { width: s.width, height: s.height },
@@ -103,7 +99,7 @@ pub(crate) fn scene(shell: &mut Shell, arguments: &[String], console: &mut Conso
 
 /// `:show NAME`: the latest definition of a procedure, object or number,
 /// with where it came from.
-pub(crate) fn show(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn show(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let [name] = arguments else {
         return Err(CommandError::Usage("give the name of a procedure, an object or a number".to_string()));
@@ -111,8 +107,8 @@ pub(crate) fn show(shell: &mut Shell, arguments: &[String], console: &mut Consol
     let (procedure, binding) = latest_definitions(session, name);
     let sources = session.sources();
     if let Some(def) = procedure {
-        console.say(format!("# {}", location(sources, def.span)));
-        console.say(item_text(sources, def.span));
+        front.say(format!("# {}", location(sources, def.span)));
+        front.say(item_text(sources, def.span));
     }
     let value = match (session.global_number(name), session.describe_object(name)) {
         (Some(value), _) => Some(format!("{name} = {} now", number(value))),
@@ -122,11 +118,11 @@ pub(crate) fn show(shell: &mut Shell, arguments: &[String], console: &mut Consol
     match (binding, value) {
         (Some((binding, top)), Some(value)) => {
             // A name bound inside an `if` shows the whole `if`, which says when.
-            console.say(format!("# {} ({value})", location(sources, binding.span)));
-            console.say(item_text(sources, top.span));
+            front.say(format!("# {} ({value})", location(sources, binding.span)));
+            front.say(item_text(sources, top.span));
         }
         (None, Some(value)) if name == "time" => {
-            console.say(format!("# predefined ({value}): the time renders use, set with `:time N`"));
+            front.say(format!("# predefined ({value}): the time renders use, set with `:time N`"));
         }
         _ if procedure.is_some() => {}
         _ => return Err(not_defined(session, name)),
@@ -167,7 +163,7 @@ fn not_defined(session: &Session, name: &str) -> CommandError {
 
 /// `:list`: the inputs the session holds, in the order they run, each named
 /// as messages name it (`<input 3>:1`, `<stdin>:12`) or by its file.
-pub(crate) fn list(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn list(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     no_arguments(arguments)?;
     let sources = session.sources();
@@ -185,18 +181,18 @@ pub(crate) fn list(shell: &mut Shell, arguments: &[String], console: &mut Consol
         })
         .collect();
     if rows.is_empty() {
-        console.say("the session holds no input yet");
+        front.say("the session holds no input yet");
     }
     let width = rows.iter().map(|(label, _)| label.chars().count()).max().unwrap_or(0);
     for (label, text) in rows {
-        console.say(indented(&format!("{label:<width$}  "), &text));
+        front.say(indented(&format!("{label:<width$}  "), &text));
     }
     Ok(Flow::Continue)
 }
 
 /// `:history [N]`: the last N lines typed in the line editor (in this
 /// session and the ones before), from its history file.
-pub(crate) fn history(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn history(_shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let shown = match arguments {
         [] => HISTORY_SHOWN,
         [count] => {
@@ -204,31 +200,18 @@ pub(crate) fn history(_shell: &mut Shell, arguments: &[String], console: &mut Co
         }
         _ => return Err(CommandError::Usage("give at most one number".to_string())),
     };
-    let mut history = FileHistory::new();
-    if let Some(path) = history_path() {
-        // No file yet is an empty history.
-        let _ = history.load(&path);
-    }
-    let entries: Vec<&String> = history.iter().collect();
+    let entries = front.history();
     let first = entries.len().saturating_sub(shown);
     if first > 0 {
-        console.say(format!("({} before these: `:history {}` shows them all)", counted(first, "line"), entries.len()));
+        front.say(format!("({} before these: `:history {}` shows them all)", counted(first, "line"), entries.len()));
     }
     for (index, entry) in entries.iter().enumerate().skip(first) {
-        console.say(indented(&format!("{:>4}  ", index + 1), entry));
+        front.say(indented(&format!("{:>4}  ", index + 1), entry));
     }
     if entries.is_empty() {
-        console.say("the history is empty");
+        front.say("the history is empty");
     }
     Ok(Flow::Continue)
-}
-
-/// `rayrepl/history` in the user's data directory, created if missing;
-/// `None` if there is no such directory or it cannot be created.
-pub(crate) fn history_path() -> Option<PathBuf> {
-    let directory = dirs::data_dir()?.join("rayrepl");
-    std::fs::create_dir_all(&directory).ok()?;
-    Some(directory.join("history"))
 }
 
 /// `text` after `label`, its other lines indented to line up with its first.

@@ -13,10 +13,8 @@ use image::RgbImage;
 
 use crate::lang::{Diagnostic, Limits};
 
-use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow};
-use super::preview::{Preview, side_by_side};
-use super::render_steps::shown;
+use super::outputs::{FrontEnd, Output, Picture, side_by_side};
 use super::rendering::{RenderError, Size, render_image};
 use super::session::Session;
 use super::shell::Shell;
@@ -34,12 +32,12 @@ const PICTURE_GAP: u32 = 4;
 
 /// `:lesson` lists the lessons; `:lesson N` starts (or resumes) lesson N;
 /// `:lesson stop` leaves the lesson.
-pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     match arguments {
-        [] => list(shell, console),
+        [] => list(shell, front),
         [word] if word == "stop" => {
             shell.tutor = Tutor::default();
-            console.say("left the lesson; `:lesson` lists them all");
+            front.say("left the lesson; `:lesson` lists them all");
         }
         [number] => {
             let index = number
@@ -47,7 +45,7 @@ pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], console: &mut Cons
                 .ok()
                 .filter(|n| (1..=LESSONS.len()).contains(n))
                 .ok_or_else(|| CommandError::Usage(format!("the lessons are numbered 1 to {}", LESSONS.len())))?;
-            start(shell, index - 1, console)?;
+            start(shell, index - 1, front)?;
         }
         _ => return Err(CommandError::Usage("give one lesson number, or nothing to list them".to_string())),
     }
@@ -56,43 +54,43 @@ pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], console: &mut Cons
 
 /// After an accepted input: checks the scene against the current step, and
 /// moves on or gives the hint.
-pub(crate) fn check_input(shell: &mut Shell, console: &mut Console) {
+pub(crate) fn check_input(shell: &mut Shell, front: &mut dyn FrontEnd) {
     let Some((lesson, step)) = shell.tutor.place else {
         return;
     };
     let current = &LESSONS[lesson].steps[step];
     match (current.check)(&shell.session) {
         Ok(()) => {
-            console.say(format!("✓ step {} done", step + 1));
-            advance(shell, console, lesson, step);
+            front.say(format!("✓ step {} done", step + 1));
+            advance(shell, front, lesson, step);
         }
         Err(missing) => {
-            show_pictures(&shell.session, console, lesson, step);
+            show_pictures(&shell.session, front, lesson, step);
             shell.tutor.wrong_tries += 1;
-            console.say(format!("not yet: {missing} (`:undo` takes your last input back)"));
-            console.say(wrap(current.hint, "hint: "));
+            front.say(format!("not yet: {missing} (`:undo` takes your last input back)"));
+            front.say(wrap(current.hint, "hint: "));
             if shell.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front {
-                console.say(format!("for example:\n{}", indent(current.example)));
+                front.say(format!("for example:\n{}", indent(current.example)));
             }
         }
     }
 }
 
-fn list(shell: &Shell, console: &mut Console) {
+fn list(shell: &Shell, front: &mut dyn FrontEnd) {
     let progress = Progress::load();
-    console.say("lessons (`:lesson N` starts one):");
+    front.say("lessons (`:lesson N` starts one):");
     for (index, lesson) in LESSONS.iter().enumerate() {
         let number = index + 1;
         let mark = if progress.done.contains(&number) { "✓" } else { " " };
-        console.say(format!("  {mark} {number}. {} ({} steps)", lesson.title, lesson.steps.len()));
+        front.say(format!("  {mark} {number}. {} ({} steps)", lesson.title, lesson.steps.len()));
     }
     match (shell.tutor.place, progress.at) {
         (Some((lesson, step)), _) => {
-            console.say(format!("you are at lesson {} step {}:", lesson + 1, step + 1));
-            say_step(console, &LESSONS[lesson].steps[step], step, LESSONS[lesson].steps.len());
+            front.say(format!("you are at lesson {} step {}:", lesson + 1, step + 1));
+            say_step(front, &LESSONS[lesson].steps[step], step, LESSONS[lesson].steps.len());
         }
         (None, Some((lesson, step))) => {
-            console.say(format!("you stopped at lesson {lesson} step {step}: `:lesson {lesson}` goes on from there"))
+            front.say(format!("you stopped at lesson {lesson} step {step}: `:lesson {lesson}` goes on from there"))
         }
         (None, None) => {}
     }
@@ -100,7 +98,7 @@ fn list(shell: &Shell, console: &mut Console) {
 
 /// Starts lesson `lesson` (from 0) on a scene of its own, at the step the
 /// learner last reached in it.
-fn start(shell: &mut Shell, lesson: usize, console: &mut Console) -> Result<(), CommandError> {
+fn start(shell: &mut Shell, lesson: usize, front: &mut dyn FrontEnd) -> Result<(), CommandError> {
     let progress = Progress::load();
     let step = match progress.at {
         Some((at, step)) if at == lesson + 1 && (1..=LESSONS[lesson].steps.len()).contains(&step) => step - 1,
@@ -117,14 +115,14 @@ fn start(shell: &mut Shell, lesson: usize, console: &mut Console) -> Result<(), 
         }
         undo = "`:undo` twice brings yours back";
     }
-    console.say(format!("lesson {} of {}: {}", lesson + 1, LESSONS.len(), LESSONS[lesson].title));
+    front.say(format!("lesson {} of {}: {}", lesson + 1, LESSONS.len(), LESSONS[lesson].title));
     let holds = shell.session.counts();
     let lights = super::report::counted(holds.lights, "light");
-    console.say(format!("starting scene: {}, {lights} (`:list` shows it; {undo})", holds.primitives_in_words()));
+    front.say(format!("starting scene: {}, {lights} (`:list` shows it; {undo})", holds.primitives_in_words()));
     if step > 0 {
-        console.say(format!("going on at step {}, where you stopped", step + 1));
+        front.say(format!("going on at step {}, where you stopped", step + 1));
     }
-    begin_step(shell, console, lesson, step);
+    begin_step(shell, front, lesson, step);
     Ok(())
 }
 
@@ -141,77 +139,78 @@ fn lesson_scene(lesson: &Lesson, step: usize) -> String {
 
 /// Says what step `step` asks, shows its goal, and remembers where the
 /// learner is.
-fn begin_step(shell: &mut Shell, console: &mut Console, lesson: usize, step: usize) {
+fn begin_step(shell: &mut Shell, front: &mut dyn FrontEnd, lesson: usize, step: usize) {
     shell.tutor = Tutor { place: Some((lesson, step)), wrong_tries: 0 };
     let steps = LESSONS[lesson].steps;
-    say_step(console, &steps[step], step, steps.len());
+    say_step(front, &steps[step], step, steps.len());
     let mut progress = Progress::load();
     progress.at = Some((lesson + 1, step + 1));
-    save(&progress, console);
+    save(&progress, front);
     if (steps[step].check)(&shell.session).is_ok() {
-        console.say(format!("✓ step {} done: your scene already does it", step + 1));
-        advance(shell, console, lesson, step);
+        front.say(format!("✓ step {} done: your scene already does it", step + 1));
+        advance(shell, front, lesson, step);
         return;
     }
-    show_pictures(&shell.session, console, lesson, step);
+    show_pictures(&shell.session, front, lesson, step);
 }
 
-fn say_step(console: &mut Console, step: &Step, index: usize, steps: usize) {
-    console.say(wrap(step.task, &format!("step {} of {steps}: ", index + 1)));
+fn say_step(front: &mut dyn FrontEnd, step: &Step, index: usize, steps: usize) {
+    front.say(wrap(step.task, &format!("step {} of {steps}: ", index + 1)));
     if step.example_up_front {
-        console.say(indent(step.example));
+        front.say(indent(step.example));
     }
 }
 
 /// Moves past step `step` of `lesson`: to the next step, or to the end of
 /// the lesson, which is then remembered as done.
-fn advance(shell: &mut Shell, console: &mut Console, lesson: usize, step: usize) {
+fn advance(shell: &mut Shell, front: &mut dyn FrontEnd, lesson: usize, step: usize) {
     if step + 1 < LESSONS[lesson].steps.len() {
-        begin_step(shell, console, lesson, step + 1);
+        begin_step(shell, front, lesson, step + 1);
         return;
     }
-    show_pictures(&shell.session, console, lesson, step);
+    show_pictures(&shell.session, front, lesson, step);
     shell.tutor = Tutor::default();
     let mut progress = Progress::load();
     progress.done.insert(lesson + 1);
     progress.at = None;
-    save(&progress, console);
-    console.say(format!("✓ lesson {} done: {}", lesson + 1, LESSONS[lesson].title));
+    save(&progress, front);
+    front.say(format!("✓ lesson {} done: {}", lesson + 1, LESSONS[lesson].title));
     match LESSONS.get(lesson + 1) {
-        Some(next) => console.say(format!("next: `:lesson {}` ({})", lesson + 2, next.title)),
-        None => console.say("that was the last lesson: `:help` lists everything the language has"),
+        Some(next) => front.say(format!("next: `:lesson {}` ({})", lesson + 2, next.title)),
+        None => front.say("that was the last lesson: `:help` lists everything the language has"),
     }
 }
 
-fn save(progress: &Progress, console: &mut Console) {
+fn save(progress: &Progress, front: &mut dyn FrontEnd) {
     if let Err(problem) = progress.save() {
-        console.note(format!("cannot keep your progress: {problem}"));
+        front.note(format!("cannot keep your progress: {problem}"));
     }
 }
 
 /// Shows the goal picture of `step` beside the learner's render, where the
 /// terminal shows pictures.
-fn show_pictures(session: &Session, console: &mut Console, lesson: usize, step: usize) {
-    let Some(preview) = shown(console) else {
+fn show_pictures(session: &Session, front: &mut dyn FrontEnd, lesson: usize, step: usize) {
+    let settings = session.settings();
+    // Two pictures of the configured shape, side by side, fitted together.
+    let Some(pair) = front.picture_size(Size { width: settings.width.saturating_mul(2), height: settings.height })
+    else {
         return;
     };
-    match pictures(session, &preview, lesson, step) {
+    match pictures(session, pair, lesson, step) {
         Ok(image) => {
-            console.say("goal (left) and yours (right):");
-            if let Err(problem) = preview.show(&image) {
-                console.note(format!("cannot show the pictures here: {problem}"));
+            front.say("goal (left) and yours (right):");
+            if let Err(problem) = front.present(Output::Picture(Picture { image, marked: None, saved_to: None })) {
+                front.note(format!("cannot show the pictures here: {problem}"));
             }
         }
-        Err(problem) => console.note(format!("cannot show the pictures: {problem}")),
+        Err(problem) => front.note(format!("cannot show the pictures: {problem}")),
     }
 }
 
 /// The goal picture of `step` and the learner's, side by side, together
-/// as large as a preview.
-fn pictures(session: &Session, preview: &Preview, lesson: usize, step: usize) -> Result<RgbImage, String> {
+/// of size `pair`.
+fn pictures(session: &Session, pair: Size, lesson: usize, step: usize) -> Result<RgbImage, String> {
     let settings = session.settings();
-    // Two pictures of the configured shape, side by side, fitted together.
-    let pair = preview.render_size(Size { width: settings.width.saturating_mul(2), height: settings.height });
     let half = Size { width: (pair.width.saturating_sub(PICTURE_GAP) / 2).max(1), height: pair.height };
     let goal = goal_session(session, lesson, step).map_err(|_| "the lesson's example fails".to_string())?;
     let render = |scene| {

@@ -6,7 +6,7 @@
 use crate::lang::Diagnostic;
 use crate::settings::{HEIGHT, Limit, WIDTH, check_size};
 
-use super::console::Console;
+use super::outputs::FrontEnd;
 use super::rendering::Size;
 use super::session::Session;
 
@@ -36,12 +36,12 @@ pub(crate) enum CommandError {
 pub(crate) type CommandResult = Result<Flow, CommandError>;
 
 impl CommandError {
-    /// Says on the console what went wrong.
-    pub(crate) fn report(self, session: &Session, console: &mut Console) {
+    /// Says on the front what went wrong.
+    pub(crate) fn report(self, session: &Session, front: &mut dyn FrontEnd) {
         match self {
-            CommandError::Usage(message) | CommandError::Failed(message) => console.error(message),
-            CommandError::Program(diagnostic) => console.diagnostic(&diagnostic, session.sources()),
-            CommandError::Cancelled(message) => console.say(message),
+            CommandError::Usage(message) | CommandError::Failed(message) => front.error(message),
+            CommandError::Program(diagnostic) => front.diagnostic(&diagnostic, session.sources()),
+            CommandError::Cancelled(message) => front.say(message),
         }
     }
 }

@@ -10,40 +10,39 @@ use crate::playback::AnimationOptions;
 use crate::settings::FRAMES;
 
 use super::cancel::cancel_flag;
-use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow, parse_count, parse_size, usage};
-use super::preview::{PreviewSize, mark_pixel};
-use super::render_steps::{duration, explain_defaults, render_frames, render_scene, shown, write_failure};
+use super::outputs::{FrontEnd, Output, Picture, PixelExplanation, PreviewSize};
+use super::render_steps::{duration, explain_defaults, render_frames, render_scene, write_failure};
 use super::rendering::{Size, render_options};
 use super::report::{counted, show_scene_warnings};
 use super::shell::Shell;
 
-pub(crate) fn render_command(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn render_command(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let configured = Size { width: session.settings().width, height: session.settings().height };
+    let shown = front.picture_size(configured);
     let size = match arguments {
-        [] => shown(console).map_or(configured, |preview| preview.render_size(configured)),
+        [] => shown.unwrap_or(configured),
         [width, height] => parse_size(width, height)?,
         _ => {
             return Err(CommandError::Usage("give both a width and a height, or neither".to_string()));
         }
     };
-    explain_defaults(session, console);
-    show_scene_warnings(session, console, size, false);
-    let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
+    explain_defaults(session, front);
+    show_scene_warnings(session, front, size, false);
+    let (image, took) = render_scene(session.scene(), size, session.settings(), front)?;
     shell.last_picture = Some(image.clone());
-    match shown(console) {
-        Some(preview) => {
-            preview.show(&image).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
-            console.say(format!("{size} in {}", duration(took)));
-        }
-        None => console.say(format!("rendered {size} in {} (previews are off)", duration(took))),
+    if shown.is_some() {
+        show_picture(front, Picture { image, marked: None, saved_to: None })?;
+        front.say(format!("{size} in {}", duration(took)));
+    } else {
+        front.say(format!("rendered {size} in {} (previews are off)", duration(took)));
     }
     Ok(Flow::Continue)
 }
 
-pub(crate) fn preview_command(_shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
-    let Some(preview) = console.preview.as_mut() else {
+pub(crate) fn preview_command(_shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
+    let Some(preview) = front.preview_size() else {
         return Err(CommandError::Failed(
             "previews need a terminal on standard output (and no `--no-preview`)".to_string(),
         ));
@@ -51,19 +50,19 @@ pub(crate) fn preview_command(_shell: &mut Shell, arguments: &[String], console:
     match arguments {
         [] => {}
         [name] => {
-            preview.size = PreviewSize::parse(name)
+            *preview = PreviewSize::parse(name)
                 .ok_or_else(|| CommandError::Usage(format!("`{name}`: give `fit`, `small` or `off`")))?;
         }
         _ => return Err(CommandError::Usage("give one of `fit`, `small` or `off`".to_string())),
     }
-    let size = preview.size.name();
-    console.say(format!("preview = {size}"));
+    let size = preview.name();
+    front.say(format!("preview = {size}"));
     Ok(Flow::Continue)
 }
 
 /// `:pick X Y`: why pixel (X, Y) of the last picture has its colour, the
 /// pixel marked on the picture.
-pub(crate) fn pick(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn pick(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &shell.session;
     let [x, y] = arguments else {
         return Err(CommandError::Usage("give the pixel's X (from the left) and Y (from the top)".to_string()));
@@ -83,19 +82,19 @@ pub(crate) fn pick(shell: &mut Shell, arguments: &[String], console: &mut Consol
     let interpreter = session.replay_recording_calls().map_err(|d| CommandError::Program(Box::new(d)))?;
     let options = render_options(size, session.settings());
     let explanation = ExplainedScene::new(&interpreter, session.sources(), &options).explain(x, y);
-    if let Some(preview) = shown(console) {
-        let marked = mark_pixel(picture, x, y);
-        preview.show(&marked).map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))?;
+    if front.picture_size(size).is_some() {
+        show_picture(front, Picture { image: picture.clone(), marked: Some((x, y)), saved_to: None })?;
     }
     let changed = explanation.paths.rgb != picture.get_pixel(x, y).0;
-    console.say(explanation.to_string().trim_end());
+    let text = explanation.to_string().trim_end().to_string();
+    let _ = front.present(Output::Explanation(Box::new(PixelExplanation { text, json: explanation.to_json() })));
     if changed {
-        console.note("the scene or the settings changed since that picture: this is the pixel as it is now");
+        front.note("the scene or the settings changed since that picture: this is the pixel as it is now");
     }
     Ok(Flow::Continue)
 }
 
-pub(crate) fn save(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn save(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let (file, size) = match arguments {
         [file] => (file, Size { width: session.settings().width, height: session.settings().height }),
@@ -109,16 +108,17 @@ pub(crate) fn save(shell: &mut Shell, arguments: &[String], console: &mut Consol
     };
     let path = PathBuf::from(file);
     check_output(&path, Content::Still)?;
-    explain_defaults(session, console);
-    show_scene_warnings(session, console, size, false);
-    let (image, took) = render_scene(session.scene(), size, session.settings(), console)?;
+    explain_defaults(session, front);
+    show_scene_warnings(session, front, size, false);
+    let (image, took) = render_scene(session.scene(), size, session.settings(), front)?;
     shell.last_picture = Some(image.clone());
-    output::write_image_cancellable(&path, &image, cancel_flag(console.cancel)).map_err(write_failure)?;
-    console.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
+    output::write_image_cancellable(&path, &image, cancel_flag(front.cancel())).map_err(write_failure)?;
+    let _ = front.present(Output::Picture(Picture { image, marked: None, saved_to: Some(path.clone()) }));
+    front.say(format!("saved {} ({size}, {})", path.display(), duration(took)));
     Ok(Flow::Continue)
 }
 
-pub(crate) fn anim(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn anim(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let [frames, file, options @ ..] = arguments else {
         return Err(CommandError::Usage("give the number of frames and a file name".to_string()));
@@ -127,29 +127,39 @@ pub(crate) fn anim(shell: &mut Shell, arguments: &[String], console: &mut Consol
     let animation = AnimationOptions::parse_words(options).map_err(usage)?;
     let path = PathBuf::from(file);
     let format = output::check_animation_output(&path, &animation).map_err(|e| CommandError::Failed(e.to_string()))?;
-    explain_defaults(session, console);
+    explain_defaults(session, front);
     let size = Size { width: session.settings().width, height: session.settings().height };
-    show_scene_warnings(session, console, size, true);
+    show_scene_warnings(session, front, size, true);
     let started = Stopwatch::start();
-    let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback, cancel_flag(console.cancel));
-    let rendered = render_frames(session, frames, animation.timeline, size, console, &mut |frame, image| {
+    let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback, cancel_flag(front.cancel()));
+    let rendered = render_frames(session, frames, animation.timeline, size, front, &mut |frame, image| {
         sink.add(frame, image).map_err(write_failure)
     });
     if let Err(error) = rendered {
         // Numbered frames already written stay: say which (an unfinished GIF is removed).
         if !sink.written().is_empty() {
-            console.say(format!("{} written before it stopped", output::describe_files(sink.written())));
+            front.say(format!("{} written before it stopped", output::describe_files(sink.written())));
         }
         return Err(error);
     }
     let written = sink.finish().map_err(write_failure)?;
+    if let [file] = written.as_slice() {
+        let _ = front.present(Output::AnimationFile(file.clone()));
+    }
     let names = output::describe_files(&written);
-    console.say(format!(
+    front.say(format!(
         "wrote {names} ({} of {size}, {})",
         counted(frames as usize, "frame"),
         duration(started.elapsed())
     ));
     Ok(Flow::Continue)
+}
+
+/// Shows `picture`, or fails saying why it cannot be shown here.
+fn show_picture(front: &mut dyn FrontEnd, picture: Picture) -> Result<(), CommandError> {
+    front
+        .present(Output::Picture(picture))
+        .map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))
 }
 
 /// Checks that `path` can receive `content` before any work is done.

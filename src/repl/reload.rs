@@ -6,19 +6,18 @@
 use std::path::{Path, PathBuf};
 
 use crate::output;
-use crate::watch::{FileWatcher, Waited};
 
-use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow};
+use super::outputs::{FrontEnd, Waited};
 use super::report::{self, counted};
 use super::session::Session;
 use super::shell::Shell;
 
 /// A command that renders the session, as `:render` does.
-pub(crate) type Render = fn(&mut Shell, &[String], &mut Console) -> CommandResult;
+pub(crate) type Render = fn(&mut Shell, &[String], &mut dyn FrontEnd) -> CommandResult;
 
 /// `:reload`: the file of the last `:load`, as it is now.
-pub(crate) fn reload(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn reload(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     if !arguments.is_empty() {
         return Err(CommandError::Usage("`:reload` reads the file of the last `:load` again".to_string()));
@@ -29,27 +28,29 @@ pub(crate) fn reload(shell: &mut Shell, arguments: &[String], console: &mut Cons
         ));
     };
     let text = read(&path)?;
-    reload_text(session, &path, &text, console)
+    reload_text(session, &path, &text, front)
 }
 
 /// `:watch FILE`: loads the file (in place of what it brought before), then
 /// again at every save, rendering with `render` each time, until Ctrl-C. A
 /// version that fails is reported and leaves the session, and the last
 /// picture, as they were.
-pub(crate) fn watch(shell: &mut Shell, arguments: &[String], console: &mut Console, render: Render) -> CommandResult {
+pub(crate) fn watch(
+    shell: &mut Shell,
+    arguments: &[String],
+    front: &mut dyn FrontEnd,
+    render: Render,
+) -> CommandResult {
     let [file] = arguments else {
         return Err(CommandError::Usage("give the file to watch".to_string()));
     };
-    let Some(switch) = console.cancel.filter(|_| console.interactive) else {
-        return Err(CommandError::Failed(
-            "only the interactive session can stop a watch (with Ctrl-C): here, run `rayrepl FILE.ray --watch`"
-                .to_string(),
-        ));
-    };
     let path = PathBuf::from(file);
+    let watcher = front.watch(&path).map_err(CommandError::Failed)?;
+    let Some(switch) = front.cancel() else {
+        return Err(CommandError::Failed("Ctrl-C cannot be caught here, so nothing could stop a watch".to_string()));
+    };
     let mut text = read(&path)?;
-    let watcher = FileWatcher::new(&path).map_err(|error| CommandError::Failed(error.to_string()))?;
-    console.say(format!("watching {}: every save loads it again and renders it; Ctrl-C stops", path.display()));
+    front.say(format!("watching {}: every save loads it again and renders it; Ctrl-C stops", path.display()));
     let mut last_text = None;
     let result = loop {
         // Armed while waiting and evaluating: Ctrl-C then ends the watch
@@ -59,42 +60,42 @@ pub(crate) fn watch(shell: &mut Shell, arguments: &[String], console: &mut Conso
             match watcher.wait(armed.flag()) {
                 Ok(Waited::Saved) => {}
                 Ok(Waited::Cancelled) => break Ok(Flow::Continue),
-                Err(error) => break Err(CommandError::Failed(error.to_string())),
+                Err(error) => break Err(CommandError::Failed(error)),
             }
             text = match read(&path) {
                 Ok(new) if Some(&new) == last_text.as_ref() => continue,
                 Ok(new) => new,
                 Err(error) => {
-                    error.report(&shell.session, console);
+                    error.report(&shell.session, front);
                     continue;
                 }
             };
         }
-        let loaded = reload_text(&mut shell.session, &path, &text, console);
+        let loaded = reload_text(&mut shell.session, &path, &text, front);
         last_text = Some(std::mem::take(&mut text));
         let interrupted = armed.pressed();
         drop(armed);
         if interrupted {
             break Ok(Flow::Continue);
         }
-        match loaded.map(|_| render(shell, &[], console)) {
+        match loaded.map(|_| render(shell, &[], front)) {
             Ok(Ok(_)) => {}
             Ok(Err(error @ CommandError::Cancelled(_))) => break Err(error),
-            Ok(Err(error)) => error.report(&shell.session, console),
+            Ok(Err(error)) => error.report(&shell.session, front),
             Err(error) => {
-                error.report(&shell.session, console);
-                console.note("the last good version stays: fix the file and save it again");
+                error.report(&shell.session, front);
+                front.note("the last good version stays: fix the file and save it again");
             }
         }
     };
-    console.say(format!("stopped watching {}", path.display()));
+    front.say(format!("stopped watching {}", path.display()));
     result
 }
 
 /// Runs `text`, the content of the file at `path`, in place of what the
 /// file brought before (as a new input if it brought nothing), and says
 /// what the scene holds now.
-fn reload_text(session: &mut Session, path: &Path, text: &str, console: &mut Console) -> CommandResult {
+fn reload_text(session: &mut Session, path: &Path, text: &str, front: &mut dyn FrontEnd) -> CommandResult {
     let verb = if session.inputs().iter().any(|input| input.loaded_from.as_deref() == Some(path)) {
         "reloaded"
     } else {
@@ -106,7 +107,7 @@ fn reload_text(session: &mut Session, path: &Path, text: &str, console: &mut Con
     let objects = counted(report::objects(&after), "object");
     let lights = counted(after.lights, "light");
     let change = if after == before { ", as many as before" } else { "" };
-    console.say(format!("{verb} {} ({objects} and {lights} in the scene{change})", path.display()));
+    front.say(format!("{verb} {} ({objects} and {lights} in the scene{change})", path.display()));
     Ok(Flow::Continue)
 }
 

@@ -1,5 +1,4 @@
-//! The steps the commands that make pictures share: the previewer in use,
-//! the note about defaults, rendering a still or an animation's frames with
+//! The steps the commands that make pictures share: the note about defaults, rendering a still or an animation's frames with
 //! progress and Ctrl-C, and how their failures read.
 
 use std::sync::atomic::AtomicBool;
@@ -12,39 +11,32 @@ use crate::clock::Stopwatch;
 use crate::lang::Diagnostic;
 use crate::output::OutputError;
 use crate::playback::Timeline;
-use crate::progress::Progress;
 use crate::render::{RenderControl, SceneGeometry};
 use crate::scene::Scene;
 
-use super::console::Console;
 use super::outcome::CommandError;
-use super::preview::{Preview, PreviewSize};
+use super::outputs::FrontEnd;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
 use super::report::number;
 use super::session::Session;
 
-/// The previewer, unless previews are off.
-pub(crate) fn shown(console: &Console) -> Option<Preview> {
-    console.preview.filter(|preview| preview.size != PreviewSize::Off)
-}
-
 /// Prints one note about the defaults a render falls back on, and about
 /// an empty or unlit scene.
-pub(crate) fn explain_defaults(session: &Session, console: &mut Console) {
+pub(crate) fn explain_defaults(session: &Session, front: &mut dyn FrontEnd) {
     let scene = session.scene();
     let camera = format!("camera (distance {}, angle {})", number(scene.camera.distance), number(scene.camera.angle));
     let ambient = format!("ambient light ({})", number(scene.ambient));
     let set_camera = "set yours with `camera distance 12 angle 0.8 end`";
     match (session.has_camera(), session.has_ambient()) {
-        (false, false) => console.note(format!("default {camera} and {ambient}; {set_camera}")),
-        (false, true) => console.note(format!("default {camera}; {set_camera}")),
-        (true, false) => console.note(format!("default {ambient}; set yours with `ambient 0.3`")),
+        (false, false) => front.note(format!("default {camera} and {ambient}; {set_camera}")),
+        (false, true) => front.note(format!("default {camera}; {set_camera}")),
+        (true, false) => front.note(format!("default {ambient}; set yours with `ambient 0.3`")),
         (true, true) => {}
     }
     if scene.all_primitives().next().is_none() {
-        console.note("nothing has been put yet, so the picture is black (see `:help put`)");
+        front.note("nothing has been put yet, so the picture is black (see `:help put`)");
     } else if scene.lights.is_empty() {
-        console.note("no light yet, only the ambient light shows (see `:help light`)");
+        front.note("no light yet, only the ambient light shows (see `:help light`)");
     }
 }
 
@@ -53,17 +45,16 @@ pub(crate) fn render_scene(
     scene: &Scene,
     size: Size,
     settings: &RenderSettings,
-    console: &Console,
+    front: &dyn FrontEnd,
 ) -> Result<(RgbImage, Duration), CommandError> {
     let started = Stopwatch::start();
     let total = size.width as usize * size.height as usize;
-    let progress = Progress::in_session(total as u64, "rendering", console.progress);
-    let armed = console.cancel.map(|switch| switch.arm());
+    let tick = front.progress(total as u64, "rendering");
+    let armed = front.cancel().map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
-    let tick = |pixels: u64| progress.advance(pixels);
     let image =
-        render_image(scene, &SceneGeometry::new(scene), size, settings, cancel, &tick).map_err(render_failure)?;
+        render_image(scene, &SceneGeometry::new(scene), size, settings, cancel, &*tick).map_err(render_failure)?;
     Ok((image, started.elapsed()))
 }
 
@@ -75,15 +66,14 @@ pub(crate) fn render_frames(
     frames: u32,
     timeline: Timeline,
     size: Size,
-    console: &Console,
+    front: &dyn FrontEnd,
     sink: &mut dyn FnMut(usize, RgbImage) -> Result<(), CommandError>,
 ) -> Result<(), CommandError> {
     let timed = session.depends_on_time();
     let total = u64::from(frames) * u64::from(size.width) * u64::from(size.height);
-    let progress = Progress::in_session(total, "animating", console.progress);
-    let armed = console.cancel.map(|switch| switch.arm());
-    let tick = |pixels: u64| progress.advance(pixels);
-    let control = RenderControl { progress: Some(&tick), cancel: armed.as_ref().map(|armed| armed.flag()) };
+    let tick = front.progress(total, "animating");
+    let armed = front.cancel().map(|switch| switch.arm());
+    let control = RenderControl { progress: Some(&*tick), cancel: armed.as_ref().map(|armed| armed.flag()) };
     let evaluate = |frame: u32, skip_static: bool| {
         if !timed {
             // Nothing reads `time`: the session's scene is every frame.

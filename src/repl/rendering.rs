@@ -12,7 +12,7 @@ pub use crate::settings::RenderSettings;
 
 /// Width and height of an image in pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Size {
+pub struct Size {
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.

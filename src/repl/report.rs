@@ -10,7 +10,7 @@ use crate::scene::Counts;
 
 use crate::lint::Picture;
 
-use super::console::Console;
+use super::outputs::FrontEnd;
 use super::rendering::Size;
 use super::session::{Accepted, Session};
 
@@ -19,31 +19,27 @@ const MAX_DEFINITION_LINES: usize = 4;
 
 /// Says the lines confirming what an accepted input did, for example
 /// `r = 2` or `put 1 sphere (3 objects in the scene)`, each formatted
-/// straight into the console's line.
-pub(crate) fn confirm(accepted: &Accepted, session: &Session, console: &mut Console) {
+/// straight into the front's line.
+pub(crate) fn confirm(accepted: &Accepted, session: &Session, front: &mut dyn FrontEnd) {
     let items = &accepted.program.items;
     if items.iter().filter(|item| defines(item)).count() > MAX_DEFINITION_LINES {
-        console.say(format_args!("defined {}", definition_names(accepted).join(", ")));
+        front.say(format_args!("defined {}", definition_names(accepted).join(", ")));
     } else {
-        say_definitions(accepted, session, console);
+        say_definitions(accepted, session, front);
     }
     let after = session.counts();
     let before = accepted.counts_before;
     if after.lights > before.lights {
-        console.say(format_args!(
+        front.say(format_args!(
             "{} added ({} in the scene)",
             Counted(after.lights - before.lights, "light"),
             Counted(after.lights, "light")
         ));
     }
     if objects(&after) > objects(&before) {
-        console.say(format_args!(
-            "put {} ({} in the scene)",
-            added(&before, &after),
-            Counted(objects(&after), "object")
-        ));
+        front.say(format_args!("put {} ({} in the scene)", added(&before, &after), Counted(objects(&after), "object")));
     } else if has_call(accepted) {
-        console.say("nothing was put");
+        front.say("nothing was put");
     }
 }
 
@@ -61,31 +57,31 @@ fn defines(item: &Item) -> bool {
     }
 }
 
-fn say_definitions(accepted: &Accepted, session: &Session, console: &mut Console) {
+fn say_definitions(accepted: &Accepted, session: &Session, front: &mut dyn FrontEnd) {
     let scene = session.scene();
     for item in &accepted.program.items {
         match item {
-            Item::Camera(_) => console.say(format_args!(
+            Item::Camera(_) => front.say(format_args!(
                 "camera: distance {}, angle {}",
                 Number(scene.camera.distance),
                 Number(scene.camera.angle)
             )),
-            Item::Ambient(_) => console.say(format_args!("ambient light: {}", Number(scene.ambient))),
+            Item::Ambient(_) => front.say(format_args!("ambient light: {}", Number(scene.ambient))),
             Item::Proc(proc_def) => {
                 let name = &*proc_def.name.name;
                 let known = accepted.redefined.iter().any(|before| &**before == name);
                 let verb = if known { "redefined" } else { "defined" };
                 let params: Vec<&str> = proc_def.params.iter().map(|p| &*p.name).collect();
-                console.say(format_args!("{verb} proc {name}({})", params.join(", ")));
+                front.say(format_args!("{verb} proc {name}({})", params.join(", ")));
             }
             Item::Instr(instr) => match &instr.kind {
                 InstrKind::Let(name, _) => match session.global_number(&name.name) {
-                    Some(value) => console.say(format_args!("{} = {}", name.name, Number(value))),
-                    None => console.say(format_args!("{} defined", name.name)),
+                    Some(value) => front.say(format_args!("{} = {}", name.name, Number(value))),
+                    None => front.say(format_args!("{} defined", name.name)),
                 },
                 InstrKind::Object(name, _) => {
                     let what = session.describe_object(&name.name).unwrap_or_else(|| "object".to_string());
-                    console.say(format_args!("object {} = {what}", name.name));
+                    front.say(format_args!("object {} = {what}", name.name));
                 }
                 InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) | InstrKind::Print(_) => {}
             },
@@ -151,23 +147,23 @@ impl Display for Counted<'_> {
 
 /// Shows what `print` wrote since the last time, and how many lines were
 /// left out past the limit.
-pub(crate) fn show_printed(session: &Session, console: &mut Console) {
+pub(crate) fn show_printed(session: &Session, front: &mut dyn FrontEnd) {
     let mut printed = session.take_printed();
     for line in printed.take_lines() {
-        console.printed(line.render(session.sources()));
+        front.printed(line.render(session.sources()));
     }
     if let Some(note) = printed.hidden_note() {
-        console.printed_note(note);
+        front.printed_note(note);
     }
 }
 
 /// Shows the warnings about the scene that a render of `size` (an
 /// animation's frames, if `animation`) should heed, each cause once.
-pub(crate) fn show_scene_warnings(session: &mut Session, console: &mut Console, size: Size, animation: bool) {
+pub(crate) fn show_scene_warnings(session: &mut Session, front: &mut dyn FrontEnd, size: Size, animation: bool) {
     let screen = session.settings().screen;
     let picture = Picture { width: size.width, height: size.height, screen, animation };
     for warning in session.scene_warnings(&picture) {
-        console.diagnostic(&warning, session.sources());
+        front.diagnostic(&warning, session.sources());
     }
 }
 

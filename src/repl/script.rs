@@ -37,26 +37,29 @@ const MOST_READ_AHEAD: usize = 256;
 /// `options.keep_going`; `options.initial_file` is loaded first. A script
 /// that succeeds without writing an image ends with a note on how to write
 /// one. Returns the exit status: 0 if everything succeeded, 1 otherwise.
+/// Nothing stops it midway (the command line's session stops it with Ctrl-C).
 pub fn run_script(
     input: impl BufRead,
     out: &mut (impl RawStream + 'static),
     err: &mut (impl RawStream + 'static),
     options: &SessionOptions,
 ) -> i32 {
-    run_script_keeping_session(input, out, err, options).0
+    run_script_keeping_session(input, out, err, options, None).0
 }
 
-/// Runs the script as [`run_script`] does and returns its exit status with
-/// the session it built, for a caller that ends the process next and need
-/// not free what the session holds.
+/// Runs the script as [`run_script`] does, stopped (status 130) when
+/// `cancel` is raised, and returns its exit status with the session it
+/// built, for a caller that ends the process next and need not free what
+/// the session holds.
 pub(crate) fn run_script_keeping_session(
     input: impl BufRead,
     out: &mut (impl RawStream + 'static),
     err: &mut (impl RawStream + 'static),
     options: &SessionOptions,
+    cancel: Option<&'static CancelSwitch>,
 ) -> (i32, Session) {
     let mut console = Console::new(out, err);
-    console.cancel = CancelSwitch::install();
+    console.cancel = cancel;
     let mut shell = Shell::new(new_session(options, console.cancel));
     let ended = run_in(&mut shell, &mut console, input, options);
     drop(console);

@@ -1,34 +1,34 @@
 //! The commands that change the session as a whole: `:undo`, `:reset` and
 //! `:quit`.
 
-use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
+use super::outputs::FrontEnd;
 use super::report::{self, counted};
 use super::session::Undone;
 use super::shell::Shell;
 
-pub(crate) fn undo(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn undo(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     no_arguments(arguments)?;
     match session.undo().map_err(|d| CommandError::Program(Box::new(d)))? {
-        Undone::Nothing => console.say("nothing to undo"),
-        Undone::Input(text) => console.say(format!("took back: {}", first_line(&text))),
-        Undone::Reset(count) => console.say(format!("took back the :reset ({} back)", counted(count, "input"))),
-        Undone::Reload(path) => console.say(format!("took back the :reload of {}", path.display())),
+        Undone::Nothing => front.say("nothing to undo"),
+        Undone::Input(text) => front.say(format!("took back: {}", first_line(&text))),
+        Undone::Reset(count) => front.say(format!("took back the :reset ({} back)", counted(count, "input"))),
+        Undone::Reload(path) => front.say(format!("took back the :reload of {}", path.display())),
     }
-    console.say(format!("{} in the scene", counted(report::objects(&session.counts()), "object")));
+    front.say(format!("{} in the scene", counted(report::objects(&session.counts()), "object")));
     Ok(Flow::Continue)
 }
 
-pub(crate) fn reset(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn reset(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     no_arguments(arguments)?;
     session.reset();
-    console.say("the session is empty again (`:undo` brings it all back)");
+    front.say("the session is empty again (`:undo` brings it all back)");
     Ok(Flow::Continue)
 }
 
-pub(crate) fn quit(_shell: &mut Shell, arguments: &[String], _console: &mut Console) -> CommandResult {
+pub(crate) fn quit(_shell: &mut Shell, arguments: &[String], _console: &mut dyn FrontEnd) -> CommandResult {
     no_arguments(arguments)?;
     Ok(Flow::Quit)
 }

@@ -3,18 +3,18 @@
 
 use crate::settings::{DEPTH, Limit, SAMPLES, parse_time};
 
-use super::console::Console;
 use super::outcome::{CommandError, CommandResult, Flow, parse_count, parse_size, usage};
+use super::outputs::FrontEnd;
 use super::rendering::{RenderSettings, Size};
 use super::report::number;
 use super::session::Session;
 use super::shell::Shell;
 
-pub(crate) fn time(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn time(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let [value] = arguments else {
         if arguments.is_empty() {
-            console.say(format!("time = {}", number(session.settings().time)));
+            front.say(format!("time = {}", number(session.settings().time)));
             return Ok(Flow::Continue);
         }
         return Err(CommandError::Usage("give one number".to_string()));
@@ -22,10 +22,10 @@ pub(crate) fn time(shell: &mut Shell, arguments: &[String], console: &mut Consol
     let value = parse_time(value).map_err(usage)?;
     let previous = session.settings().time;
     match session.set_time(value) {
-        Ok(false) => console.say(format!("time = {}", number(value))),
-        Ok(true) => console.say(format!("time = {} (the scene was computed again)", number(value))),
+        Ok(false) => front.say(format!("time = {}", number(value))),
+        Ok(true) => front.say(format!("time = {} (the scene was computed again)", number(value))),
         Err(diagnostic) => {
-            console.diagnostic(&diagnostic, session.sources());
+            front.diagnostic(&diagnostic, session.sources());
             return Err(CommandError::Failed(format!(
                 "at time {} an earlier input fails, so time stays {}",
                 number(value),
@@ -36,7 +36,7 @@ pub(crate) fn time(shell: &mut Shell, arguments: &[String], console: &mut Consol
     Ok(Flow::Continue)
 }
 
-pub(crate) fn size(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn size(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     match arguments {
         [] => {}
@@ -49,20 +49,20 @@ pub(crate) fn size(shell: &mut Shell, arguments: &[String], console: &mut Consol
         }
     }
     let settings = session.settings();
-    console.say(format!("size = {}", Size { width: settings.width, height: settings.height }));
+    front.say(format!("size = {}", Size { width: settings.width, height: settings.height }));
     Ok(Flow::Continue)
 }
 
-pub(crate) fn depth(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn depth(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let setting = CountSetting { name: "depth", limit: &DEPTH, set: Session::set_depth, get: |s| s.depth };
-    count_setting(session, arguments, console, &setting)
+    count_setting(session, arguments, front, &setting)
 }
 
-pub(crate) fn samples(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn samples(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let setting = CountSetting { name: "samples", limit: &SAMPLES, set: Session::set_samples, get: |s| s.samples };
-    count_setting(session, arguments, console, &setting)
+    count_setting(session, arguments, front, &setting)
 }
 
 /// A whole-number render setting, as `:depth` and `:samples` set it.
@@ -81,7 +81,7 @@ struct CountSetting {
 fn count_setting(
     session: &mut Session,
     arguments: &[String],
-    console: &mut Console,
+    front: &mut dyn FrontEnd,
     setting: &CountSetting,
 ) -> CommandResult {
     match arguments {
@@ -89,11 +89,11 @@ fn count_setting(
         [value] => (setting.set)(session, parse_count(value, setting.limit)?),
         _ => return Err(CommandError::Usage("give one whole number".to_string())),
     }
-    console.say(format!("{} = {}", setting.name, (setting.get)(session.settings())));
+    front.say(format!("{} = {}", setting.name, (setting.get)(session.settings())));
     Ok(Flow::Continue)
 }
 
-pub(crate) fn limits(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn limits(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let mut limits = session.limits();
     for pair in arguments.chunks(2) {
@@ -109,7 +109,7 @@ pub(crate) fn limits(shell: &mut Shell, arguments: &[String], console: &mut Cons
         }
     }
     session.set_limits(limits).map_err(|error| CommandError::Program(Box::new(error)))?;
-    console.say(format!(
+    front.say(format!(
         "calls = {} (deepest chain of procedure calls), primitives = {}",
         limits.max_call_depth, limits.max_primitives
     ));

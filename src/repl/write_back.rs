@@ -23,16 +23,16 @@ use crate::render::Screen;
 use crate::settings::RenderSettings;
 
 use super::cancel::cancel_flag;
-use super::console::Console;
 use super::excerpt::{item_text, location, raw};
 use super::outcome::{CommandError, CommandResult, Flow};
+use super::outputs::FrontEnd;
 use super::render_steps::write_failure;
 use super::report::counted;
 use super::session::{Input, Session};
 use super::shell::Shell;
 
 /// `:write FILE.ray`.
-pub(crate) fn write(shell: &mut Shell, arguments: &[String], console: &mut Console) -> CommandResult {
+pub(crate) fn write(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
     let [file] = arguments else {
         return Err(CommandError::Usage("give the name of the .ray file to write".to_string()));
@@ -52,11 +52,11 @@ pub(crate) fn write(shell: &mut Shell, arguments: &[String], console: &mut Conso
         let bug = "the file would not give the session's scene (a bug of rayrepl: please report it)";
         return Err(CommandError::Failed(format!("{bug}; nothing was written")));
     }
-    output::write_text(path, &text, cancel_flag(console.cancel)).map_err(write_failure)?;
+    output::write_text(path, &text, cancel_flag(front.cancel())).map_err(write_failure)?;
     let summary = parts.summary();
     session.mark_written();
-    console.say(format!("wrote {} ({summary})", path.display()));
-    console.say(format!("`{command}` renders the picture `:save` renders"));
+    front.say(format!("wrote {} ({summary})", path.display()));
+    front.say(format!("`{command}` renders the picture `:save` renders"));
     Ok(Flow::Continue)
 }
 

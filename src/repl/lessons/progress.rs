@@ -67,7 +67,7 @@ impl Progress {
 fn file() -> Option<PathBuf> {
     match std::env::var_os(PROGRESS_VARIABLE) {
         Some(path) => Some(PathBuf::from(path)),
-        None => Some(dirs::data_dir()?.join("rayrepl").join("lessons")),
+        None => Some(crate::data_dir::data_dir()?.join("lessons")),
     }
 }
 

@@ -17,11 +17,11 @@ use rustyline::{Context, Helper};
 
 use crate::lang::{EntryState, entry_state};
 
-use super::commands::{self, COMMANDS, Files, help_pages, is_command};
-use super::help;
-use super::session::Vocabulary;
-use super::syntax::{PieceKind, is_word_char, pieces};
 use crate::lang::words::{self, Role};
+use crate::repl::Vocabulary;
+use crate::repl::commands::{self, COMMANDS, Files, help_pages, is_command};
+use crate::repl::help;
+use crate::repl::syntax::{PieceKind, is_word_char, pieces};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
 /// rustyline repaint the whole line at every key, so a long pasted line

@@ -15,6 +15,8 @@ use notify_debouncer_full::notify::event::{AccessKind, AccessMode};
 use notify_debouncer_full::notify::{self, EventKind, RecommendedWatcher, RecursiveMode};
 use notify_debouncer_full::{DebounceEventResult, DebouncedEvent, Debouncer, RecommendedCache, new_debouncer};
 
+use crate::repl::{SaveWatcher, Waited};
+
 /// How long the events of one save are gathered before it is reported.
 const SETTLE: Duration = Duration::from_millis(150);
 
@@ -28,15 +30,6 @@ pub(crate) struct FileWatcher {
     events: Receiver<DebounceEventResult>,
     /// The file, in its folder's canonical form, as events name it.
     file: PathBuf,
-}
-
-/// How a wait for a save ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Waited {
-    /// The file was written (or replaced).
-    Saved,
-    /// The cancel flag was raised.
-    Cancelled,
 }
 
 /// Why a file cannot be watched.
@@ -100,6 +93,14 @@ impl FileWatcher {
             EventKind::Access(_) | EventKind::Remove(_) | EventKind::Any | EventKind::Other => false,
         };
         writes && event.paths.contains(&self.file)
+    }
+}
+
+/// The session's `:watch` waits on it as the batch `--watch` does.
+impl SaveWatcher for FileWatcher {
+    fn wait(&self, cancel: &AtomicBool) -> Result<Waited, String> {
+        // The inherent `wait`, its error in words.
+        FileWatcher::wait(self, cancel).map_err(|error| error.to_string())
     }
 }
 

@@ -1,7 +1,6 @@
 //! The interactive session: prompts, the line editor, history on disk,
 //! Ctrl-C and Ctrl-D.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -15,20 +14,18 @@ use rustyline::history::FileHistory;
 use crate::clock::Stopwatch;
 use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 
-use super::cancel::CancelSwitch;
-use super::commands::{self, Flow, is_command};
-use super::console::Console;
+use crate::repl::commands::{self, Flow, is_command};
+use crate::repl::file_commands::load_reporting;
+use crate::repl::inputs::handle_input;
+use crate::repl::report::counted;
+use crate::repl::syntax::continuation_prompt;
+use crate::repl::{Console, FrontEnd, Session, SessionOptions, Shell, new_session, write_back};
+
+use super::ctrl_c;
 use super::editor::RayHelper;
-use super::file_commands::load_reporting;
-use super::inputs::handle_input;
-use super::inspect::history_path;
-use super::options::{SessionOptions, new_session};
+use super::front_end::TerminalFrontEnd;
+use super::history::history_path;
 use super::preview::Preview;
-use super::report::counted;
-use super::session::Session;
-use super::shell::Shell;
-use super::syntax::continuation_prompt;
-use super::write_back;
 
 /// The prompt for a new input, after its number.
 const PROMPT: &str = "ray> ";
@@ -74,15 +71,13 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     }
     let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
     let mut console = Console::new(&mut out, &mut err);
-    console.preview = Preview::new(options.no_preview);
-    console.progress = std::io::stderr().is_terminal();
-    console.cancel = CancelSwitch::install();
-    console.interactive = true;
-    console.say(format!(
+    console.cancel = ctrl_c::install();
+    let front: &mut dyn FrontEnd = &mut TerminalFrontEnd { console, preview: Preview::new(options.no_preview) };
+    front.say(format!(
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")
     ));
-    run_entries(Terminal { editor, history }, &mut console, options)
+    run_entries(Terminal { editor, history }, front, options)
 }
 
 /// Runs the interactive session's entry loop on `lines` as if each was
@@ -102,14 +97,14 @@ pub fn run_typed(
 }
 
 /// Loads `options.initial_file`, then runs the session on what is typed.
-fn run_entries(lines: impl LineSource, console: &mut Console, options: &SessionOptions) -> Result<(), ReplError> {
+fn run_entries(lines: impl LineSource, front: &mut dyn FrontEnd, options: &SessionOptions) -> Result<(), ReplError> {
     // A flag cannot be given any more: errors point to `:limits` instead.
     let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
-    let mut shell = Shell::new(new_session(&SessionOptions { limits, ..options.clone() }, console.cancel));
+    let mut shell = Shell::new(new_session(&SessionOptions { limits, ..options.clone() }, front.cancel()));
     if let Some(path) = &options.initial_file {
-        let _ = load_reporting(&mut shell.session, path, console);
+        let _ = load_reporting(&mut shell.session, path, front);
     }
-    Repl { lines, shell, inputs: 0 }.run(console)
+    Repl { lines, shell, inputs: 0 }.run(front)
 }
 
 /// Where the session's lines come from: the line editor, or lines given in
@@ -190,7 +185,7 @@ struct Repl<L> {
 }
 
 impl<L: LineSource> Repl<L> {
-    fn run(&mut self, console: &mut Console) -> Result<(), ReplError> {
+    fn run(&mut self, front: &mut dyn FrontEnd) -> Result<(), ReplError> {
         let mut pending = String::new();
         // A broken entry of several lines, given back to the editor to fix.
         let mut to_fix = String::new();
@@ -207,11 +202,11 @@ impl<L: LineSource> Repl<L> {
                         if pending.is_empty() {
                             self.inputs += 1;
                         }
-                        let armed = console.cancel.map(|switch| switch.arm());
-                        let flow = commands::execute(&mut self.shell, &line, console);
+                        let armed = front.cancel().map(|switch| switch.arm());
+                        let flow = commands::execute(&mut self.shell, &line, front);
                         drop(armed);
                         let unwritten = self.shell.session.unwritten();
-                        if flow == Ok(Flow::Quit) && leave(&pending, unwritten, &mut quit_warned, ":quit", console) {
+                        if flow == Ok(Flow::Quit) && leave(&pending, unwritten, &mut quit_warned, ":quit", front) {
                             return Ok(());
                         }
                         continue;
@@ -225,30 +220,30 @@ impl<L: LineSource> Repl<L> {
                         EntryState::Unfinished => {}
                         EntryState::Complete => {
                             let input = std::mem::take(&mut pending);
-                            self.submit(&input, console);
+                            self.submit(&input, front);
                         }
                         EntryState::Broken => {
                             let input = std::mem::take(&mut pending);
-                            self.submit(&input, console);
+                            self.submit(&input, front);
                             if input.contains('\n') && typed {
-                                console.note("the entry is back in the editor: fix it, or Ctrl-C to drop it");
+                                front.note("the entry is back in the editor: fix it, or Ctrl-C to drop it");
                                 to_fix = input;
                             } else if input.contains('\n') {
                                 // Typed ahead or pasted: what follows must not land in it.
-                                console.note("the arrow key up brings the entry back to fix it");
+                                front.note("the arrow key up brings the entry back to fix it");
                             }
                         }
                     }
                 }
                 Err(ReadlineError::Interrupted) => {
                     if !pending.is_empty() || fixing {
-                        console.say("(input dropped)");
+                        front.say("(input dropped)");
                     }
                     pending.clear();
                     quit_warned = false;
                 }
                 Err(ReadlineError::Eof) => {
-                    if leave(&pending, self.shell.session.unwritten(), &mut quit_warned, "Ctrl-D", console) {
+                    if leave(&pending, self.shell.session.unwritten(), &mut quit_warned, "Ctrl-D", front) {
                         return Ok(());
                     }
                 }
@@ -263,15 +258,15 @@ impl<L: LineSource> Repl<L> {
         format!("[{}] {PROMPT}", self.inputs + 1)
     }
 
-    fn submit(&mut self, input: &str, console: &mut Console) {
+    fn submit(&mut self, input: &str, front: &mut dyn FrontEnd) {
         if input.trim().is_empty() {
             return;
         }
         self.lines.remember(input);
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
-        let _armed = console.cancel.map(|switch| switch.arm());
-        let _ = handle_input(&mut self.shell, console, &name, input, 0);
+        let _armed = front.cancel().map(|switch| switch.arm());
+        let _ = handle_input(&mut self.shell, front, &name, input, 0);
     }
 }
 
@@ -279,17 +274,17 @@ impl<L: LineSource> Repl<L> {
 /// to: not at once when an entry is half typed, or `unwritten` inputs were
 /// not written to a file, which would be lost; the same request right
 /// after the warning ends it.
-fn leave(pending: &str, unwritten: usize, warned: &mut bool, how: &str, console: &mut Console) -> bool {
+fn leave(pending: &str, unwritten: usize, warned: &mut bool, how: &str, front: &mut dyn FrontEnd) -> bool {
     if *warned || (pending.trim().is_empty() && unwritten == 0) {
         return true;
     }
     *warned = true;
     if pending.trim().is_empty() {
-        console.note(write_back::unwritten_note(unwritten, how));
+        front.note(write_back::unwritten_note(unwritten, how));
         return false;
     }
     let first = pending.lines().find(|line| !line.trim().is_empty()).unwrap_or_default().trim();
-    console.note(format!(
+    front.note(format!(
         "the entry you are typing is not finished (`{first}`, {}): {how} again leaves without it, \
          Ctrl-C drops it and stays",
         counted(pending.lines().count(), "line")

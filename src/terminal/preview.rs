@@ -6,7 +6,7 @@ use std::io::IsTerminal;
 
 use image::{DynamicImage, RgbImage};
 
-use super::rendering::Size;
+use crate::repl::{PreviewSize, Size};
 
 /// Rows kept free under a preview: one for the message after it, one for the prompt.
 const ROWS_KEPT_FREE: u32 = 2;
@@ -23,39 +23,6 @@ pub(crate) enum Method {
     Graphics,
     /// `▀` characters with a foreground and a background colour: two pixels per cell.
     HalfBlocks,
-}
-
-/// How much of the terminal a preview takes (`:preview`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum PreviewSize {
-    /// The whole terminal.
-    Fit,
-    /// A third of its rows and half its columns, so that what was just typed
-    /// stays on screen above it.
-    Small,
-    /// No preview.
-    Off,
-}
-
-impl PreviewSize {
-    /// The setting named `name` (`fit`, `small`, `off`).
-    pub(crate) fn parse(name: &str) -> Option<PreviewSize> {
-        match name {
-            "fit" => Some(PreviewSize::Fit),
-            "small" => Some(PreviewSize::Small),
-            "off" => Some(PreviewSize::Off),
-            _ => None,
-        }
-    }
-
-    /// Its name, as `:preview` takes it.
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            PreviewSize::Fit => "fit",
-            PreviewSize::Small => "small",
-            PreviewSize::Off => "off",
-        }
-    }
 }
 
 /// Previews images in the terminal on standard output.
@@ -139,27 +106,6 @@ impl Preview {
     }
 }
 
-/// `image` with pixel `(x, y)` marked by a cross around it, in the colour
-/// opposite to the pixel's, its arms long enough to see once the image is
-/// fitted to the terminal; the pixel itself keeps its colour.
-pub(crate) fn mark_pixel(image: &RgbImage, x: u32, y: u32) -> RgbImage {
-    let mut marked = image.clone();
-    let [r, g, b] = image.get_pixel(x, y).0;
-    let opposite = image::Rgb([255 - r, 255 - g, 255 - b]);
-    // A cell of a fitted preview covers about 1/80 of the width.
-    let step = (image.width().max(image.height()) / 80).max(1) as i64;
-    let (x, y) = (i64::from(x), i64::from(y));
-    for distance in step..=4 * step {
-        for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
-            let (px, py) = (x + dx * distance, y + dy * distance);
-            if (0..i64::from(image.width())).contains(&px) && (0..i64::from(image.height())).contains(&py) {
-                marked.put_pixel(px as u32, py as u32, opposite);
-            }
-        }
-    }
-    marked
-}
-
 /// Whether the terminal shows 24-bit colours, from its environment
 /// (`env` reads a variable). viuer (like most crates) trusts `COLORTERM`
 /// only, which tmux, ssh and sudo often drop; the terminals that set other
@@ -173,16 +119,6 @@ fn has_truecolor(env: impl Fn(&str) -> Option<String>) -> bool {
         || env("VTE_VERSION").and_then(|v| v.parse::<u32>().ok()).is_some_and(|version| version >= 3600)
         || env("KONSOLE_VERSION").is_some()
         || env("WT_SESSION").is_some()
-}
-
-/// `left` and `right` side by side on a black background, `gap` pixels
-/// apart, their tops aligned.
-pub(crate) fn side_by_side(left: &RgbImage, right: &RgbImage, gap: u32) -> RgbImage {
-    let width = left.width() + gap + right.width();
-    let mut both = RgbImage::new(width, left.height().max(right.height()));
-    image::imageops::replace(&mut both, left, 0, 0);
-    image::imageops::replace(&mut both, right, i64::from(left.width() + gap), 0);
-    both
 }
 
 /// The largest size with the proportions of `shape` that fits in `bounds`.
@@ -224,31 +160,6 @@ mod tests {
         assert!(with(&[("VTE_VERSION", "7402"), ("TERM", "xterm-256color")]));
         assert!(!with(&[("TERM", "xterm-256color")]));
         assert!(!with(&[("TERM", "linux")]));
-    }
-
-    #[test]
-    fn pictures_side_by_side_keep_their_pixels() {
-        let left = RgbImage::from_pixel(2, 3, image::Rgb([255, 0, 0]));
-        let right = RgbImage::from_pixel(3, 2, image::Rgb([0, 0, 255]));
-        let both = side_by_side(&left, &right, 1);
-        assert_eq!(both.dimensions(), (6, 3));
-        assert_eq!(
-            (both[(1, 2)], both[(2, 0)], both[(3, 1)], both[(3, 2)]),
-            (image::Rgb([255, 0, 0]), image::Rgb([0, 0, 0]), image::Rgb([0, 0, 255]), image::Rgb([0, 0, 0]))
-        );
-    }
-
-    #[test]
-    fn a_marked_pixel_keeps_its_colour_inside_a_cross() {
-        let image = RgbImage::from_pixel(20, 10, image::Rgb([10, 200, 30]));
-        let marked = mark_pixel(&image, 2, 5);
-        let opposite = image::Rgb([245, 55, 225]);
-        assert_eq!(*marked.get_pixel(2, 5), image::Rgb([10, 200, 30]));
-        for (x, y) in [(3, 5), (6, 5), (0, 5), (2, 9), (2, 1)] {
-            assert_eq!(*marked.get_pixel(x, y), opposite, "({x}, {y})");
-        }
-        assert_eq!(*marked.get_pixel(7, 5), image::Rgb([10, 200, 30]), "the arms end");
-        assert_eq!(*marked.get_pixel(3, 6), image::Rgb([10, 200, 30]), "the diagonals stay");
     }
 
     #[test]

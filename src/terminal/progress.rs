@@ -25,23 +25,23 @@ pub struct Progress {
 impl Progress {
     /// Progress over `total` units, labelled `what` ("rendering").
     pub fn new(total: u64, what: &str) -> Progress {
-        Progress::styled(total, &format!("{what} [{{bar:40}}] {{percent:>3}}% eta {{eta}}"), true)
+        Progress::styled(total, &format!("{what} [{{bar:40}}] {{percent:>3}}% eta {{eta}}"))
     }
 
     /// Progress of a render in the interactive session, which Ctrl-C can
-    /// cancel; `visible` is false where the session shows no bars (scripts).
-    pub fn in_session(total: u64, what: &str, visible: bool) -> Progress {
-        Progress::styled(total, &format!("{what} [{{bar:30}}] {{percent}}% ({{elapsed}}, Ctrl-C cancels)"), visible)
+    /// cancel.
+    pub fn in_session(total: u64, what: &str) -> Progress {
+        Progress::styled(total, &format!("{what} [{{bar:30}}] {{percent}}% ({{elapsed}}, Ctrl-C cancels)"))
     }
 
-    /// A bar drawn with the indicatif `template`, shown only when `visible`
-    /// and stderr is a terminal.
-    fn styled(total: u64, template: &str, visible: bool) -> Progress {
+    /// A bar drawn with the indicatif `template`, shown only when stderr is
+    /// a terminal.
+    fn styled(total: u64, template: &str) -> Progress {
         let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
         if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
-        let enabled = visible && std::io::stderr().is_terminal();
+        let enabled = std::io::stderr().is_terminal();
         Progress { bar, start: Stopwatch::start(), shown: OnceLock::new(), enabled }
     }
 

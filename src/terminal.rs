@@ -1,0 +1,53 @@
+//! The terminal layer: what rayrepl does on a terminal and in a process,
+//! around the session core and the batch renderer. Ctrl-C ([`ctrl_c`]),
+//! previews of pictures ([`preview`]) and animations played in place
+//! ([`play`]), progress bars ([`progress`]), following a file's saves
+//! ([`watch`]), the line editor ([`editor`]) with its history file
+//! (`history`) and the interactive session ([`interactive`]) with its
+//! front-end (`front_end`). Built with the
+//! `terminal` feature (on by default), which brings their crates.
+
+pub(crate) mod ctrl_c;
+pub(crate) mod editor;
+mod front_end;
+mod history;
+pub mod interactive;
+mod play;
+pub(crate) mod preview;
+pub mod progress;
+pub(crate) mod watch;
+
+use std::io::IsTerminal;
+use std::process::ExitCode;
+
+pub use interactive::{ReplError, run_interactive, run_typed};
+
+use crate::repl::SessionOptions;
+use crate::repl::script::run_script_keeping_session;
+
+/// Runs a session the way `rayrepl` without a scene to render does:
+/// interactively when standard input is a terminal, otherwise as a script
+/// read from standard input (messages on standard output, diagnostics on
+/// standard error), which Ctrl-C stops. Fails after an error in a script
+/// (status 1, or 130 when Ctrl-C stopped it), or when the terminal cannot
+/// be used.
+pub fn run_session(options: &SessionOptions) -> ExitCode {
+    let code = if std::io::stdin().is_terminal() {
+        match run_interactive(options) {
+            Ok(()) => 0,
+            Err(error) => {
+                crate::failure::report_failure(error);
+                1
+            }
+        }
+    } else {
+        let stdin = std::io::stdin();
+        let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
+        let (code, session) = run_script_keeping_session(stdin.lock(), &mut out, &mut err, options, ctrl_c::install());
+        // The process ends now: freeing a long script's inputs one by one
+        // would only add to its time.
+        std::mem::forget(session);
+        code
+    };
+    ExitCode::from(u8::try_from(code).unwrap_or(1))
+}
