@@ -33,3 +33,4 @@ mod settings;
 mod source_tree;
 #[cfg(feature = "terminal")]
 pub mod terminal;
+mod warned;

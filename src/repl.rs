@@ -47,8 +47,8 @@ pub(crate) use console::Console;
 pub use options::SessionOptions;
 pub(crate) use options::new_session;
 pub use outputs::{
-    Collected, FrontEnd, Output, Picture, PixelExplanation, PreviewSize, SaveWatcher, TextRole, Ticker, Waited,
-    mark_pixel,
+    Collected, FrontEnd, LessonStep, LessonVerdict, Output, Picture, PixelExplanation, PreviewSize, SaveWatcher,
+    TextRole, Ticker, Waited, mark_pixel,
 };
 pub use rendering::{RenderSettings, Size};
 pub use script::run_script;

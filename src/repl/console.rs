@@ -103,6 +103,8 @@ impl FrontEnd for Console<'_> {
             Output::Text { role: TextRole::PrintedNote, text } => self.printed_note(text),
             Output::Diagnostic(diagnostic) => self.diagnostic(&diagnostic, sources),
             Output::Explanation(explanation) => self.say(&explanation.text),
+            Output::LessonStep(step) => self.say(step.to_text()),
+            Output::LessonVerdict(verdict) => self.say(verdict.to_text()),
             Output::Picture(_) | Output::Frames { .. } | Output::AnimationFile(_) => {}
         }
         Ok(())

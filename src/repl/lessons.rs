@@ -14,7 +14,7 @@ use image::RgbImage;
 use crate::lang::{Diagnostic, Limits};
 
 use super::outcome::{CommandError, CommandResult, Flow};
-use super::outputs::{FrontEnd, Output, Picture, side_by_side};
+use super::outputs::{FrontEnd, LessonStep, LessonVerdict, Output, Picture, side_by_side};
 use super::rendering::{RenderError, Size, render_image};
 use super::session::Session;
 use super::shell::Shell;
@@ -23,8 +23,6 @@ use content::{LESSONS, Lesson, Step};
 use progress::Progress;
 use tutor::Tutor;
 
-/// The width lessons' texts are wrapped to.
-const TEXT_COLUMNS: usize = 76;
 /// Wrong tries of a step after which its example is shown with the hint.
 const TRIES_BEFORE_EXAMPLE: u32 = 2;
 /// Columns of background between the goal picture and the learner's.
@@ -61,17 +59,16 @@ pub(crate) fn check_input(shell: &mut Shell, front: &mut dyn FrontEnd) {
     let current = &LESSONS[lesson].steps[step];
     match (current.check)(&shell.session) {
         Ok(()) => {
-            front.say(format!("✓ step {} done", step + 1));
+            let _ = front.present(Output::LessonVerdict(LessonVerdict::Done { number: step + 1, already: false }));
             advance(shell, front, lesson, step);
         }
         Err(missing) => {
             show_pictures(&shell.session, front, lesson, step);
             shell.tutor.wrong_tries += 1;
-            front.say(format!("not yet: {missing} (`:undo` takes your last input back)"));
-            front.say(wrap(current.hint, "hint: "));
-            if shell.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front {
-                front.say(format!("for example:\n{}", indent(current.example)));
-            }
+            let show_example = shell.tutor.wrong_tries >= TRIES_BEFORE_EXAMPLE && !current.example_up_front;
+            let example = show_example.then(|| current.example.to_string());
+            let verdict = LessonVerdict::NotYet { missing, hint: current.hint.to_string(), example };
+            let _ = front.present(Output::LessonVerdict(verdict));
         }
     }
 }
@@ -147,7 +144,7 @@ fn begin_step(shell: &mut Shell, front: &mut dyn FrontEnd, lesson: usize, step: 
     progress.at = Some((lesson + 1, step + 1));
     save(&progress, front);
     if (steps[step].check)(&shell.session).is_ok() {
-        front.say(format!("✓ step {} done: your scene already does it", step + 1));
+        let _ = front.present(Output::LessonVerdict(LessonVerdict::Done { number: step + 1, already: true }));
         advance(shell, front, lesson, step);
         return;
     }
@@ -155,10 +152,9 @@ fn begin_step(shell: &mut Shell, front: &mut dyn FrontEnd, lesson: usize, step: 
 }
 
 fn say_step(front: &mut dyn FrontEnd, step: &Step, index: usize, steps: usize) {
-    front.say(wrap(step.task, &format!("step {} of {steps}: ", index + 1)));
-    if step.example_up_front {
-        front.say(indent(step.example));
-    }
+    let example = step.example_up_front.then(|| step.example.to_string());
+    let step = LessonStep { number: index + 1, steps, task: step.task.to_string(), example };
+    let _ = front.present(Output::LessonStep(step));
 }
 
 /// Moves past step `step` of `lesson`: to the next step, or to the end of
@@ -230,19 +226,6 @@ fn goal_session(session: &Session, lesson: usize, step: usize) -> Result<Session
     Ok(goal)
 }
 
-/// `text` wrapped to [`TEXT_COLUMNS`], its first line after `first`, the
-/// others indented by as much.
-fn wrap(text: &str, first: &str) -> String {
-    let rest = " ".repeat(first.chars().count());
-    let options = textwrap::Options::new(TEXT_COLUMNS).initial_indent(first).subsequent_indent(&rest);
-    textwrap::fill(text, options)
-}
-
-/// A program shown indented by four spaces.
-fn indent(program: &str) -> String {
-    program.lines().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::{Path, PathBuf};
@@ -296,15 +279,5 @@ mod tests {
                 index + 1
             );
         }
-    }
-
-    #[test]
-    fn text_is_wrapped_under_its_label() {
-        let text = "one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen";
-        assert_eq!(
-            wrap(text, "step 1 of 2: "),
-            "step 1 of 2: one two three four five six seven eight nine ten eleven twelve\n             thirteen fourteen fifteen"
-        );
-        assert_eq!(indent("a\nb"), "    a\n    b");
     }
 }

@@ -47,6 +47,10 @@ pub enum Output {
     AnimationFile(PathBuf),
     /// Why a pixel has its colour (`:pick`).
     Explanation(Box<PixelExplanation>),
+    /// What a step of a lesson asks (`:lesson`).
+    LessonStep(LessonStep),
+    /// Whether the learner's scene does what the step asks.
+    LessonVerdict(LessonVerdict),
 }
 
 /// What a text output is.
@@ -84,6 +88,89 @@ pub struct PixelExplanation {
     pub text: String,
     /// The explanation as data.
     pub json: Value,
+}
+
+/// What a step of a lesson asks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LessonStep {
+    /// The step's number, from 1.
+    pub number: usize,
+    /// How many steps the lesson has.
+    pub steps: usize,
+    /// What to build, in one paragraph.
+    pub task: String,
+    /// A program that does it, shown with the task when the step gives it
+    /// up front.
+    pub example: Option<String>,
+}
+
+/// Whether the learner's scene does what a lesson's step asks.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LessonVerdict {
+    /// It does: the step is done.
+    Done {
+        /// The step's number, from 1.
+        number: usize,
+        /// The scene did it before the learner typed anything for it.
+        already: bool,
+    },
+    /// Not yet.
+    NotYet {
+        /// What the scene still lacks.
+        missing: String,
+        /// The step's hint, in one paragraph.
+        hint: String,
+        /// A program that does it, after a few wrong tries.
+        example: Option<String>,
+    },
+}
+
+/// The width lessons' texts are wrapped to.
+const TEXT_COLUMNS: usize = 76;
+
+impl LessonStep {
+    /// The step as the terminal shows it: the task wrapped under its
+    /// number, then the example, indented.
+    pub fn to_text(&self) -> String {
+        let task = wrap(&self.task, &format!("step {} of {}: ", self.number, self.steps));
+        match &self.example {
+            Some(example) => format!("{task}\n{}", indent(example)),
+            None => task,
+        }
+    }
+}
+
+impl LessonVerdict {
+    /// The verdict as the terminal shows it.
+    pub fn to_text(&self) -> String {
+        match self {
+            LessonVerdict::Done { number, already: false } => format!("✓ step {number} done"),
+            LessonVerdict::Done { number, already: true } => {
+                format!("✓ step {number} done: your scene already does it")
+            }
+            LessonVerdict::NotYet { missing, hint, example } => {
+                let mut text =
+                    format!("not yet: {missing} (`:undo` takes your last input back)\n{}", wrap(hint, "hint: "));
+                if let Some(example) = example {
+                    text.push_str(&format!("\nfor example:\n{}", indent(example)));
+                }
+                text
+            }
+        }
+    }
+}
+
+/// `text` wrapped to [`TEXT_COLUMNS`], its first line after `first`, the
+/// others indented by as much.
+fn wrap(text: &str, first: &str) -> String {
+    let rest = " ".repeat(first.chars().count());
+    let options = textwrap::Options::new(TEXT_COLUMNS).initial_indent(first).subsequent_indent(&rest);
+    textwrap::fill(text, options)
+}
+
+/// A program shown indented by four spaces.
+fn indent(program: &str) -> String {
+    program.lines().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
 }
 
 /// How a wait for a save of a watched file ended.
@@ -307,6 +394,16 @@ mod tests {
             _ => None,
         });
         texts.collect()
+    }
+
+    #[test]
+    fn text_is_wrapped_under_its_label() {
+        let text = "one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen";
+        assert_eq!(
+            wrap(text, "step 1 of 2: "),
+            "step 1 of 2: one two three four five six seven eight nine ten eleven twelve\n             thirteen fourteen fifteen"
+        );
+        assert_eq!(indent("a\nb"), "    a\n    b");
     }
 
     #[test]

@@ -29,7 +29,7 @@ pub(crate) fn render_command(shell: &mut Shell, arguments: &[String], front: &mu
         }
     };
     explain_defaults(session, front);
-    show_scene_warnings(session, front, size, false);
+    show_scene_warnings(session, &mut shell.warned, front, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), front)?;
     shell.last_picture = Some(image.clone());
     if shown.is_some() {
@@ -109,7 +109,7 @@ pub(crate) fn save(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     let path = PathBuf::from(file);
     check_output(&path, Content::Still)?;
     explain_defaults(session, front);
-    show_scene_warnings(session, front, size, false);
+    show_scene_warnings(session, &mut shell.warned, front, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), front)?;
     shell.last_picture = Some(image.clone());
     output::write_image_cancellable(&path, &image, cancel_flag(front.cancel())).map_err(write_failure)?;
@@ -129,7 +129,7 @@ pub(crate) fn anim(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     let format = output::check_animation_output(&path, &animation).map_err(|e| CommandError::Failed(e.to_string()))?;
     explain_defaults(session, front);
     let size = Size { width: session.settings().width, height: session.settings().height };
-    show_scene_warnings(session, front, size, true);
+    show_scene_warnings(session, &mut shell.warned, front, size, true);
     let started = Stopwatch::start();
     let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback, cancel_flag(front.cancel()));
     let rendered = render_frames(session, frames, animation.timeline, size, front, &mut |frame, image| {

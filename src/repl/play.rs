@@ -53,7 +53,7 @@ pub(crate) fn play(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
         )));
     }
     explain_defaults(session, front);
-    show_scene_warnings(session, front, size, true);
+    show_scene_warnings(session, &mut shell.warned, front, size, true);
     if !session.depends_on_time() {
         front.note("nothing in the scene depends on `time`: every frame is the same (see `:help time`)");
     }

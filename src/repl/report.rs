@@ -13,6 +13,7 @@ use crate::lint::Picture;
 use super::outputs::FrontEnd;
 use super::rendering::Size;
 use super::session::{Accepted, Session};
+use crate::warned::Warned;
 
 /// Above this many definitions in one input, they are listed on one line.
 const MAX_DEFINITION_LINES: usize = 4;
@@ -158,12 +159,21 @@ pub(crate) fn show_printed(session: &Session, front: &mut dyn FrontEnd) {
 }
 
 /// Shows the warnings about the scene that a render of `size` (an
-/// animation's frames, if `animation`) should heed, each cause once.
-pub(crate) fn show_scene_warnings(session: &mut Session, front: &mut dyn FrontEnd, size: Size, animation: bool) {
+/// animation's frames, if `animation`) should heed, those not `warned`
+/// about before.
+pub(crate) fn show_scene_warnings(
+    session: &Session,
+    warned: &mut Warned,
+    front: &mut dyn FrontEnd,
+    size: Size,
+    animation: bool,
+) {
     let screen = session.settings().screen;
     let picture = Picture { width: size.width, height: size.height, screen, animation };
     for warning in session.scene_warnings(&picture) {
-        front.diagnostic(&warning, session.sources());
+        if warned.first_time(&warning) {
+            front.diagnostic(&warning, session.sources());
+        }
     }
 }
 

@@ -3,7 +3,6 @@
 //! accepted inputs that `:undo` and `:time` replay.
 
 use std::cell::RefCell;
-use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::Arc;
@@ -11,8 +10,8 @@ use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items};
-use crate::lint::{Allowed, Check, Picture, check_scene};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_items};
+use crate::lint::{Allowed, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
@@ -106,9 +105,6 @@ pub struct Session {
     counts: Counts,
     /// The checks of the scene turned off.
     allowed: Allowed,
-    /// The warnings about the scene already shown, by check and place: a
-    /// cause is warned about once, not at every render.
-    warned: HashSet<(Check, Span)>,
     /// What `print` wrote and was not yet shown (also by the frames of an
     /// animation, which only read the session).
     printed: RefCell<PrintLog>,
@@ -128,7 +124,6 @@ impl Session {
             settings,
             limits,
             allowed: Allowed::default(),
-            warned: HashSet::new(),
             printed: RefCell::default(),
             counts: Counts::default(),
             interrupt: None,
@@ -424,15 +419,11 @@ impl Session {
         self.printed.take()
     }
 
-    /// The warnings about the scene, rendered as `picture`, that were not
-    /// shown before (for the checks not turned off).
-    pub(crate) fn scene_warnings(&mut self, picture: &Picture) -> Vec<Diagnostic> {
+    /// The warnings about the scene, rendered as `picture` (for the checks
+    /// not turned off).
+    pub(crate) fn scene_warnings(&self, picture: &Picture) -> Vec<Diagnostic> {
         let warnings = check_scene(self.scene(), self.interpreter.origins(), picture, self.allowed);
-        warnings
-            .into_iter()
-            .filter(|warning| self.warned.insert((warning.check, warning.diagnostic.span)))
-            .map(|warning| warning.diagnostic)
-            .collect()
+        warnings.into_iter().map(|warning| warning.diagnostic).collect()
     }
 
     /// The source texts seen so far, to render diagnostics.

@@ -1,11 +1,12 @@
 //! The session with what a front-end keeps beside it: the lesson being
-//! followed and the last picture. The [`Session`] itself holds the
+//! followed, the last picture and the warnings already shown. The [`Session`] itself holds the
 //! language's state only.
 
 use image::RgbImage;
 
 use super::lessons::tutor::Tutor;
 use super::session::Session;
+use crate::warned::Warned;
 
 /// What the commands work on: the session, and the front-end's state.
 #[derive(Debug)]
@@ -16,11 +17,14 @@ pub(crate) struct Shell {
     pub tutor: Tutor,
     /// The last picture rendered or saved, whose pixels `:pick` explains.
     pub last_picture: Option<RgbImage>,
+    /// The warnings about the scene already shown: a cause is warned about
+    /// once, not at every render.
+    pub warned: Warned,
 }
 
 impl Shell {
     /// `session`, with no lesson followed and no picture yet.
     pub(crate) fn new(session: Session) -> Shell {
-        Shell { session, tutor: Tutor::default(), last_picture: None }
+        Shell { session, tutor: Tutor::default(), last_picture: None, warned: Warned::default() }
     }
 }
