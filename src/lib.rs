@@ -13,6 +13,7 @@ pub mod cli;
 pub mod clock;
 pub mod explain;
 pub mod failure;
+mod job;
 pub mod lang;
 pub mod lint;
 pub mod output;
