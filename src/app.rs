@@ -4,7 +4,7 @@
 
 use std::cell::RefCell;
 use std::collections::HashSet;
-use std::io::{Read, Write};
+use std::io::{self, Read, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -17,7 +17,7 @@ use crate::cli::Cli;
 use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
 use crate::failure::report_failure;
-use crate::job::{Animation, Destination, DiagnosticFormat, Evaluation, Job, JobError, Render, SceneFile, Task};
+use crate::job::{Animation, Destination, DiagnosticFormat, Job, JobError, Render, SceneFile, Task};
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
 use crate::lang::eval::PrintLog;
@@ -161,14 +161,14 @@ fn run_file(
 ) -> ExitCode {
     let mut sources = SourceMap::new();
     let result = load(&mut sources, &scene.path).map_err(BatchError::from).and_then(|id| {
-        let parsed = ParsedScene::parse(sources, id, scene.evaluation, cancel_flag(switch))?;
+        let parsed = ParsedScene::parse(sources, id, scene.clone(), cancel_flag(switch))?;
         let result = work(&parsed);
         if let Some(note) = parsed.printed.borrow().hidden_note() {
             eprintln!("note: {note}");
         }
         result
     });
-    exit_code(result, scene.evaluation.diagnostics)
+    exit_code(result, scene.diagnostics)
 }
 
 /// A parsed scene file, ready to be evaluated at any `time`.
@@ -177,8 +177,8 @@ struct ParsedScene {
     /// The scene file's text in `sources`.
     id: SourceId,
     program: Program,
-    /// How it is evaluated and checked.
-    evaluation: Evaluation,
+    /// The file and how it is evaluated and checked.
+    file: SceneFile,
     /// The warnings already printed.
     warned: RefCell<HashSet<(Span, String)>>,
     /// What `print` wrote, over every evaluation (the limit is for the whole run).
@@ -192,7 +192,7 @@ impl ParsedScene {
     fn parse(
         sources: SourceMap,
         id: SourceId,
-        evaluation: Evaluation,
+        file: SceneFile,
         cancel: &'static AtomicBool,
     ) -> Result<ParsedScene, BatchError> {
         match parse_file(id, &sources.get(id).text) {
@@ -200,7 +200,7 @@ impl ParsedScene {
                 sources,
                 id,
                 program,
-                evaluation,
+                file,
                 warned: RefCell::default(),
                 printed: RefCell::default(),
                 cancel,
@@ -221,8 +221,7 @@ impl ParsedScene {
     /// What `print` writes comes first; the whole scene (not `skip_static`)
     /// is also checked for the mistakes that spoil a picture.
     fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, BatchError> {
-        let interpreter =
-            Interpreter::new(time, self.evaluation.limits).skip_static(skip_static).interruptible(self.cancel);
+        let interpreter = Interpreter::new(time, self.file.limits).skip_static(skip_static).interruptible(self.cancel);
         self.run(interpreter, !skip_static).map(Interpreter::into_scene)
     }
 
@@ -236,7 +235,7 @@ impl ParsedScene {
             eprintln!("{}", line.render(&self.sources));
         }
         let mut warnings = interpreter.take_warnings();
-        let Evaluation { picture, allowed, diagnostics, .. } = self.evaluation;
+        let SceneFile { picture, allowed, diagnostics, .. } = self.file;
         if result.is_ok() && check {
             let checked = check_scene(interpreter.scene(), interpreter.origins(), &picture, allowed);
             warnings.extend(checked.into_iter().map(|warning| warning.diagnostic));
@@ -256,8 +255,8 @@ impl ParsedScene {
 /// Evaluates the scene at its time and says what it holds, unless the
 /// diagnostics go out as JSON.
 fn check(parsed: &ParsedScene) -> Result<(), BatchError> {
-    let scene = parsed.evaluate(parsed.evaluation.time, false)?;
-    if parsed.evaluation.diagnostics == DiagnosticFormat::Rendered {
+    let scene = parsed.evaluate(parsed.file.time, false)?;
+    if parsed.file.diagnostics == DiagnosticFormat::Rendered {
         // A closed pipe or a full disk loses the summary, as it would the
         // JSON or an explanation: the check itself is done.
         let _ = writeln!(std::io::stdout().lock(), "{}: {}", parsed.name(), summary(&scene));
@@ -268,7 +267,7 @@ fn check(parsed: &ParsedScene) -> Result<(), BatchError> {
 /// Explains pixel `(x, y)` of the image `options` render, in words or
 /// (`json`) as one JSON object, on standard output.
 fn explain(parsed: &ParsedScene, options: &RenderOptions, (x, y): (u32, u32), json: bool) -> Result<(), BatchError> {
-    let interpreter = Interpreter::new(parsed.evaluation.time, parsed.evaluation.limits).recording_calls();
+    let interpreter = Interpreter::new(parsed.file.time, parsed.file.limits).recording_calls();
     let interpreter = parsed.run(interpreter, true)?;
     let explanation = ExplainedScene::new(&interpreter, &parsed.sources, options).explain(x, y);
     let text = if json { format!("{}\n", explanation.to_json()) } else { explanation.to_string() };
@@ -307,26 +306,18 @@ fn summary(scene: &Scene) -> String {
 /// reflections to `output`, saying so unless `quiet`.
 fn export_pov(parsed: &ParsedScene, depth: u32, output: &Destination, quiet: bool) -> Result<(), BatchError> {
     let start = Stopwatch::start();
-    let Evaluation { time, picture, .. } = parsed.evaluation;
+    let SceneFile { time, picture, .. } = parsed.file;
     let scene = parsed.evaluate(time, false)?;
     let export = pov::Export { source: parsed.name(), time, depth, width: picture.width, height: picture.height };
     let text = pov::to_pov(&scene, &export);
-    let name = match output {
-        Destination::Stdout => {
-            let mut stdout = std::io::stdout().lock();
-            stdout
-                .write_all(text.as_bytes())
-                .and_then(|()| stdout.flush())
-                .map_err(|e| format!("cannot write the POV-Ray scene to standard output: {}", output::io_reason(&e)))?;
-            "standard output".to_string()
-        }
+    match output {
+        Destination::Stdout => write_stdout("the POV-Ray scene", |stdout| stdout.write_all(text.as_bytes()))?,
         Destination::File(pov) => {
-            output::write_text(pov, &text, &output::NEVER_CANCELLED).map_err(|e| e.to_string())?;
-            pov.display().to_string()
+            output::write_text(pov, &text, &output::NEVER_CANCELLED).map_err(|e| e.to_string())?
         }
-    };
+    }
     if !quiet {
-        eprintln!("wrote {name}: {}, {:.2} s", summary(&scene), start.elapsed().as_secs_f64());
+        eprintln!("wrote {output}: {}, {:.2} s", summary(&scene), start.elapsed().as_secs_f64());
     }
     Ok(())
 }
@@ -340,34 +331,35 @@ fn still(
 ) -> Result<(), BatchError> {
     let start = Stopwatch::start();
     let written = render_still(parsed, render, cancel).and_then(|image| write_still(output, &image, cancel));
-    let name = written.map_err(|e| unless_interrupted(e, cancel, &[]))?;
-    report_done(render, &format!("wrote {name}"), &image_size(&render.options), start);
+    written.map_err(|e| unless_interrupted(e, cancel, &[]))?;
+    report_done(render, &format!("wrote {output}"), &image_size(&render.options), start);
     Ok(())
 }
 
 /// Writes `image` to `output` (standard output as PPM), unless `cancel` is
-/// raised; returns the name of where it went.
-fn write_still(output: &Destination, image: &RgbImage, cancel: &'static AtomicBool) -> Result<String, BatchError> {
+/// raised.
+fn write_still(output: &Destination, image: &RgbImage, cancel: &'static AtomicBool) -> Result<(), BatchError> {
     match output {
-        Destination::Stdout => {
-            let mut stdout = std::io::stdout().lock();
-            output::write_ppm(&mut stdout, image)
-                .and_then(|()| stdout.flush())
-                .map_err(|e| format!("cannot write the image to standard output: {}", output::io_reason(&e)))?;
-            Ok("standard output".to_string())
-        }
-        Destination::File(path) => {
-            output::write_image_cancellable(path, image, cancel).map_err(|e| e.to_string())?;
-            Ok(path.display().to_string())
-        }
+        Destination::Stdout => write_stdout("the image", |stdout| output::write_ppm(stdout, image))?,
+        Destination::File(path) => output::write_image_cancellable(path, image, cancel).map_err(|e| e.to_string())?,
     }
+    Ok(())
+}
+
+/// Writes `what` ("the image") to standard output with `write`, and
+/// flushes it.
+fn write_stdout(what: &str, write: impl FnOnce(&mut StdoutLock<'static>) -> io::Result<()>) -> Result<(), String> {
+    let mut stdout = std::io::stdout().lock();
+    write(&mut stdout)
+        .and_then(|()| stdout.flush())
+        .map_err(|e| format!("cannot write {what} to standard output: {}", output::io_reason(&e)))
 }
 
 /// Evaluates the scene at its time and renders it, with the progress bar
 /// and `--stats`, unless `cancel` is raised.
 fn render_still(parsed: &ParsedScene, render: &Render, cancel: &AtomicBool) -> Result<RgbImage, BatchError> {
     let start = Stopwatch::start();
-    let scene = parsed.evaluate(parsed.evaluation.time, false)?;
+    let scene = parsed.evaluate(parsed.file.time, false)?;
     let evaluated = start.elapsed();
     let prepared = SceneGeometry::new(&scene);
     let built = start.elapsed() - evaluated;
@@ -404,7 +396,7 @@ fn watch(scene: &SceneFile, render: &Render, output: Option<&Path>, no_preview: 
             Ok(id) if shown.as_ref() == Some(&sources.get(id).text) => {}
             Ok(id) => {
                 shown = Some(Arc::clone(&sources.get(id).text));
-                if let Err(error) = render_version(sources, id, scene.evaluation, render, output, preview) {
+                if let Err(error) = render_version(sources, id, scene.clone(), render, output, preview) {
                     print_error(&error, DiagnosticFormat::Rendered);
                     eprintln!("note: the last good picture stays: fix {} and save it again", path.display());
                 }
@@ -419,13 +411,13 @@ fn watch(scene: &SceneFile, render: &Render, output: Option<&Path>, no_preview: 
 fn render_version(
     sources: SourceMap,
     id: SourceId,
-    evaluation: Evaluation,
+    file: SceneFile,
     render: &Render,
     output: Option<&Path>,
     preview: Option<repl::Preview>,
 ) -> Result<(), BatchError> {
     let start = Stopwatch::start();
-    let parsed = ParsedScene::parse(sources, id, evaluation, &output::NEVER_CANCELLED)?;
+    let parsed = ParsedScene::parse(sources, id, file, &output::NEVER_CANCELLED)?;
     let image = render_still(&parsed, render, &output::NEVER_CANCELLED)?;
     if let Some(preview) = preview {
         preview.show(&image).map_err(|e| format!("cannot show the picture here: {e}"))?;

@@ -51,18 +51,11 @@ pub enum Task {
     Session(SessionOptions),
 }
 
-/// The scene file a task reads, and how it is evaluated.
+/// The scene file a task reads, and how it is evaluated and checked.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneFile {
     /// Its path; `-` reads standard input.
     pub path: PathBuf,
-    /// How it is evaluated and checked.
-    pub evaluation: Evaluation,
-}
-
-/// How a scene is evaluated and checked, and how its diagnostics are shown.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Evaluation {
     /// The value of `time` of a single image (`--time`).
     pub time: f64,
     /// Limits on procedure calls and primitives.
@@ -126,6 +119,16 @@ impl Destination {
     }
 }
 
+/// Where it is, as "wrote ..." says.
+impl fmt::Display for Destination {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Destination::Stdout => f.write_str("standard output"),
+            Destination::File(path) => path.display().fmt(f),
+        }
+    }
+}
+
 /// Why the command line gives no job.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum JobError {
@@ -162,7 +165,7 @@ impl Job {
         if let Some(misuse) = misuse(cli) {
             return Err(JobError::Misuse(misuse));
         }
-        let task = match scene_file(cli) {
+        let task = match scene_path(cli) {
             Some(path) => file_task(cli, path, stdout_is_terminal)?,
             None => Task::Session(session_options(cli)),
         };
@@ -171,13 +174,13 @@ impl Job {
 }
 
 /// The scene file to check or render; none starts a session.
-fn scene_file(cli: &Cli) -> Option<&Path> {
+fn scene_path(cli: &Cli) -> Option<&Path> {
     cli.scene.as_deref().filter(|_| !cli.interactive)
 }
 
 /// The task for the scene file at `path`, with its outputs checked.
 fn file_task(cli: &Cli, path: &Path, stdout_is_terminal: bool) -> Result<Task, JobError> {
-    let scene = SceneFile { path: path.to_owned(), evaluation: evaluation(cli) };
+    let scene = scene_file(cli, path);
     let render = Render { options: render_options(cli), quiet: cli.quiet, stats: cli.stats };
     Ok(if cli.watch {
         let output = cli.output.as_deref().map(|output| still_file(output, path)).transpose()?;
@@ -230,12 +233,13 @@ fn allowed(cli: &Cli) -> Allowed {
     cli.allow.iter().fold(Allowed::default(), |all, allowed| all.and(*allowed))
 }
 
-/// How the scene file is evaluated and checked.
-fn evaluation(cli: &Cli) -> Evaluation {
+/// The scene file at `path`, with how it is evaluated and checked.
+fn scene_file(cli: &Cli, path: &Path) -> SceneFile {
     let picture =
         Picture { width: cli.width, height: cli.height, screen: cli.screen.screen(), animation: cli.anim.is_some() };
     let diagnostics = if cli.check && cli.json { DiagnosticFormat::JsonLines } else { DiagnosticFormat::Rendered };
-    Evaluation { time: settings(cli).time, limits: limits(cli), allowed: allowed(cli), picture, diagnostics }
+    let (time, limits, allowed) = (settings(cli).time, limits(cli), allowed(cli));
+    SceneFile { path: path.to_owned(), time, limits, allowed, picture, diagnostics }
 }
 
 /// The session's options.
@@ -247,18 +251,6 @@ fn session_options(cli: &Cli) -> SessionOptions {
         settings: settings(cli),
         limits: limits(cli),
         allowed: allowed(cli),
-    }
-}
-
-/// The animation's times and playing (`--time-start`, `--fps`, ...).
-fn animation_options(cli: &Cli) -> AnimationOptions {
-    AnimationOptions {
-        timeline: Timeline {
-            start: cli.time_start.unwrap_or(Timeline::DEFAULT.start),
-            step: cli.time_step.unwrap_or(Timeline::DEFAULT.step),
-        },
-        playback: Playback { fps: cli.fps, loops: cli.loops },
-        apng: cli.apng,
     }
 }
 
@@ -311,7 +303,11 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
         return Err(JobError::Output("`-o -` writes a single image; give a file name for an animation".into()));
     }
     not_the_scene(&output, scene)?;
-    let options = animation_options(cli);
+    let timeline = Timeline {
+        start: cli.time_start.unwrap_or(Timeline::DEFAULT.start),
+        step: cli.time_step.unwrap_or(Timeline::DEFAULT.step),
+    };
+    let options = AnimationOptions { timeline, playback: Playback { fps: cli.fps, loops: cli.loops }, apng: cli.apng };
     let format = output::check_animation_output(&output, &options)?;
     if format.holds_every_frame() && cli.frames.is_some() {
         return Err(JobError::Output(
@@ -331,22 +327,6 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
     Ok(Animation { count, frames, output, format, options })
 }
 
-/// The flags that shape an animation, as they are spelt.
-const ANIMATION_ONLY: [&str; 6] = ["--frames", "--time-start", "--time-step", "--fps", "--loop", "--apng"];
-
-/// Which animation flags are given, as spelt.
-fn animation_flags(cli: &Cli) -> impl Iterator<Item = &'static str> {
-    let given = [
-        cli.frames.is_some(),
-        cli.time_start.is_some(),
-        cli.time_step.is_some(),
-        cli.fps.is_some(),
-        cli.loops.is_some(),
-        cli.apng,
-    ];
-    ANIMATION_ONLY.into_iter().zip(given).filter(|(_, given)| *given).map(|(flag, _)| flag)
-}
-
 /// A flag that would do nothing with the others given, said in words, or
 /// a setting out of its limits. (clap refuses the pairs that conflict
 /// whatever their values: `conflicts_with` in `cli`.)
@@ -354,7 +334,15 @@ fn misuse(cli: &Cli) -> Option<String> {
     if cli.json && !cli.check && cli.explain.is_none() {
         return Some("--json is for --check (the diagnostics) and --explain X,Y (the explanation)".into());
     }
-    let animation_flag = animation_flags(cli).next();
+    let animation_flags = [
+        (cli.frames.is_some(), "--frames"),
+        (cli.time_start.is_some(), "--time-start"),
+        (cli.time_step.is_some(), "--time-step"),
+        (cli.fps.is_some(), "--fps"),
+        (cli.loops.is_some(), "--loop"),
+        (cli.apng, "--apng"),
+    ];
+    let animation_flag = animation_flags.into_iter().find_map(|(given, flag)| given.then_some(flag));
     let session_flags = [
         (cli.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),
         (cli.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),
@@ -367,7 +355,7 @@ fn misuse(cli: &Cli) -> Option<String> {
         (cli.watch, "--watch", "; there, `:watch FILE` follows a file"),
         (cli.explain.is_some(), "--explain", "; there, `:pick X Y` explains a pixel of the last picture"),
     ];
-    if scene_file(cli).is_none() {
+    if scene_path(cli).is_none() {
         let (_, flag, instead) = session_flags.into_iter().find(|(given, _, _)| *given)?;
         let why =
             if cli.interactive { "-i starts a session" } else { "without a scene file, rayrepl starts a session" };
@@ -445,12 +433,9 @@ mod tests {
         let args = ["a.ray", "--width", "40", "--height", "30", "--samples", "4", "--time", "2", "-q", "-o", &out];
         let Task::Still { scene, render, output } = task(&args) else { panic!("a still image") };
         assert_eq!(scene.path, Path::new("a.ray"));
-        assert_eq!(scene.evaluation.time, 2.0);
-        assert_eq!(
-            scene.evaluation.picture,
-            Picture { width: 40, height: 30, screen: Screen::Centered, animation: false }
-        );
-        assert_eq!(scene.evaluation.diagnostics, DiagnosticFormat::Rendered);
+        assert_eq!(scene.time, 2.0);
+        assert_eq!(scene.picture, Picture { width: 40, height: 30, screen: Screen::Centered, animation: false });
+        assert_eq!(scene.diagnostics, DiagnosticFormat::Rendered);
         assert_eq!((render.options.width, render.options.height, render.options.samples), (40, 30, 4));
         assert!(render.quiet && !render.stats);
         assert_eq!(output, Destination::File(out.into()));
@@ -477,7 +462,7 @@ mod tests {
         let (_dir, out) = output_in_temp("f.png");
         let args = ["a.ray", "--anim", "5", "--frames", "2..3", "--time-start", "0", "--time-step", "0.5", "-o", &out];
         let Task::Animation { scene, animation, .. } = task(&args) else { panic!("an animation") };
-        assert!(scene.evaluation.picture.animation);
+        assert!(scene.picture.animation);
         assert_eq!((animation.count, animation.frames, animation.format), (5, 2..=3, ImageFormat::Png));
         assert_eq!(animation.options.timeline, Timeline { start: 0.0, step: 0.5 });
         assert_eq!(animation.output, Path::new(&out));
@@ -513,12 +498,12 @@ mod tests {
     #[test]
     fn check_explain_and_export_carry_what_they_need() {
         let Task::Check(scene) = task(&["--check", "--json", "--time", "3", "a.ray"]) else { panic!("a check") };
-        assert_eq!(scene.evaluation.diagnostics, DiagnosticFormat::JsonLines);
-        assert_eq!(scene.evaluation.picture.width, DEFAULTS.width);
+        assert_eq!(scene.diagnostics, DiagnosticFormat::JsonLines);
+        assert_eq!(scene.picture.width, DEFAULTS.width);
         let explain = task(&["a.ray", "--explain", "3,4", "--json", "--reference", "--width", "10", "--height", "8"]);
         let Task::Explain { scene, options, pixel, json } = explain else { panic!("an explanation") };
         assert_eq!((pixel, json, options.samples, options.width), ((3, 4), true, 256, 10));
-        assert_eq!(scene.evaluation.diagnostics, DiagnosticFormat::Rendered);
+        assert_eq!(scene.diagnostics, DiagnosticFormat::Rendered);
         let Task::PovExport { depth, output, quiet, .. } = task(&["a.ray", "--depth", "3", "--export-pov", "-"]) else {
             panic!("an export")
         };
