@@ -1,6 +1,7 @@
-//! The application: dispatches what the command line asks for to a check, a
-//! render of a still image or an animation, renders at every save of a file
-//! (`--watch`), or a session. Maps failures to exit codes.
+//! The application: runs the job the command line was turned into
+//! (`job`): a check, a still image, an animation, renders at every save of
+//! a file (`--watch`), an explanation, a POV-Ray export or a session. Maps
+//! failures to exit codes.
 
 use std::cell::RefCell;
 use std::collections::HashSet;
@@ -478,7 +479,7 @@ fn unless_interrupted(error: BatchError, cancel: &AtomicBool, written: &[PathBuf
     if cancel.load(Ordering::SeqCst) { BatchError::Interrupted(written.to_vec()) } else { error }
 }
 
-/// Renders the frames of `animation` (see [`animation`] for what is
+/// Renders the frames of `animation` (see [`crate::animation`] for what is
 /// computed once and what per frame), frame k at the time its timeline
 /// gives it, to numbered images or one file, unless `cancel` is raised.
 fn animate(

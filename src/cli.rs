@@ -1,4 +1,5 @@
 //! The command line: clap definitions and the original course's spellings.
+//! `job` turns what they parse into the job to run.
 
 use std::ffi::OsString;
 use std::ops::RangeInclusive;

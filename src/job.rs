@@ -155,7 +155,9 @@ impl From<OutputError> for JobError {
 }
 
 impl Job {
-    /// The job `cli` asks for, or why there is none.
+    /// The job `cli` asks for, or why there is none. Its outputs are
+    /// checked on disk (a file can be made in their folder), before the
+    /// scene is read.
     pub fn from_cli(cli: Cli) -> Result<Job, JobError> {
         Job::resolve(&cli, std::io::stdout().is_terminal())
     }
