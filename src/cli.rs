@@ -1,4 +1,5 @@
 //! The command line: clap definitions and the original course's spellings.
+//! `job` turns what they parse into the job to run.
 
 use std::ffi::OsString;
 use std::ops::RangeInclusive;
@@ -8,9 +9,9 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Parser, ValueEnum};
 
 use crate::lint::{Allowed, Check};
-use crate::playback::{self, AnimationOptions, Loops, Playback, Timeline};
+use crate::playback::{self, Loops};
 use crate::render::Screen;
-use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, RenderSettings, SAMPLES, THREADS, WIDTH};
+use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, WIDTH};
 
 /// rayrepl: an interpreter and ray tracer for the `.ray` scene language.
 ///
@@ -172,125 +173,6 @@ const RENDER_ONLY: [&str; 19] = [
     "explain",
 ];
 
-/// The flags that shape an animation, as they are spelt.
-const ANIMATION_ONLY: [&str; 6] = ["--frames", "--time-start", "--time-step", "--fps", "--loop", "--apng"];
-
-impl Cli {
-    /// The render settings the command line asks for.
-    pub(crate) fn settings(&self) -> RenderSettings {
-        RenderSettings {
-            width: self.width,
-            height: self.height,
-            depth: self.depth,
-            samples: self.samples,
-            adaptive: self.adaptive,
-            time: self.time.unwrap_or(DEFAULTS.time),
-            screen: self.screen.screen(),
-        }
-    }
-
-    /// The animation's times and playing (`--time-start`, `--fps`, ...).
-    pub(crate) fn animation_options(&self) -> AnimationOptions {
-        AnimationOptions {
-            timeline: Timeline {
-                start: self.time_start.unwrap_or(Timeline::DEFAULT.start),
-                step: self.time_step.unwrap_or(Timeline::DEFAULT.step),
-            },
-            playback: Playback { fps: self.fps, loops: self.loops },
-            apng: self.apng,
-        }
-    }
-
-    /// Which animation flags are given, as spelt.
-    fn animation_flags(&self) -> impl Iterator<Item = &'static str> {
-        let given = [
-            self.frames.is_some(),
-            self.time_start.is_some(),
-            self.time_step.is_some(),
-            self.fps.is_some(),
-            self.loops.is_some(),
-            self.apng,
-        ];
-        ANIMATION_ONLY.into_iter().zip(given).filter(|(_, given)| *given).map(|(flag, _)| flag)
-    }
-
-    /// The checks of the scene turned off (`--allow`).
-    pub(crate) fn allowed(&self) -> Allowed {
-        self.allow.iter().fold(Allowed::default(), |all, allowed| all.and(*allowed))
-    }
-
-    /// Whether the command line starts a session rather than a check or a render.
-    pub(crate) fn starts_session(&self) -> bool {
-        self.interactive || self.scene.is_none()
-    }
-
-    /// A flag that would do nothing with the others given, said in words,
-    /// or a setting out of its limits.
-    pub(crate) fn misuse(&self) -> Option<String> {
-        if self.json && !self.check && self.explain.is_none() {
-            return Some("--json is for --check (the diagnostics) and --explain X,Y (the explanation)".into());
-        }
-        let animation_flag = self.animation_flags().next();
-        let session_flags = [
-            (self.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),
-            (self.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),
-            (animation_flag.is_some(), animation_flag.unwrap_or_default(), ""),
-            (self.check, "--check", "; there, `:scene` tells what the scene holds"),
-            (self.export_pov.is_some(), "--export-pov", ""),
-            (self.stats, "--stats", ""),
-            (self.reference, "--reference", ""),
-            (self.quiet, "--quiet", ""),
-            (self.watch, "--watch", "; there, `:watch FILE` follows a file"),
-            (self.explain.is_some(), "--explain", "; there, `:pick X Y` explains a pixel of the last picture"),
-        ];
-        if self.starts_session() {
-            let (_, flag, instead) = session_flags.into_iter().find(|(given, _, _)| *given)?;
-            let why =
-                if self.interactive { "-i starts a session" } else { "without a scene file, rayrepl starts a session" };
-            return Some(format!("{flag} does nothing in a session ({why}){instead}"));
-        }
-        if let Some(flag) = animation_flag.filter(|_| self.anim.is_none()) {
-            return Some(format!("{flag} is for an animation: give --anim N too"));
-        }
-        if self.adaptive && self.samples <= 1 {
-            return Some("--adaptive gives more samples to some pixels: give --samples N too, with N > 1".into());
-        }
-        if self.time.is_some() && self.anim.is_some() {
-            return Some(
-                "--time sets the time of one image; frame k of an animation has time = k, \
-                 or A + (k - 1) * S with --time-start A --time-step S"
-                    .into(),
-            );
-        }
-        if self.watch && self.scene.as_deref() == Some(std::path::Path::new("-")) {
-            return Some("--watch follows a file as it is saved: give its name, not `-`".into());
-        }
-        if self.watch && self.output.as_deref() == Some(std::path::Path::new("-")) {
-            return Some("--watch writes an image at every save: give -o a file name, not `-`".into());
-        }
-        if self.no_preview && !self.watch {
-            return Some(
-                "--no-preview is for the interactive session (`rayrepl` or `rayrepl -i scene.ray`) and --watch".into(),
-            );
-        }
-        if self.keep_going {
-            return Some("--keep-going is for a script on standard input (`rayrepl --keep-going < script`)".into());
-        }
-        if let Some((x, y)) = self.explain
-            && (x >= self.width || y >= self.height)
-        {
-            return Some(format!(
-                "--explain {x},{y} is outside the {}x{} image: x goes from 0 to {}, y from 0 to {}",
-                self.width,
-                self.height,
-                self.width - 1,
-                self.height - 1
-            ));
-        }
-        self.settings().validate().err().map(|error| error.to_string())
-    }
-}
-
 /// The two screen conventions of SPEC 5.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ScreenArg {
@@ -394,19 +276,6 @@ mod tests {
         let args = ["rayrepl", "-hsize", "320", "-vsize", "200", "-depth", "2", "-anim", "3"];
         let cli = Cli::parse_from(translate_legacy_args(args.map(OsString::from)));
         assert_eq!((cli.width, cli.height, cli.depth, cli.anim), (320, 200, 2, Some(3)));
-    }
-
-    #[test]
-    fn allow_takes_check_names_and_all() {
-        let cli = Cli::parse_from(["rayrepl", "--allow", "camera-inside,colours", "--allow", "no-light", "a.ray"]);
-        let allowed = cli.allowed();
-        for check in Check::ALL {
-            let expected = matches!(check, Check::CameraInside | Check::Colours | Check::NoLight);
-            assert_eq!(allowed.contains(check), expected, "{check:?}");
-        }
-        let every = Cli::parse_from(["rayrepl", "--allow", "all", "a.ray"]).allowed();
-        assert!(Check::ALL.iter().all(|check| every.contains(*check)));
-        assert!(Cli::try_parse_from(["rayrepl", "--allow", "degrees", "a.ray"]).is_err());
     }
 
     #[test]

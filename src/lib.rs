@@ -20,6 +20,8 @@ pub mod clock;
 mod data_dir;
 pub mod explain;
 pub mod failure;
+#[cfg(feature = "terminal")]
+mod job;
 pub mod lang;
 pub mod lint;
 pub mod output;

@@ -17,37 +17,34 @@ pub(crate) mod preview;
 pub mod progress;
 pub(crate) mod watch;
 
-use std::io::IsTerminal;
 use std::process::ExitCode;
 
 pub use interactive::{ReplError, run_interactive, run_typed};
 
-use crate::repl::SessionOptions;
 use crate::repl::script::run_script_keeping_session;
+use crate::repl::{CancelSwitch, SessionOptions};
 
-/// Runs a session the way `rayrepl` without a scene to render does:
-/// interactively when standard input is a terminal, otherwise as a script
-/// read from standard input (messages on standard output, diagnostics on
-/// standard error), which Ctrl-C stops. Fails after an error in a script
-/// (status 1, or 130 when Ctrl-C stopped it), or when the terminal cannot
-/// be used.
+/// Runs the interactive session on the terminal; fails (status 1) when
+/// the terminal cannot be used.
 pub fn run_session(options: &SessionOptions) -> ExitCode {
-    let code = if std::io::stdin().is_terminal() {
-        match run_interactive(options) {
-            Ok(()) => 0,
-            Err(error) => {
-                crate::failure::report_failure(error);
-                1
-            }
+    match run_interactive(options) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            crate::failure::report_failure(error);
+            ExitCode::FAILURE
         }
-    } else {
-        let stdin = std::io::stdin();
-        let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
-        let (code, session) = run_script_keeping_session(stdin.lock(), &mut out, &mut err, options, ctrl_c::install());
-        // The process ends now: freeing a long script's inputs one by one
-        // would only add to its time.
-        std::mem::forget(session);
-        code
-    };
+    }
+}
+
+/// Runs the script read from standard input (messages on standard output,
+/// diagnostics on standard error), which `cancel` (Ctrl-C) stops. Fails
+/// after an error (status 1, or 130 when Ctrl-C stopped it).
+pub fn run_script_on_stdin(options: &SessionOptions, cancel: Option<&'static CancelSwitch>) -> ExitCode {
+    let stdin = std::io::stdin();
+    let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
+    let (code, session) = run_script_keeping_session(stdin.lock(), &mut out, &mut err, options, cancel);
+    // The process ends now: freeing a long script's inputs one by one
+    // would only add to its time.
+    std::mem::forget(session);
     ExitCode::from(u8::try_from(code).unwrap_or(1))
 }

@@ -301,6 +301,13 @@ fn an_unknown_output_format_is_refused_before_rendering() {
 }
 
 #[test]
+fn an_output_mistake_is_said_before_the_scene_is_read() {
+    let (dir, _path) = scene(SPHERE);
+    let out = dir.path().join("out.jpeg");
+    rayrepl().arg("no/such/scene.ray").arg("-o").arg(&out).assert().code(1).stderr(contains("image format"));
+}
+
+#[test]
 fn a_missing_output_folder_is_refused_before_rendering() {
     let (dir, path) = scene(SPHERE);
     let out = dir.path().join("nowhere/out.png");
