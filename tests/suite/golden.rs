@@ -10,9 +10,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
-
-use common::programs::evaluated;
+use crate::common::programs::evaluated;
 use image::RgbImage;
 use rayrepl::render::{self, RenderControl, RenderOptions, SceneGeometry};
 

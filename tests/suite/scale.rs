@@ -14,8 +14,7 @@ use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, render};
 use rayrepl::scene::transform::rotation_matrix;
 use rayrepl::scene::{Light, Material, Primitive, Scene, Shape};
 
-mod common;
-use common::scenes::{light, material, scene};
+use crate::common::scenes::{light, material, scene};
 
 /// `scene` with every length multiplied by `factor`.
 fn scaled(scene: &Scene, factor: f64) -> Scene {

@@ -2,7 +2,7 @@
 //! SPEC 4, and of the secondary-ray offset of SPEC 6.
 //!
 //! (BVH against brute force, and shadow any-hit against closest-hit
-//! existence, are in `tests/render.rs`.)
+//! existence, are in `tests/suite/render.rs`.)
 
 use glam::{DMat3, DVec3};
 use proptest::prelude::*;

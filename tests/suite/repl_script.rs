@@ -8,8 +8,7 @@ use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
 use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, render};
 use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
 
-mod common;
-use common::interrupt::{interrupt, names_in, wait_for_a_write, wait_for_files};
+use crate::common::interrupt::{interrupt, names_in, wait_for_a_write, wait_for_files};
 
 /// A texture that raises no warning.
 const TEX: &str = "kd 0.7 ks 0.3 phong 20 color 255, 80, 40";

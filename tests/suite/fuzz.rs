@@ -5,8 +5,7 @@ use proptest::prelude::*;
 use rayrepl::lang::ast::{InstrKind, Item};
 use rayrepl::lang::{SourceId, SourceMap, is_incomplete, parse_file, parse_items};
 
-mod common;
-use common::sexpr::{cond, expr};
+use crate::common::sexpr::{cond, expr};
 
 // ---- Anything at all ------------------------------------------------------------
 

@@ -17,8 +17,7 @@ use rayrepl::render::{
 };
 use rayrepl::scene::{Light, Material, Primitive, Scene, Shape};
 
-mod common;
-use common::scenes::{cube, light, material, plane, scene, sphere};
+use crate::common::scenes::{cube, light, material, plane, scene, sphere};
 
 // ---------------------------------------------------------------- helpers
 

@@ -10,9 +10,7 @@
 use std::path::Path;
 use std::process::Command;
 
-mod common;
-
-use common::cases::cases;
+use crate::common::cases::cases;
 
 /// The value after `prefix` on the file's first line (after a byte-order mark, if any).
 fn expectation(path: &Path, prefix: &str) -> String {

@@ -23,9 +23,7 @@ use rayrepl::terminal::run_typed;
 use serde_json::Value;
 use unicode_width::UnicodeWidthChar;
 
-mod common;
-
-use common::cases::cases;
+use crate::common::cases::cases;
 
 /// The invalid cases: their path relative to the crate, as shown in
 /// diagnostics, and their text.
@@ -76,7 +74,7 @@ fn rayrepl_with_output(args: &[&str], stdin: &str) -> (Option<i32>, String, Stri
 /// on a difference, adds the case to `failures` (insta prints the diff).
 fn compare(mode: &str, path: &str, command: &str, stderr: &str, failures: &mut Vec<String>) {
     let mut settings = insta::Settings::clone_current();
-    settings.set_snapshot_path(format!("snapshots/{mode}"));
+    settings.set_snapshot_path(format!("../snapshots/{mode}"));
     settings.set_prepend_module_to_snapshot(false);
     settings.set_omit_expression(true);
     settings.set_input_file(path);

@@ -13,8 +13,7 @@ use expectrl::{ControlCode, Eof, Expect, Session};
 use rayrepl::lang::ast::{ExprKind, InstrKind, Item};
 use rayrepl::lang::{SourceId, is_incomplete, parse_items};
 
-mod common;
-use common::limited::run_limited;
+use crate::common::limited::run_limited;
 
 const DEPTH: usize = 100_000;
 

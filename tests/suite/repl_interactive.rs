@@ -12,8 +12,7 @@ use rayrepl::lang::Limits;
 use rayrepl::repl::SessionOptions;
 use rayrepl::terminal::run_typed;
 
-mod common;
-use common::interrupt::{names_in, wait_for_a_write, wait_for_files};
+use crate::common::interrupt::{names_in, wait_for_a_write, wait_for_files};
 
 /// A session on a terminal, its history kept under `data_home`.
 fn spawn(args: &[&str], data_home: &Path, color: bool) -> expectrl::session::OsSession {

@@ -6,8 +6,7 @@ use assert_cmd::Command;
 use predicates::prelude::*;
 use predicates::str::contains;
 
-mod common;
-use common::interrupt::{interrupt, is_temporary, names_in, wait_for_a_write, wait_for_files};
+use crate::common::interrupt::{interrupt, is_temporary, names_in, wait_for_a_write, wait_for_files};
 
 /// A scene with one lit red sphere in the middle of the picture.
 const SPHERE: &str = "camera distance 10 angle 1 end

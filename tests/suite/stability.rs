@@ -20,8 +20,7 @@ use rayrepl::render::shade::offset_origin;
 use rayrepl::render::{Ray, RenderControl, RenderOptions, SceneGeometry, Screen, Skips, render};
 use rayrepl::scene::{Material, Scene, Shape};
 
-mod common;
-use common::scenes::{cube, light, material, plane, scene, sphere};
+use crate::common::scenes::{cube, light, material, plane, scene, sphere};
 
 // ---------------------------------------------------------------- helpers
 

@@ -8,8 +8,7 @@ use glam::{DMat3, DVec3};
 use rayrepl::lang::{Diagnostic, Interpreter, Limits, Severity, SourceMap, parse_file, parse_items};
 use rayrepl::scene::{Primitive, Scene, Shape};
 
-mod common;
-use common::limited::run_limited;
+use crate::common::limited::run_limited;
 
 /// A texture that raises no warning.
 const TEX: &str = "kd 0.5 ks 0.5 phong 10 color 255, 0, 51";

@@ -13,8 +13,7 @@ use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
 use rayrepl::render::{RenderControl, RenderOptions, RenderStats, SceneGeometry, render};
 use rayrepl::scene::{Primitive, Scene, Shape};
 
-mod common;
-use common::scenes::{cube, light, material, plane, scene, sphere};
+use crate::common::scenes::{cube, light, material, plane, scene, sphere};
 
 /// A program's scene at `time`, keeping only the timed primitives with
 /// `skip_static`.

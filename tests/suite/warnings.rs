@@ -7,10 +7,8 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
-
+use crate::common::programs::evaluated;
 use assert_cmd::Command;
-use common::programs::evaluated;
 use glam::DVec3;
 use rayrepl::lang::eval::Origins;
 use rayrepl::lint::{Allowed, Check, Picture, check_scene};

@@ -5,8 +5,7 @@
 use rayrepl::lang::ast::{ExprKind, Instr, InstrKind, Item, Obj, ObjKind, Program, Texture, Triple};
 use rayrepl::lang::{Diagnostic, Note, SourceId, SourceMap, parse_file, parse_items};
 
-mod common;
-use common::sexpr::{cond, expr};
+use crate::common::sexpr::{cond, expr};
 
 // ---- Helpers: compact S-expressions of AST shapes --------------------------
 

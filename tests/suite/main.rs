@@ -1,0 +1,28 @@
+//! The integration tests, in one test binary (one link of the library
+//! instead of one per file): each module is the tests of one topic, run
+//! alone with `cargo test --release --test suite MODULE::`.
+
+mod common;
+
+mod animation;
+mod animation_files;
+mod cases;
+mod cli;
+mod deep;
+mod diagnostics;
+mod eval;
+mod explain;
+mod fuzz;
+mod golden;
+mod lessons;
+mod parse;
+mod pov_export;
+mod print;
+mod properties;
+mod render;
+mod repl_interactive;
+mod repl_script;
+mod scale;
+mod scale_out;
+mod stability;
+mod warnings;
