@@ -16,7 +16,7 @@ use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
-use crate::failure::report_failure;
+use crate::failure::{report_failure, tell};
 use crate::job::{Animation, Destination, DiagnosticFormat, Job, JobError, Render, SceneFile, Task};
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
@@ -168,7 +168,7 @@ fn run_file(
         let parsed = ParsedScene::parse(sources, id, scene.clone(), cancel_flag(switch))?;
         let result = work(&parsed);
         if let Some(note) = parsed.printed.borrow().hidden_note() {
-            eprintln!("note: {note}");
+            tell!("note: {note}");
         }
         result
     });
@@ -236,7 +236,7 @@ impl ParsedScene {
         let mut printed = self.printed.borrow_mut();
         printed.absorb(interpreter.take_printed());
         for line in printed.take_lines() {
-            eprintln!("{}", line.render(&self.sources));
+            tell!("{}", line.render(&self.sources));
         }
         let mut warnings = interpreter.take_warnings();
         let SceneFile { picture, allowed, diagnostics, .. } = self.file;
@@ -321,7 +321,7 @@ fn export_pov(parsed: &ParsedScene, depth: u32, output: &Destination, quiet: boo
         }
     }
     if !quiet {
-        eprintln!("wrote {output}: {}, {:.2} s", summary(&scene), start.elapsed().as_secs_f64());
+        tell!("wrote {output}: {}, {:.2} s", summary(&scene), start.elapsed().as_secs_f64());
     }
     Ok(())
 }
@@ -373,7 +373,7 @@ fn render_still(parsed: &ParsedScene, render: &Render, cancel: &AtomicBool) -> R
     progress.finish();
     if render.stats {
         let search = prepared.search();
-        eprintln!("evaluate {:.3} s, build {:.3} s ({search})", evaluated.as_secs_f64(), built.as_secs_f64());
+        tell!("evaluate {:.3} s, build {:.3} s ({search})", evaluated.as_secs_f64(), built.as_secs_f64());
         print_stats(&stats, 1);
     }
     Ok(image)
@@ -387,7 +387,7 @@ fn watch(scene: &SceneFile, render: &Render, output: Option<&Path>, no_preview: 
     let path = &scene.path;
     let preview = Preview::new(no_preview);
     let watcher = FileWatcher::new(path).map_err(|e| e.to_string())?;
-    eprintln!("watching {}: every save renders it again; Ctrl-C stops", path.display());
+    tell!("watching {}: every save renders it again; Ctrl-C stops", path.display());
     // A batch process ends at Ctrl-C: nothing raises this flag.
     let never = AtomicBool::new(false);
     // The text of the version last rendered or reported.
@@ -402,7 +402,7 @@ fn watch(scene: &SceneFile, render: &Render, output: Option<&Path>, no_preview: 
                 shown = Some(Arc::clone(&sources.get(id).text));
                 if let Err(error) = render_version(sources, id, scene.clone(), render, output, preview) {
                     print_error(&error, DiagnosticFormat::Rendered);
-                    eprintln!("note: the last good picture stays: fix {} and save it again", path.display());
+                    tell!("note: the last good picture stays: fix {} and save it again", path.display());
                 }
             }
         }
@@ -454,7 +454,7 @@ fn report_done(render: &Render, done: &str, what: &str, start: Stopwatch) {
         let adaptive = if adaptive { " (adaptive)" } else { "" };
         line.push_str(&format!(", {}{adaptive}", counted(samples as usize, "sample", "samples")));
     }
-    eprintln!("{line}, {:.2} s", start.elapsed().as_secs_f64());
+    tell!("{line}, {:.2} s", start.elapsed().as_secs_f64());
 }
 
 /// "1 box", "3 boxes".
@@ -524,7 +524,7 @@ fn print_stats(stats: &RenderStats, frames: usize) {
     let threads = rayon::current_num_threads();
     let total = stats.total_rays();
     let mrays = total as f64 / seconds.max(1e-9) / 1e6;
-    eprintln!(
+    tell!(
         "frames {frames}: {} primary, {} shadow, {} reflection rays in {seconds:.3} s: {mrays:.1} Mrays/s ({:.1} per thread, {threads} threads)",
         stats.rays.primary,
         stats.rays.shadow,
@@ -532,6 +532,6 @@ fn print_stats(stats: &RenderStats, frames: usize) {
         mrays / threads as f64,
     );
     if stats.refined_pixels > 0 {
-        eprintln!("adaptive: {} pixels refined", stats.refined_pixels);
+        tell!("adaptive: {} pixels refined", stats.refined_pixels);
     }
 }

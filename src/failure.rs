@@ -1,13 +1,57 @@
-//! How the program says that it, rather than a scene, failed: one line on
-//! standard error after its name (`rayrepl: cannot read ...`). Every such
-//! line is written here, so the name is written in one place.
+//! How the program speaks on standard error, and says that it, rather
+//! than a scene, failed: one line after its name (`rayrepl: cannot read
+//! ...`), written here only, so the name is written in one place.
+//!
+//! Standard error may be a closed pipe (`2>&1 | head -c1`) or a full disk
+//! (`2> /dev/full`): a closed pipe ends the program quietly with the status
+//! a shell gives a program killed by SIGPIPE, leaving no unfinished file; a
+//! line that cannot be written otherwise is remembered, and the exit status
+//! then says the run failed ([`unwritten_messages`]).
 
 use std::fmt::Display;
+use std::io::{ErrorKind, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::output::exit_discarding_unfinished;
 
 /// The name in front of the program's own failures.
 const PROGRAM: &str = "rayrepl";
 
+/// The exit status after a closed pipe: 128 + SIGPIPE, as shells report a
+/// program the signal ended.
+pub const CLOSED_PIPE_EXIT_CODE: i32 = 141;
+
+/// Set when a line could not be written on standard error.
+static UNWRITTEN: AtomicBool = AtomicBool::new(false);
+
 /// Writes `message` on standard error as a failure of the program.
 pub fn report_failure(message: impl Display) {
-    eprintln!("{PROGRAM}: {}", message.to_string().trim_end());
+    tell_line(format_args!("{PROGRAM}: {}", message.to_string().trim_end()));
+}
+
+/// `eprintln!` for the program's messages (what was written, how long it
+/// took, notes), which [`tell_line`] writes.
+macro_rules! tell {
+    ($($arg:tt)*) => {
+        $crate::failure::tell_line(format_args!($($arg)*))
+    };
+}
+pub(crate) use tell;
+
+/// Writes `line` and a newline on standard error, as this module says
+/// when it cannot.
+pub fn tell_line(line: impl Display) {
+    let mut stderr = std::io::stderr().lock();
+    let written = writeln!(stderr, "{line}").and_then(|()| stderr.flush());
+    match written {
+        Ok(()) => {}
+        Err(error) if error.kind() == ErrorKind::BrokenPipe => exit_discarding_unfinished(CLOSED_PIPE_EXIT_CODE),
+        Err(_) => UNWRITTEN.store(true, Ordering::SeqCst),
+    }
+}
+
+/// Whether a line could not be written on standard error (a full disk):
+/// the run then fails, even if it did everything else.
+pub fn unwritten_messages() -> bool {
+    UNWRITTEN.load(Ordering::SeqCst)
 }

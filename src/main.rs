@@ -8,12 +8,14 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rayrepl::cli::{Cli, translate_legacy_args};
-use rayrepl::failure::report_failure;
+use rayrepl::failure::{report_failure, unwritten_messages};
 
 fn main() -> ExitCode {
     keep_freed_memory();
     let cli = Cli::parse_from(translate_legacy_args(std::env::args_os()));
     match catch_unwind(AssertUnwindSafe(|| rayrepl::app::run(cli))) {
+        // A message lost on a full disk fails the run (failure.rs).
+        Ok(code) if code == ExitCode::SUCCESS && unwritten_messages() => ExitCode::FAILURE,
         Ok(code) => code,
         Err(_) => {
             report_failure("internal error (please report it with the input that caused it)");

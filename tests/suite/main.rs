@@ -8,6 +8,7 @@ mod animation;
 mod animation_files;
 mod cases;
 mod cli;
+mod closed_streams;
 mod deep;
 mod diagnostics;
 mod eval;
