@@ -16,7 +16,7 @@ use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
-use crate::failure::{report_failure, tell};
+use crate::failure::{end_if_closed_pipe, report_failure, tell};
 use crate::job::{Animation, Destination, DiagnosticFormat, Job, JobError, Render, SceneFile, Task};
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
@@ -261,9 +261,7 @@ impl ParsedScene {
 fn check(parsed: &ParsedScene) -> Result<(), BatchError> {
     let scene = parsed.evaluate(parsed.file.time, false)?;
     if parsed.file.diagnostics == DiagnosticFormat::Rendered {
-        // A closed pipe or a full disk loses the summary, as it would the
-        // JSON or an explanation: the check itself is done.
-        let _ = writeln!(std::io::stdout().lock(), "{}: {}", parsed.name(), summary(&scene));
+        write_stdout("the summary", |stdout| writeln!(stdout, "{}: {}", parsed.name(), summary(&scene)))?;
     }
     Ok(())
 }
@@ -275,8 +273,7 @@ fn explain(parsed: &ParsedScene, options: &RenderOptions, (x, y): (u32, u32), js
     let interpreter = parsed.run(interpreter, true)?;
     let explanation = ExplainedScene::new(&interpreter, &parsed.sources, options).explain(x, y);
     let text = if json { format!("{}\n", explanation.to_json()) } else { explanation.to_string() };
-    // A reader that stopped early (`| head`) is no failure.
-    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+    write_stdout("the explanation", |stdout| stdout.write_all(text.as_bytes()))?;
     Ok(())
 }
 
@@ -354,9 +351,10 @@ fn write_still(output: &Destination, image: &RgbImage, cancel: &'static AtomicBo
 /// flushes it.
 fn write_stdout(what: &str, write: impl FnOnce(&mut StdoutLock<'static>) -> io::Result<()>) -> Result<(), String> {
     let mut stdout = std::io::stdout().lock();
-    write(&mut stdout)
-        .and_then(|()| stdout.flush())
-        .map_err(|e| format!("cannot write {what} to standard output: {}", output::io_reason(&e)))
+    write(&mut stdout).and_then(|()| stdout.flush()).map_err(|e| {
+        end_if_closed_pipe(&e);
+        format!("cannot write {what} to standard output: {}", output::io_reason(&e))
+    })
 }
 
 /// Evaluates the scene at its time and renders it, with the progress bar

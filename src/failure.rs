@@ -43,10 +43,17 @@ pub(crate) use tell;
 pub fn tell_line(line: impl Display) {
     let mut stderr = std::io::stderr().lock();
     let written = writeln!(stderr, "{line}").and_then(|()| stderr.flush());
-    match written {
-        Ok(()) => {}
-        Err(error) if error.kind() == ErrorKind::BrokenPipe => exit_discarding_unfinished(CLOSED_PIPE_EXIT_CODE),
-        Err(_) => UNWRITTEN.store(true, Ordering::SeqCst),
+    if let Err(error) = written {
+        end_if_closed_pipe(&error);
+        UNWRITTEN.store(true, Ordering::SeqCst);
+    }
+}
+
+/// Ends the program quietly if `error` is a closed pipe (the reader of
+/// standard output or error went away): status 141, no unfinished file.
+pub fn end_if_closed_pipe(error: &std::io::Error) {
+    if error.kind() == ErrorKind::BrokenPipe {
+        exit_discarding_unfinished(CLOSED_PIPE_EXIT_CODE);
     }
 }
 

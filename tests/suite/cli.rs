@@ -93,7 +93,7 @@ fn check_prints_a_summary_and_writes_nothing() {
 }
 
 #[test]
-fn check_to_a_full_disk_ends_without_a_panic() {
+fn check_to_a_full_disk_fails_saying_why() {
     let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
         return; // Not on this platform.
     };
@@ -101,8 +101,9 @@ fn check_to_a_full_disk_ends_without_a_panic() {
     let binary = assert_cmd::cargo::cargo_bin("rayrepl");
     let mut checked = std::process::Command::new(binary);
     let output = checked.current_dir(dir.path()).arg("--check").arg(&path).stdout(full).output().expect("rayrepl runs");
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.starts_with("rayrepl: cannot write the summary to standard output: "), "{stderr}");
 }
 
 #[test]

@@ -70,3 +70,18 @@ fn an_animation_whose_messages_pipe_closes_leaves_no_unfinished_file() {
         assert!(whole_picture(&dir.path().join(name)), "{name} is whole");
     }
 }
+
+#[test]
+fn an_explanation_to_a_full_disk_fails_saying_why() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    std::fs::write(dir.path().join("scene.ray"), SCENE).expect("the scene is written");
+    let output = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .current_dir(dir.path())
+        .args(["scene.ray", "--explain", "20,15", "--width", "40", "--height", "30"])
+        .stdout(full_disk())
+        .output()
+        .expect("rayrepl runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("rayrepl: cannot write the explanation to standard output: the disk is full"), "{stderr}");
+}
