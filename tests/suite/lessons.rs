@@ -276,3 +276,17 @@ fn play_shows_frames_until_a_key() {
     session.expect("stopped after").expect("a key stops it");
     assert_eq!(quit(session), 0);
 }
+
+/// A progress file that never ends (`/dev/zero`) is read no further than a
+/// progress file could be long: the lessons start, nothing fills the memory.
+#[test]
+fn an_endless_progress_file_is_read_only_so_far() {
+    let output = assert_cmd::Command::cargo_bin("rayrepl")
+        .expect("the binary is built")
+        .env("RAYREPL_LESSONS", "/dev/zero")
+        .write_stdin(":lesson\n")
+        .timeout(std::time::Duration::from_secs(60))
+        .output()
+        .expect("rayrepl runs");
+    assert!(String::from_utf8_lossy(&output.stdout).starts_with("lessons (`:lesson N` starts one):"));
+}

@@ -4,11 +4,17 @@
 //! no serialisation crate; a line that does not read is skipped.
 
 use std::collections::BTreeSet;
+use std::io::Read;
 use std::path::PathBuf;
 
 /// The variable that names the progress file in place of the user's data
 /// directory (for tests, or to keep several learners apart).
 pub(crate) const PROGRESS_VARIABLE: &str = "RAYREPL_LESSONS";
+
+/// The most of the progress file read: a file of nine lessons takes under
+/// a hundred bytes, and a path to something endless (`/dev/zero`) must not
+/// fill the memory.
+const MOST_BYTES: u64 = 64 << 10;
 
 /// Lesson and step numbers count from 1, as the learner reads them.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -20,9 +26,14 @@ pub(crate) struct Progress {
 }
 
 impl Progress {
-    /// The progress kept in the file, or none if there is no file yet.
+    /// The progress kept in the file (its first [`MOST_BYTES`]), or none
+    /// if there is no file yet.
     pub(crate) fn load() -> Progress {
-        let text = file().and_then(|path| std::fs::read_to_string(path).ok());
+        let read = |file: std::fs::File| {
+            let mut text = String::new();
+            file.take(MOST_BYTES).read_to_string(&mut text).ok().map(|_| text)
+        };
+        let text = file().and_then(|path| std::fs::File::open(path).ok()).and_then(read);
         text.map_or_else(Progress::default, |text| Progress::parse(&text))
     }
 
