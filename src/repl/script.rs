@@ -21,7 +21,7 @@ use super::options::{SessionOptions, new_session};
 use super::session::Session;
 use super::shell::Shell;
 use crate::output::INTERRUPTED_EXIT_CODE;
-use lines::{ScriptLine, ScriptLines};
+use lines::{LineError, MOST_LINE_BYTES, ScriptLine, ScriptLines};
 
 mod lines;
 
@@ -148,12 +148,15 @@ impl Script<'_, '_> {
         let mut number = 0;
         while let Some(line) = lines.next_line() {
             number += 1;
-            let Ok(ScriptLine { text: line, next_ready }) = line else {
-                if self.run_ready(&mut ready) == Step::Next {
-                    self.console.error(format!("line {number} of the script cannot be read as text"));
-                    self.errors += 1;
+            let ScriptLine { text: line, next_ready } = match line {
+                Ok(line) => line,
+                Err(error) => {
+                    if self.run_ready(&mut ready) == Step::Next {
+                        self.console.error(line_error(&error, number));
+                        self.errors += 1;
+                    }
+                    return;
                 }
-                return;
             };
             let line = line.strip_suffix('\r').unwrap_or(line);
             // Ctrl-C while a long line is lexed stops the script here.
@@ -263,5 +266,18 @@ impl Script<'_, '_> {
         }
         self.errors += 1;
         if self.keep_going { Step::Next } else { Step::Stop }
+    }
+}
+
+/// Why line `number` of the script cannot run, in words.
+fn line_error(error: &LineError, number: usize) -> String {
+    match error {
+        LineError::NotText => format!("line {number} of the script cannot be read as text"),
+        LineError::TooLong => {
+            format!("line {number} of the script is longer than {} MiB, the most a line may be", MOST_LINE_BYTES >> 20)
+        }
+        LineError::Read(error) => {
+            format!("line {number} of the script cannot be read: {}", crate::output::io_reason(error))
+        }
     }
 }

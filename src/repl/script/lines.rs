@@ -4,6 +4,22 @@
 
 use std::io::{self, BufRead};
 
+/// The longest line a script may have, in bytes: a line is read whole
+/// before it runs, and one without an end (a stream with no newline) must
+/// not fill the memory. A scene's longest lines are a few hundred bytes.
+pub(crate) const MOST_LINE_BYTES: usize = 64 << 20;
+
+/// Why a line of the script cannot be run.
+#[derive(Debug)]
+pub(super) enum LineError {
+    /// It could not be read.
+    Read(io::Error),
+    /// It is not UTF-8 text.
+    NotText,
+    /// It is longer than [`MOST_LINE_BYTES`].
+    TooLong,
+}
+
 /// One line of the script.
 pub(super) struct ScriptLine<'l> {
     /// Its text, without `\n` or `\r\n`, as [`BufRead::lines`] gives it.
@@ -24,15 +40,15 @@ impl<R: BufRead> ScriptLines<R> {
     }
 
     /// The next line, `None` at the end of the input; an error if it cannot
-    /// be read or is not UTF-8.
-    pub(super) fn next_line(&mut self) -> Option<io::Result<ScriptLine<'_>>> {
+    /// be read, is not UTF-8 or is too long.
+    pub(super) fn next_line(&mut self) -> Option<Result<ScriptLine<'_>, LineError>> {
         self.bytes.clear();
         let mut next_ready = false;
         loop {
             let buffer = match self.input.fill_buf() {
                 Ok(buffer) => buffer,
                 Err(error) if error.kind() == io::ErrorKind::Interrupted => continue,
-                Err(error) => return Some(Err(error)),
+                Err(error) => return Some(Err(LineError::Read(error))),
             };
             if buffer.is_empty() {
                 if self.bytes.is_empty() {
@@ -42,10 +58,16 @@ impl<R: BufRead> ScriptLines<R> {
             }
             let Some(newline) = buffer.iter().position(|&byte| byte == b'\n') else {
                 let read = buffer.len();
+                if self.bytes.len() + read > MOST_LINE_BYTES {
+                    return Some(Err(LineError::TooLong));
+                }
                 self.bytes.extend_from_slice(buffer);
                 self.input.consume(read);
                 continue;
             };
+            if self.bytes.len() + newline > MOST_LINE_BYTES {
+                return Some(Err(LineError::TooLong));
+            }
             self.bytes.extend_from_slice(&buffer[..newline]);
             next_ready = buffer[newline + 1..].contains(&b'\n');
             self.input.consume(newline + 1);
@@ -54,8 +76,7 @@ impl<R: BufRead> ScriptLines<R> {
             }
             break;
         }
-        let text = std::str::from_utf8(&self.bytes)
-            .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"));
+        let text = std::str::from_utf8(&self.bytes).map_err(|_| LineError::NotText);
         Some(text.map(|text| ScriptLine { text, next_ready }))
     }
 }
@@ -98,6 +119,17 @@ mod tests {
     fn text_that_is_not_utf8_is_an_error() {
         let mut lines = ScriptLines::new(&b"ok\n\xff\n"[..]);
         assert!(lines.next_line().is_some_and(|line| line.is_ok()));
-        assert!(lines.next_line().is_some_and(|line| line.is_err()));
+        assert!(matches!(lines.next_line(), Some(Err(LineError::NotText))));
+    }
+
+    #[test]
+    fn a_line_longer_than_the_limit_is_an_error_before_it_is_all_read() {
+        // An endless line: only a little past the limit is ever read.
+        let endless = io::BufReader::new(io::repeat(b'a'));
+        assert!(matches!(ScriptLines::new(endless).next_line(), Some(Err(LineError::TooLong))));
+        let mut text = vec![b'a'; MOST_LINE_BYTES];
+        text.extend_from_slice(b"\nb\n");
+        let mut lines = ScriptLines::new(&text[..]);
+        assert!(lines.next_line().is_some_and(|line| line.is_ok_and(|line| line.text.len() == MOST_LINE_BYTES)));
     }
 }
