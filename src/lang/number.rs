@@ -3,7 +3,8 @@
 use std::fmt;
 
 /// A number the way a learner writes it: `3`, `0.75`, `-1.570796` (six
-/// decimals at most, trailing zeros dropped; tiny numbers in `1e-9` form).
+/// decimals at most, trailing zeros dropped; tiny and huge numbers in the
+/// shortest form that reads back, with an exponent: `1e-9`, `1.5e300`).
 pub fn format_number(value: f64) -> String {
     Number(value).to_string()
 }
@@ -19,6 +20,10 @@ impl fmt::Display for Number {
             // keeps its sign, as `{:.0}` writes it.
             let integer = value as i64;
             return if integer == 0 && value.is_sign_negative() { f.write_str("-0") } else { write!(f, "{integer}") };
+        }
+        if value.abs() >= 1e15 {
+            // Not a long run of digits: `1e300`, not 301 of them.
+            return write!(f, "{value:e}");
         }
         let text = format!("{value:.6}");
         let text = text.trim_end_matches('0').trim_end_matches('.');
@@ -40,5 +45,9 @@ mod tests {
         assert_eq!(format_number(0.0), "0");
         assert_eq!(format_number(-0.0), format!("{:.0}", -0.0));
         assert_eq!(format_number(-123_456_789_012_345.0), "-123456789012345");
+        assert_eq!(format_number(1e300), "1e300");
+        assert_eq!(format_number(-1.5e20), "-1.5e20");
+        assert_eq!(format_number(1e15 + 0.5), "1.0000000000000005e15");
+        assert_eq!(format_number(-1e-300), "-1e-300");
     }
 }

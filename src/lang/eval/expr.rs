@@ -12,6 +12,7 @@ use super::value::{Kind, Num};
 use super::{Interpreter, grow};
 use crate::lang::ast::{BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func};
 use crate::lang::diagnostic::Diagnostic;
+use crate::lang::number::Number;
 use crate::lang::source::Span;
 
 impl Interpreter {
@@ -143,7 +144,7 @@ fn function(func: Func, x: f64, span: Span) -> EvalResult<f64> {
         Func::Sin => Ok(x.sin()),
         Func::Cos => Ok(x.cos()),
         Func::Sqrt if x < 0.0 => fail(
-            Diagnostic::error(span, format!("square root of a negative number ({x})"))
+            Diagnostic::error(span, format!("square root of a negative number ({})", Number(x)))
                 .with_code("negative-square-root")
                 .with_label("the argument is negative"),
         ),

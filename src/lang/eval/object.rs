@@ -12,6 +12,7 @@ use super::value::{Kind, Num};
 use super::{Interpreter, grow};
 use crate::lang::ast::{Expr, Obj, ObjKind, Texture, Triple};
 use crate::lang::diagnostic::Diagnostic;
+use crate::lang::number::Number;
 use crate::lang::source::Span;
 use crate::scene::transform::{rotated_up, rotation_matrix};
 use crate::scene::{Material, Primitive, Shape};
@@ -218,7 +219,7 @@ fn positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
 #[inline(never)]
 fn not_positive(value: f64, span: Span, what: &str) -> EvalResult<()> {
     fail(
-        Diagnostic::error(span, format!("{what} must be positive, but it is {value}"))
+        Diagnostic::error(span, format!("{what} must be positive, but it is {}", Number(value)))
             .with_code("not-positive")
             .with_label("not greater than 0"),
     )
