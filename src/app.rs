@@ -21,6 +21,7 @@ use crate::job::{Animation, Destination, DiagnosticFormat, Job, JobError, Render
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
 use crate::lang::eval::PrintLog;
+use crate::lang::source::text_of;
 use crate::lang::{Diagnostic, Interpreter, SourceId, SourceMap, parse_file};
 use crate::lint::check_scene;
 use crate::output::{self, FrameSink};
@@ -280,15 +281,16 @@ fn explain(parsed: &ParsedScene, options: &RenderOptions, (x, y): (u32, u32), js
 /// Reads a scene file (or standard input for `-`) into `sources`.
 fn load(sources: &mut SourceMap, path: &Path) -> Result<SourceId, String> {
     if path == Path::new("-") {
-        let mut text = String::new();
+        let mut bytes = Vec::new();
         std::io::stdin()
-            .read_to_string(&mut text)
+            .read_to_end(&mut bytes)
             .map_err(|e| format!("cannot read the scene from standard input: {}", output::io_reason(&e)))?;
+        let text = text_of(bytes).map_err(|place| format!("cannot read the scene from standard input: {place}"))?;
         return Ok(sources.add("<stdin>", text, 0));
     }
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read `{}`: {}", path.display(), output::io_reason(&e)))?;
-    Ok(sources.add(path.display().to_string(), text, 0))
+    let failed = |reason: String| format!("cannot read `{}`: {reason}", path.display());
+    let bytes = std::fs::read(path).map_err(|e| failed(output::io_reason(&e)))?;
+    Ok(sources.add(path.display().to_string(), text_of(bytes).map_err(failed)?, 0))
 }
 
 /// "3 spheres, 1 plane, 0 boxes, 2 lights".

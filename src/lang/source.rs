@@ -82,9 +82,13 @@ impl SourceMap {
         SourceMap { files: Vec::new() }
     }
 
-    /// Adds a text and returns its id.
+    /// Adds a text and returns its id. A line that ends with `\r` alone
+    /// (old Mac files) ends there, as one ending with `\n` or `\r\n`: the
+    /// text is kept with that `\r` read as `\n`, so every byte stays where
+    /// it was.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<Arc<str>>, line_offset: usize) -> SourceId {
-        self.files.push(SourceFile { name: name.into(), text: text.into(), line_offset, line_starts: OnceLock::new() });
+        let text = with_lone_returns_as_newlines(text.into());
+        self.files.push(SourceFile { name: name.into(), text, line_offset, line_starts: OnceLock::new() });
         SourceId((self.files.len() - 1) as u32)
     }
 
@@ -94,9 +98,50 @@ impl SourceMap {
     }
 }
 
+/// `text` with every `\r` not followed by `\n` made a `\n` (the same
+/// length); `text` itself when it has none.
+fn with_lone_returns_as_newlines(text: Arc<str>) -> Arc<str> {
+    let bytes = text.as_bytes();
+    let lone = |at: usize| bytes[at] == b'\r' && bytes.get(at + 1) != Some(&b'\n');
+    if !(0..bytes.len()).any(lone) {
+        return text;
+    }
+    let fixed: Vec<u8> = (0..bytes.len()).map(|at| if lone(at) { b'\n' } else { bytes[at] }).collect();
+    // Only ASCII bytes changed, into ASCII bytes: still UTF-8.
+    Arc::from(String::from_utf8(fixed).expect("an ASCII byte for an ASCII byte keeps UTF-8"))
+}
+
+/// `bytes` as text, or where its first byte that is not UTF-8 is, in
+/// words: "line 3, column 5 is not UTF-8 text".
+pub fn text_of(bytes: Vec<u8>) -> Result<String, String> {
+    String::from_utf8(bytes).map_err(|error| {
+        let valid = &error.as_bytes()[..error.utf8_error().valid_up_to()];
+        // The valid part is UTF-8: its lines and characters count.
+        let before = std::str::from_utf8(valid).unwrap_or_default();
+        let line = before.matches(['\n', '\r']).count() - before.matches("\r\n").count() + 1;
+        let line_start = before.rfind(['\n', '\r']).map_or(0, |at| at + 1);
+        let column = before[line_start..].chars().count() + 1;
+        format!("line {line}, column {column} is not UTF-8 text")
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_lone_return_ends_a_line_and_keeps_the_bytes_in_place() {
+        let mut sources = SourceMap::new();
+        let id = sources.add("mac.ray", "a\rb\r\nc\r", 0);
+        assert_eq!(&*sources.get(id).text, "a\nb\r\nc\n");
+    }
+
+    #[test]
+    fn text_that_is_not_utf8_says_where() {
+        assert_eq!(text_of(b"ok\n".to_vec()).as_deref(), Ok("ok\n"));
+        assert_eq!(text_of(b"ab\r\n\xc3\xa9x\xff".to_vec()), Err("line 2, column 3 is not UTF-8 text".to_string()));
+        assert_eq!(text_of(b"\xff".to_vec()), Err("line 1, column 1 is not UTF-8 text".to_string()));
+    }
 
     #[test]
     fn line_col_counts_from_one_and_honours_the_offset() {

@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::lang::source::text_of;
 use crate::output;
 
 use super::outcome::{CommandError, CommandResult, Flow};
@@ -113,6 +114,7 @@ fn reload_text(session: &mut Session, path: &Path, text: &str, front: &mut dyn F
 
 /// The text of the file at `path`.
 pub(crate) fn read(path: &Path) -> Result<String, CommandError> {
-    std::fs::read_to_string(path)
-        .map_err(|e| CommandError::Failed(format!("cannot read {}: {}", path.display(), output::io_reason(&e))))
+    let failed = |reason: String| CommandError::Failed(format!("cannot read {}: {reason}", path.display()));
+    let bytes = std::fs::read(path).map_err(|e| failed(output::io_reason(&e)))?;
+    text_of(bytes).map_err(failed)
 }
