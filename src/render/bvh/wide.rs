@@ -86,8 +86,8 @@ impl WideNode {
 /// past f32's range meets it: its node tests give `∞ - ∞` (NaN, dropped)
 /// and an entry and exit at `+∞`, which a limit of `+∞` lets through
 /// (`tests::rays_from_past_the_f32_range_give_the_hits_of_brute_force`).
-/// Once the slot pointed at the root, and the walk went round the tree
-/// until its stack overflowed.
+/// So an unused slot must lead nowhere: pointing at a node, it would send
+/// the walk round that subtree again, and from the root without end.
 const UNUSED: u32 = u32::MAX;
 
 /// Which compiled form of the walks runs.
@@ -529,9 +529,10 @@ impl Plan {
         let (below, left_slots) = spread[WIDTH - 1];
         let as_node = area * NODE_COST + below;
         // Too many objects for a leaf is said by the count, not by an
-        // infinite cost: a box past f32's range has an infinite area, and
-        // its subtree, every cost infinite, was once made one leaf of all
-        // its objects (the whole scene, around one huge sphere).
+        // infinite cost: a box past f32's range has an infinite area, every
+        // cost of its subtree is infinite, and an infinite leaf cost would
+        // tie with the node's and make one leaf of all its objects (the
+        // whole scene, around one huge sphere).
         let as_leaf = area * f64::from(count);
         let one = if count <= MAX_LEAF_OBJECTS && as_leaf <= as_node {
             (as_leaf, Choice::Leaf)
