@@ -39,7 +39,8 @@ const MAX_LEAF: usize = 8;
 /// `SAH_MAX_DEPTH + 32` for up to 2³² objects, whatever their layout.
 const SAH_MAX_DEPTH: usize = 32;
 
-/// Traversal stack size: the tree depth bound above.
+/// Most levels of a tree: the depth bound above, from which the walks'
+/// stack is sized.
 const STACK_SIZE: usize = 64;
 
 /// Estimated cost of a node's box test relative to an object test (SAH).

@@ -246,8 +246,10 @@ pub fn working_scale(scene: &Scene) -> f64 {
     if !(size > 0.0 && size.is_finite()) {
         return 1.0;
     }
-    // Within f64's normal range, so the power itself is exact.
-    let exponent = size.log2().floor().clamp(-1000.0, 1000.0) as i32;
+    // Within f64's normal range, so the power itself is exact; no tighter,
+    // so that every size of that range gets a unit that follows it (the
+    // same bytes when the scene is scaled by a power of two).
+    let exponent = size.log2().floor().clamp(-1022.0, 1022.0) as i32;
     2f64.powi(-exponent)
 }
 

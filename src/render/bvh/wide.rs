@@ -38,7 +38,7 @@ const PAD: f64 = 1.0 / (1u64 << 22) as f64;
 ///
 /// An inner child (`count == 0`) is the node at `child`; a leaf child holds
 /// the objects `child .. child + count`. An unused slot has an empty box
-/// (`min = +∞`, `max = -∞`), which no ray meets.
+/// (`min = +∞`, `max = -∞`) and the child [`UNUSED`], which is no node.
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(64))]
 struct WideNode {
@@ -58,7 +58,7 @@ impl WideNode {
             [f32::NEG_INFINITY; WIDTH],
             [f32::NEG_INFINITY; WIDTH],
         ],
-        child: [0; WIDTH],
+        child: [UNUSED; WIDTH],
         count: [0; WIDTH],
     };
 
@@ -79,6 +79,16 @@ impl WideNode {
         }
     }
 }
+
+/// The child of an unused slot: past every node (there are fewer nodes than
+/// objects, and fewer objects than 2³²), so that a walk which
+/// meets the slot finds no node there and goes on. A ray whose origin lies
+/// past f32's range meets it: its node tests give `∞ - ∞` (NaN, dropped)
+/// and an entry and exit at `+∞`, which a limit of `+∞` lets through
+/// (`tests::rays_from_past_the_f32_range_give_the_hits_of_brute_force`).
+/// So an unused slot must lead nowhere: pointing at a node, it would send
+/// the walk round that subtree again, and from the root without end.
+const UNUSED: u32 = u32::MAX;
 
 /// Which compiled form of the walks runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -131,12 +141,14 @@ impl Isa {
 #[derive(Debug, Clone)]
 pub(super) struct WideBvh {
     nodes: Vec<WideNode>,
+    /// Levels of nodes (1 for a single node, 0 without a tree).
+    depth: usize,
     isa: Isa,
 }
 
 impl Default for WideBvh {
     fn default() -> WideBvh {
-        WideBvh { nodes: Vec::new(), isa: Isa::Portable }
+        WideBvh { nodes: Vec::new(), depth: 0, isa: Isa::Portable }
     }
 }
 
@@ -279,8 +291,11 @@ struct Pending {
 /// The walks start at the root node.
 const ROOT: Pending = Pending { child: 0, count: 0, entry: 0.0 };
 
-/// Most children waiting at once: each level of the walk leaves at most
-/// `WIDTH - 1` of them, and the tree is shallower than the binary one.
+/// Most children waiting at once: a walk visits a node at most once (an
+/// unused slot leads nowhere, [`UNUSED`]), each level of the walk leaves
+/// at most `WIDTH - 1` of them, and the tree is no deeper than the binary
+/// one, which the build keeps within [`STACK_SIZE`] levels
+/// ([`WideBvh::collapse`] checks both).
 const WIDE_STACK_SIZE: usize = (WIDTH - 1) * STACK_SIZE + 1;
 
 /// The traversal stack, left uninitialised: zeroing it took a fifth of the
@@ -339,18 +354,26 @@ impl WideBvh {
     /// nodes, which become leaves and which are merged into their parent by
     /// the surface area heuristic ([`Plan`]); `bounds(k)` is the box tested
     /// for binary node `k`.
+    ///
+    /// Panics if the tree is deeper than the walk's stack allows: the
+    /// build never makes such a tree (its depth is bounded by
+    /// construction), and this one check keeps the walks from ever
+    /// running past their stack.
     pub(super) fn collapse(nodes: &[Node], bounds: impl Fn(usize) -> Aabb) -> WideBvh {
-        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 4), isa: Isa::detect() };
+        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 4), depth: 0, isa: Isa::detect() };
         if !nodes.is_empty() {
             let plans = Plan::all(nodes, &bounds);
-            wide.add(nodes, &plans, &bounds, 0);
+            wide.add(nodes, &plans, &bounds, 0, 1);
         }
+        assert!(wide.depth <= STACK_SIZE, "a tree of {} levels is deeper than the walk's stack allows", wide.depth);
         wide
     }
 
     /// Appends the wide node made from binary node `k` (whose plan makes it
-    /// a node) and the nodes below it; returns its index.
-    fn add(&mut self, nodes: &[Node], plans: &[Plan], bounds: &impl Fn(usize) -> Aabb, k: usize) -> u32 {
+    /// a node) at level `level` (the root's is 1) and the nodes below it;
+    /// returns its index.
+    fn add(&mut self, nodes: &[Node], plans: &[Plan], bounds: &impl Fn(usize) -> Aabb, k: usize, level: usize) -> u32 {
+        self.depth = self.depth.max(level);
         let at = self.nodes.len();
         self.nodes.push(WideNode::EMPTY);
         let mut kids = Vec::with_capacity(WIDTH);
@@ -367,7 +390,7 @@ impl WideBvh {
         for (slot, &kid) in kids.iter().enumerate() {
             node.set_bounds(slot, &bounds(kid));
             (node.child[slot], node.count[slot]) = match plans[kid].choice[0] {
-                Choice::Node(_) => (self.add(nodes, plans, bounds, kid), 0),
+                Choice::Node(_) => (self.add(nodes, plans, bounds, kid, level + 1), 0),
                 _ => (plans[kid].first, plans[kid].count),
             };
         }
@@ -387,13 +410,7 @@ impl WideBvh {
 
     /// The depth of the tree (1 for a single node, 0 without a tree).
     pub(super) fn depth(&self) -> usize {
-        fn depth_from(nodes: &[WideNode], k: usize) -> usize {
-            let node = &nodes[k];
-            // Unused slots point at the root, which is no one's child.
-            let inner = (0..WIDTH).filter(|&i| node.count[i] == 0 && node.child[i] != 0);
-            1 + inner.map(|i| depth_from(nodes, node.child[i] as usize)).max().unwrap_or(0)
-        }
-        if self.nodes.is_empty() { 0 } else { depth_from(&self.nodes, 0) }
+        self.depth
     }
 
     /// The closest-hit walk: the children the ray meets are visited nearest
@@ -438,7 +455,7 @@ impl WideBvh {
     /// The same tree walked with the compiled form `isa` (for tests).
     #[cfg(test)]
     pub(super) fn with_isa(&self, isa: Isa) -> WideBvh {
-        WideBvh { nodes: self.nodes.clone(), isa }
+        WideBvh { isa, ..self.clone() }
     }
 }
 
@@ -511,8 +528,17 @@ impl Plan {
         });
         let (below, left_slots) = spread[WIDTH - 1];
         let as_node = area * NODE_COST + below;
-        let as_leaf = if count <= MAX_LEAF_OBJECTS { area * f64::from(count) } else { f64::INFINITY };
-        let one = if as_leaf <= as_node { (as_leaf, Choice::Leaf) } else { (as_node, Choice::Node(left_slots)) };
+        // Too many objects for a leaf is said by the count, not by an
+        // infinite cost: a box past f32's range has an infinite area, every
+        // cost of its subtree is infinite, and an infinite leaf cost would
+        // tie with the node's and make one leaf of all its objects (the
+        // whole scene, around one huge sphere).
+        let as_leaf = area * f64::from(count);
+        let one = if count <= MAX_LEAF_OBJECTS && as_leaf <= as_node {
+            (as_leaf, Choice::Leaf)
+        } else {
+            (as_node, Choice::Node(left_slots))
+        };
         let mut plan = Plan { choice: [one.1; WIDTH], first, count };
         let mut cost = [one.0; WIDTH];
         for slots in 2..=WIDTH {
@@ -555,8 +581,8 @@ fn closest_walk(
         if current.count > 0 {
             leaf(current.child as usize, current.count as usize, &mut best);
             limit = limit_above(reach_past(best.0));
-        } else {
-            let node = &nodes[current.child as usize];
+        } else if let Some(node) = nodes.get(current.child as usize) {
+            // (No node: an unused slot, [`UNUSED`].)
             let (entries, mut mask) = meet(node, ray, limit);
             if mask != 0 {
                 let met = node.take(&mut mask, &entries);
@@ -594,8 +620,8 @@ fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(
             if leaf(current.child as usize, current.count as usize) {
                 return true;
             }
-        } else {
-            let node = &nodes[current.child as usize];
+        } else if let Some(node) = nodes.get(current.child as usize) {
+            // (No node: an unused slot, [`UNUSED`].)
             let (entries, mut mask) = meet(node, ray, limit);
             if mask != 0 {
                 current = node.take(&mut mask, &entries);
@@ -724,21 +750,23 @@ mod tests {
     }
 
     /// Checks random rays through `objects`, some starting on the objects'
-    /// faces and corners, against [`brute_force`] with every compiled form.
-    fn check_against_brute_force(objects: &[Bounded], random: &mut Random) {
+    /// faces and corners, the others within `reach(random)` of the origin,
+    /// against [`brute_force`] with every compiled form.
+    fn check_against_brute_force(objects: &[Bounded], random: &mut Random, reach: impl Fn(&mut Random) -> f64) {
         let (bvh, _) = Bvh::build(objects.len(), |k| objects[k]);
         assert!(!bvh.is_flat());
         for _ in 0..3000 {
+            let reach = reach(random);
             let origin = match (random.next() * 2.0) as i32 {
                 // On a box's corner or a sphere's pole: origins in the planes of the node boxes.
                 0 => match objects[((random.next() + 1.0) * 0.5 * objects.len() as f64) as usize] {
                     Bounded::Box(b) => b.center + b.to_local.transpose() * b.half,
                     Bounded::Sphere(s) => s.center + DVec3::new(0.0, s.radius, 0.0),
                 },
-                _ => random.vector() * 12.0,
+                _ => random.vector() * reach,
             };
             let ray = Ray::new(origin, random.direction());
-            let t_max = if random.next() < 0.0 { f64::INFINITY } else { 8.0 * (random.next() + 1.0) };
+            let t_max = if random.next() < 0.0 { f64::INFINITY } else { reach * (random.next() + 1.0) * (2.0 / 3.0) };
             let expected = brute_force(&bvh, &ray, t_max);
             for isa in Isa::available() {
                 let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
@@ -763,7 +791,7 @@ mod tests {
                 }
             })
             .collect();
-        check_against_brute_force(&objects, &mut random);
+        check_against_brute_force(&objects, &mut random, |_| 12.0);
     }
 
     #[test]
@@ -779,7 +807,84 @@ mod tests {
                 Bounded::Box(BoxShape { center: axes * cell, half: DVec3::splat(0.5), to_local: axes.transpose() })
             })
             .collect();
-        check_against_brute_force(&objects, &mut random);
+        check_against_brute_force(&objects, &mut random, |_| 12.0);
+    }
+
+    /// `10^e` for `e` uniform in `-300 ..= 300`.
+    fn any_size(random: &mut Random) -> f64 {
+        10f64.powi((random.next() * 300.0).round() as i32)
+    }
+
+    /// An ordinary object within 10 of the origin.
+    fn ordinary(random: &mut Random) -> Bounded {
+        let center = random.vector() * 10.0;
+        object_of_size(random, center, 1.0)
+    }
+
+    /// A sphere or a turned box of size `size` about `center`.
+    fn object_of_size(random: &mut Random, center: DVec3, size: f64) -> Bounded {
+        if random.next() < 0.0 {
+            Bounded::Sphere(SphereShape { center, radius: size * (0.05 + 0.5 * (random.next() + 1.0)) })
+        } else {
+            let axes = DMat3::from_rotation_z(random.next()) * DMat3::from_rotation_x(random.next());
+            let half = (random.vector().abs() + 0.05) * 0.6 * size;
+            Bounded::Box(BoxShape { center, half, to_local: axes.transpose() })
+        }
+    }
+
+    #[test]
+    fn rays_from_past_the_f32_range_give_the_hits_of_brute_force() {
+        // A mirror of radius 1e40 around four small spheres (issue 35): the
+        // reflections start past f32's range, heading back in, with no
+        // distance limit. Their node tests met the unused slots, which led
+        // back to the root until the stack overflowed.
+        let mut objects = vec![Bounded::Sphere(SphereShape { center: DVec3::ZERO, radius: 1e40 / 8.0 })];
+        for center in [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y] {
+            objects.push(Bounded::Sphere(SphereShape { center: center / 8.0, radius: 0.5 / 8.0 }));
+        }
+        let (bvh, _) = Bvh::build(objects.len(), |k| objects[k]);
+        let corner = DVec3::splat(1e40 / 8.0 / 3f64.sqrt());
+        let ray = Ray::new(corner, -corner.normalize());
+        for isa in Isa::available() {
+            let tree = Bvh { wide: bvh.wide.with_isa(isa), ..bvh.clone() };
+            assert_eq!(
+                (tree.closest_hit(&ray, f64::INFINITY), tree.any_hit(&ray, f64::INFINITY)),
+                brute_force(&bvh, &ray, f64::INFINITY),
+                "{isa:?}"
+            );
+        }
+        // Then objects and rays of every size from 1e-300 to 1e300.
+        let mut random = Random::new();
+        let mut objects: Vec<Bounded> = (0..300).map(|_| ordinary(&mut random)).collect();
+        for _ in 0..300 {
+            let size = any_size(&mut random);
+            let center = random.vector() * any_size(&mut random).max(size);
+            objects.push(object_of_size(&mut random, center, size));
+        }
+        check_against_brute_force(&objects, &mut random, any_size);
+    }
+
+    #[test]
+    fn deep_trees_give_the_hits_of_brute_force() {
+        // Each object twice the size and distance of the one before, from
+        // 2^-120 to 2^120 (nested scales the SAH peels off a few at a
+        // time), among ordinary ones: a tree of 15 levels of wide nodes.
+        let mut random = Random::new();
+        let mut objects: Vec<Bounded> = (-120..=120)
+            .map(|e| {
+                let size = 2f64.powi(e);
+                let center = random.direction() * 3.0 * size;
+                object_of_size(&mut random, center, size)
+            })
+            .collect();
+        objects.extend((0..400).map(|_| ordinary(&mut random)));
+        let (bvh, _) = Bvh::build(objects.len(), |k| objects[k]);
+        assert!((12..=STACK_SIZE).contains(&bvh.depth()), "depth {}", bvh.depth());
+        check_against_brute_force(
+            &objects,
+            &mut random,
+            |random| if random.next() < 0.0 { 12.0 } else { any_size(random) },
+        );
     }
 
     #[test]
