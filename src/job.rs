@@ -330,6 +330,7 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
             frames.end()
         )));
     }
+    options.timeline.check(frames.clone()).map_err(|e| JobError::Misuse(e.to_string()))?;
     Ok(Animation { count, frames, output, format, options })
 }
 

@@ -125,6 +125,7 @@ pub(crate) fn anim(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     };
     let frames = parse_count(frames, &FRAMES)?;
     let animation = AnimationOptions::parse_words(options).map_err(usage)?;
+    animation.timeline.check(1..=frames).map_err(usage)?;
     let path = PathBuf::from(file);
     let format = output::check_animation_output(&path, &animation).map_err(|e| CommandError::Failed(e.to_string()))?;
     explain_defaults(session, front);
