@@ -97,3 +97,73 @@ fn a_time_that_is_not_finite_is_refused_by_the_flag_and_the_command() {
         .stderr(contains("the time must be a finite number"));
     assert_eq!(names_in(dir.path()), ["t.ray"]);
 }
+
+// Point 4: nothing written that cannot be read back.
+
+/// [`SCENE`] with its sphere of radius `radius`.
+fn sphere_of_radius(radius: &str) -> String {
+    SCENE.replace("radius 1 ", &format!("radius {radius} "))
+}
+
+/// The numbers of a POV-Ray file outside its comments, as written.
+fn numbers_of(pov: &str) -> Vec<String> {
+    let code = pov.lines().filter(|line| !line.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n");
+    let words = code.split(|c: char| c.is_whitespace() || "<>{},*;".contains(c));
+    words.filter(|word| word.starts_with(|c: char| c.is_ascii_digit() || c == '-')).map(String::from).collect()
+}
+
+#[test]
+fn an_export_of_a_huge_scene_holds_only_finite_numbers_that_povray_reads() {
+    let dir = folder();
+    file(dir.path(), "big.ray", &sphere_of_radius("1e303"));
+    rayrepl().current_dir(dir.path()).args(["big.ray", "--export-pov", "big.pov"]).assert().success();
+    let pov = std::fs::read_to_string(dir.path().join("big.pov")).expect("the export");
+    let numbers = numbers_of(&pov);
+    assert!(numbers.iter().any(|n| n == "1e303"), "{numbers:?}");
+    for number in &numbers {
+        let value: f64 = number.parse().unwrap_or_else(|_| panic!("`{number}` is a number"));
+        assert!(value.is_finite(), "`{number}` in\n{pov}");
+    }
+    let runs = std::process::Command::new("povray").arg("--version").output();
+    if !runs.is_ok_and(|out| out.status.success()) {
+        eprintln!("skipped the POV-Ray parse of the export: `povray` is not installed");
+        return;
+    }
+    let rendered = std::process::Command::new("povray")
+        .current_dir(dir.path())
+        .args(["+Ibig.pov", "+Obig.png", "+W8", "+H6", "-A", "-D", "-V", "-GA", "File_Gamma=1.0"])
+        .output()
+        .expect("povray runs");
+    assert!(rendered.status.success(), "{}", String::from_utf8_lossy(&rendered.stderr));
+}
+
+#[test]
+fn an_export_povray_could_not_read_is_refused_and_nothing_is_written() {
+    let dir = folder();
+    file(dir.path(), "huge.ray", &sphere_of_radius("1e308"));
+    let old = file(dir.path(), "huge.pov", "// the old export\n");
+    let reason = "cannot export to POV-Ray: the scene reaches 1e308 from the origin, too far to put its \
+                  parallel lights beyond it at a distance POV-Ray can read (it reads finite numbers only); \
+                  scale the scene down";
+    rayrepl()
+        .current_dir(dir.path())
+        .args(["huge.ray", "--export-pov", "huge.pov"])
+        .assert()
+        .code(1)
+        .stderr(contains(format!("rayrepl: {reason}")));
+    assert_eq!(std::fs::read_to_string(&old).expect("kept"), "// the old export\n");
+    rayrepl()
+        .current_dir(dir.path())
+        .args(["huge.ray", "--export-pov", "new.pov"])
+        .assert()
+        .code(1)
+        .stderr(contains(reason));
+    rayrepl()
+        .current_dir(dir.path())
+        .args(["huge.ray", "--export-pov", "-"])
+        .assert()
+        .code(1)
+        .stdout("")
+        .stderr(contains(reason));
+    assert_eq!(names_in(dir.path()), ["huge.pov", "huge.ray"], "no file, no temporary file");
+}
