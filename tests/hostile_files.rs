@@ -167,3 +167,128 @@ fn an_export_povray_could_not_read_is_refused_and_nothing_is_written() {
         .stderr(contains(reason));
     assert_eq!(names_in(dir.path()), ["huge.pov", "huge.ray"], "no file, no temporary file");
 }
+
+// Point 1: a scene file is never overwritten.
+
+#[test]
+fn an_animation_never_writes_a_frame_over_the_scene() {
+    let dir = folder();
+    let scene = file(dir.path(), "f0001.png", SCENE);
+    rayrepl().current_dir(dir.path()).args(["f0001.png", "--anim", "2", "-o", "f.png"]).assert().code(1).stderr(
+        contains("rayrepl: `f0001.png`, frame 1 of the animation, is the scene file itself; give another output name"),
+    );
+    assert_eq!(std::fs::read_to_string(&scene).expect("kept"), SCENE);
+    // The same through a hard link and through a symbolic link; a frame
+    // outside --frames is not written, so it is not refused.
+    std::fs::hard_link(&scene, dir.path().join("g0002.png")).expect("linked");
+    std::os::unix::fs::symlink("f0001.png", dir.path().join("h0002.png")).expect("linked");
+    for output in ["g.png", "h.png"] {
+        rayrepl()
+            .current_dir(dir.path())
+            .args(["f0001.png", "--anim", "3", "-o", output])
+            .assert()
+            .code(1)
+            .stderr(contains("0002.png`, frame 2 of the animation, is the scene file itself"));
+    }
+    rayrepl()
+        .current_dir(dir.path())
+        .args(["f0001.png", "--anim", "3", "--frames", "3..3", "-q", "-o", "g.png"])
+        .assert()
+        .success();
+    assert_eq!(std::fs::read_to_string(&scene).expect("kept"), SCENE);
+    assert_eq!(names_in(dir.path()), ["f0001.png", "g0002.png", "g0003.png", "h0002.png"]);
+}
+
+#[test]
+fn an_output_that_is_a_hard_link_to_the_scene_is_refused() {
+    let dir = folder();
+    let scene = file(dir.path(), "s.ray", SCENE);
+    std::fs::hard_link(&scene, dir.path().join("s.png")).expect("linked");
+    std::fs::hard_link(&scene, dir.path().join("s.pov")).expect("linked");
+    for flags in [["-o", "s.png"], ["--export-pov", "s.pov"]] {
+        rayrepl()
+            .current_dir(dir.path())
+            .arg("s.ray")
+            .args(flags)
+            .assert()
+            .code(1)
+            .stderr(contains("is the scene file itself; give another output name"));
+    }
+    assert_eq!(std::fs::read_to_string(&scene).expect("kept"), SCENE);
+}
+
+#[test]
+fn a_session_never_saves_or_animates_over_the_file_it_loaded() {
+    let dir = folder();
+    let scene = file(dir.path(), "scene.png", SCENE);
+    std::os::unix::fs::symlink("scene.png", dir.path().join("link.png")).expect("linked");
+    std::fs::hard_link(&scene, dir.path().join("a0002.png")).expect("linked");
+    let cases = [
+        (":save scene.png", "`scene.png` is the file loaded into the session (`:load scene.png`)"),
+        (":save link.png", "`link.png` is the file loaded into the session (`:load scene.png`)"),
+        (":anim 2 scene.png", "`scene.png` is the file loaded into the session (`:load scene.png`)"),
+        (
+            ":anim 3 a.png",
+            "`a0002.png`, frame 2 of the animation, is the file loaded into the session (`:load scene.png`)",
+        ),
+    ];
+    for (command, said) in cases {
+        rayrepl()
+            .current_dir(dir.path())
+            .write_stdin(format!(":load scene.png\n{command}\n"))
+            .assert()
+            .code(1)
+            .stderr(contains(format!("{said}; give another output name")));
+        // Loaded by -i, the same.
+        rayrepl()
+            .current_dir(dir.path())
+            .args(["-i", "scene.png"])
+            .write_stdin(format!("{command}\n"))
+            .assert()
+            .code(1)
+            .stderr(contains(format!("{said}; give another output name")));
+    }
+    assert_eq!(std::fs::read_to_string(&scene).expect("kept"), SCENE);
+    assert_eq!(names_in(dir.path()), ["a0002.png", "link.png", "scene.png"]);
+}
+
+#[test]
+fn write_writes_the_session_over_its_file_on_purpose_keeping_links() {
+    let dir = folder();
+    let elsewhere = folder();
+    let scene = file(elsewhere.path(), "real.ray", SCENE);
+    std::os::unix::fs::symlink(&scene, dir.path().join("link.ray")).expect("linked");
+    rayrepl()
+        .current_dir(dir.path())
+        .write_stdin(":load link.ray\nput sphere center 2, 0, 0 radius 1 kd 0.5 ks 0.5 phong 10 color 1, 2, 3 end\n:write link.ray\n")
+        .assert()
+        .success();
+    assert!(std::fs::symlink_metadata(dir.path().join("link.ray")).expect("there").file_type().is_symlink());
+    let written = std::fs::read_to_string(&scene).expect("written through the link");
+    assert!(written.contains("center 2, 0, 0") && written.contains("print time"), "{written}");
+    assert_eq!(names_in(dir.path()), ["link.ray"], "no temporary file");
+    assert_eq!(names_in(elsewhere.path()), ["real.ray"], "no temporary file");
+}
+
+#[test]
+fn an_output_that_is_a_link_stays_a_link_with_its_mode() {
+    use std::os::unix::fs::{MetadataExt, PermissionsExt};
+    let dir = folder();
+    file(dir.path(), "t.ray", SCENE);
+    let target = file(dir.path(), "real.png", "old");
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o600)).expect("chmod");
+    std::os::unix::fs::symlink("real.png", dir.path().join("out.png")).expect("linked");
+    let hard = dir.path().join("hard.gif");
+    std::fs::write(&hard, "old").expect("written");
+    std::fs::hard_link(&hard, dir.path().join("other-name.gif")).expect("linked");
+    let inode = std::fs::metadata(&hard).expect("there").ino();
+    rayrepl().current_dir(dir.path()).args(["t.ray", "-q", "-o", "out.png"]).assert().success();
+    rayrepl().current_dir(dir.path()).args(["t.ray", "-q", "--anim", "2", "-o", "hard.gif"]).assert().success();
+    assert!(std::fs::symlink_metadata(dir.path().join("out.png")).expect("there").file_type().is_symlink());
+    assert_eq!(std::fs::metadata(&target).expect("there").permissions().mode() & 0o777, 0o600);
+    image::open(&target).expect("the image went to the link's file");
+    assert_eq!(std::fs::metadata(&hard).expect("there").ino(), inode, "the hard link is not split");
+    let other = std::fs::read(dir.path().join("other-name.gif")).expect("there");
+    assert!(other.starts_with(b"GIF89a"), "both names see the animation");
+    assert_eq!(names_in(dir.path()), ["hard.gif", "other-name.gif", "out.png", "real.png", "t.ray"]);
+}
