@@ -100,6 +100,7 @@ impl NotFinite {
 pub fn to_pov(scene: &Scene, export: &Export<'_>) -> Result<String, PovError> {
     let mut text = String::new();
     let Export { source, time, depth, width, height } = *export;
+    let source = one_line(source);
     let _ = writeln!(text, "// {source} at time = {time}, exported by rayrepl for POV-Ray 3.7.");
     let _ = writeln!(text, "// Render it as rayrepl would ({width}x{height}, linear values, no anti-aliasing):");
     let _ = writeln!(text, "//   povray +Iscene.pov +Oscene.png +W{width} +H{height} -A -D File_Gamma=1.0");
@@ -137,6 +138,13 @@ pub fn to_pov(scene: &Scene, export: &Export<'_>) -> Result<String, PovError> {
         let _ = writeln!(text, "{written}");
     }
     Ok(text)
+}
+
+/// `text` on one line, for a comment: a control character (a line break
+/// in a file's name) is written as its escape, or the rest of the name
+/// would be read as POV-Ray's code.
+fn one_line(text: &str) -> String {
+    text.chars().map(|c| if c.is_control() { c.escape_debug().to_string() } else { c.to_string() }).collect()
 }
 
 /// One primitive as a POV-Ray object.
@@ -285,6 +293,14 @@ mod tests {
         assert_eq!(number(-0.0), "0.0");
         assert_eq!(number(2.5), "2.5");
         assert_eq!(number(1e150).parse::<f64>(), Ok(1e150));
+    }
+
+    #[test]
+    fn a_file_name_with_a_line_break_stays_in_the_comment() {
+        let export = Export { source: "a\n#declare x = 1;\r.ray", ..export() };
+        let text = to_pov(&scene(Shape::Sphere { center: DVec3::ZERO, radius: 1.0 }), &export).expect("finite");
+        assert!(text.starts_with("// a\\n#declare x = 1;\\r.ray at time = 2,"), "{text}");
+        assert!(!text.lines().any(|line| line.starts_with("#declare")), "{text}");
     }
 
     #[test]
