@@ -312,7 +312,8 @@ fn export_pov(parsed: &ParsedScene, depth: u32, output: &Destination, quiet: boo
     let SceneFile { time, picture, .. } = parsed.file;
     let scene = parsed.evaluate(time, false)?;
     let export = pov::Export { source: parsed.name(), time, depth, width: picture.width, height: picture.height };
-    let text = pov::to_pov(&scene, &export);
+    // Refused before anything is written: no file, nothing on standard output.
+    let text = pov::to_pov(&scene, &export).map_err(|e| e.to_string())?;
     match output {
         Destination::Stdout => write_stdout("the POV-Ray scene", |stdout| stdout.write_all(text.as_bytes()))?,
         Destination::File(pov) => {

@@ -330,6 +330,13 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
             frames.end()
         )));
     }
+    options.timeline.check(frames.clone()).map_err(|e| JobError::Misuse(e.to_string()))?;
+    if let Some((frame, name)) = output::frame_over(scene, &output, format, frames.clone(), count) {
+        return Err(JobError::Output(format!(
+            "`{}`, frame {frame} of the animation, is the scene file itself; give another output name",
+            name.display()
+        )));
+    }
     Ok(Animation { count, frames, output, format, options })
 }
 

@@ -4,7 +4,8 @@
 //! Files are written atomically: into a temporary file in the target's
 //! directory, then renamed over the target, so a failed or interrupted
 //! write never leaves a partial image behind, and a replaced file keeps its
-//! permissions. An animation is encoded frame by frame as the frames
+//! permissions and owner. A symbolic link is written through (the link
+//! stays), and a file with hard links keeps its inode (see `atomic`). An animation is encoded frame by frame as the frames
 //! arrive, so its memory does not grow with the number of frames.
 //!
 //! Read from the bottom up: `formats` names the formats, `error` says
@@ -24,7 +25,7 @@ mod still;
 mod video;
 
 pub(crate) use atomic::{INTERRUPTED_EXIT_CODE, NEVER_CANCELLED, exit_discarding_unfinished};
-pub(crate) use checks::{check_animation_output, check_output, same_file};
+pub(crate) use checks::{check_animation_output, check_output, frame_over, same_file};
 pub use error::OutputError;
 pub(crate) use error::io_reason;
 pub use formats::Content;

@@ -3,6 +3,9 @@
 //! command line (`--time-start`, `--fps`, ...) and the session's `:anim`.
 
 use std::fmt;
+use std::ops::RangeInclusive;
+
+use crate::lang::number::format_number;
 
 /// The value of `time` at each frame: frame k (from 1) is computed with
 /// `time = start + (k - 1) * step`, so the defaults (1 and 1) give
@@ -23,6 +26,26 @@ impl Timeline {
     pub fn time_of(&self, k: u32) -> f64 {
         self.start + f64::from(k - 1) * self.step
     }
+
+    /// Checks, before any work, that every frame of `frames` has a finite
+    /// time: a start and a step that are each finite can still add up past
+    /// the largest number (`1e308 + 1e308`), and no frame is then computed
+    /// at a made-up time.
+    pub fn check(&self, frames: RangeInclusive<u32>) -> Result<(), PlaybackError> {
+        match frames.into_iter().find(|&k| !self.time_of(k).is_finite()) {
+            None => Ok(()),
+            Some(frame) => Err(PlaybackError::FrameTime {
+                frame,
+                time: format!("{} + {} * {}", exponent_form(self.start), frame - 1, exponent_form(self.step)),
+            }),
+        }
+    }
+}
+
+/// `x` as the language writes it, or with an exponent when large (`1e308`,
+/// not 309 digits).
+fn exponent_form(x: f64) -> String {
+    if x.abs() < 1e15 { format_number(x) } else { format!("{x:e}") }
 }
 
 impl Default for Timeline {
@@ -164,6 +187,13 @@ pub enum PlaybackError {
         /// The value as given.
         given: String,
     },
+    /// A frame whose time, start plus steps, is not a finite number.
+    FrameTime {
+        /// The frame, from 1.
+        frame: u32,
+        /// Its time as the sum that overflows: `1e308 + 1 * 1e308`.
+        time: String,
+    },
     /// An option `:anim` does not take.
     UnknownOption {
         /// The word given.
@@ -189,6 +219,11 @@ impl fmt::Display for PlaybackError {
                 "the looping must be `forever` or how many times to play, from 1 to {MAX_LOOPS}, not `{given}`"
             ),
             PlaybackError::Time { given } => write!(f, "a time or time step must be a finite number, not `{given}`"),
+            PlaybackError::FrameTime { frame, time } => write!(
+                f,
+                "frame {frame} would have time = {time}, which is not a finite number: \
+                 give a smaller --time-start or --time-step"
+            ),
             PlaybackError::UnknownOption { given } => {
                 write!(f, "`{given}` is not an option of :anim; it takes {SESSION_OPTIONS}")
             }
@@ -210,6 +245,21 @@ mod tests {
         let smooth = Timeline { start: 0.0, step: 0.25 };
         assert_eq!((smooth.time_of(1), smooth.time_of(5)), (0.0, 1.0));
         assert_eq!(Timeline { start: 2.0, step: -0.5 }.time_of(3), 1.0);
+    }
+
+    #[test]
+    fn a_frame_whose_time_is_not_finite_is_refused_naming_it() {
+        let huge = Timeline { start: 1e308, step: 1e308 };
+        assert_eq!(huge.check(1..=1), Ok(()));
+        let refused = huge.check(1..=3).expect_err("frame 2 overflows").to_string();
+        assert_eq!(
+            refused,
+            "frame 2 would have time = 1e308 + 1 * 1e308, which is not a finite number: \
+             give a smaller --time-start or --time-step"
+        );
+        let falling = Timeline { start: -1e308, step: -0.5e308 };
+        assert!(falling.check(2..=5).expect_err("overflows").to_string().starts_with("frame 3 "));
+        assert_eq!(Timeline { start: 0.5, step: 0.25 }.check(1..=1_000_000), Ok(()));
     }
 
     #[test]

@@ -41,10 +41,66 @@ const DIFFERENCES: &str = "\
 //   without anti-aliasing (rayrepl's --samples has no exact counterpart).
 ";
 
-/// The scene as a POV-Ray 3.7 file.
-pub fn to_pov(scene: &Scene, export: &Export<'_>) -> String {
+/// Why a scene cannot be exported: POV-Ray reads only finite numbers, and
+/// a file it cannot read is not written.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PovError {
+    /// The scene reaches so far from the origin (`extent`) that its
+    /// parallel lights cannot be put beyond it at a finite distance.
+    TooLarge {
+        /// How far the scene reaches along an axis (may be infinite).
+        extent: f64,
+    },
+    /// A number to write for `what` (`sphere 3`, `the camera`) is not finite.
+    NotFinite {
+        /// The part of the scene, in words.
+        what: String,
+        /// The number.
+        value: f64,
+    },
+}
+
+impl std::fmt::Display for PovError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PovError::TooLarge { extent } if extent.is_finite() => write!(
+                f,
+                "cannot export to POV-Ray: the scene reaches {extent:e} from the origin, too far to put its \
+                 parallel lights beyond it at a distance POV-Ray can read (it reads finite numbers only); \
+                 scale the scene down"
+            ),
+            PovError::TooLarge { .. } => f.write_str(
+                "cannot export to POV-Ray: the scene reaches beyond the largest finite number, so its \
+                 parallel lights cannot be put beyond it; scale the scene down",
+            ),
+            PovError::NotFinite { what, value } => write!(
+                f,
+                "cannot export to POV-Ray: {what} would be written with the number {value}, \
+                 which POV-Ray cannot read (it reads finite numbers only)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for PovError {}
+
+/// A number that is not finite, met while writing it.
+#[derive(Debug, Clone, Copy)]
+struct NotFinite(f64);
+
+impl NotFinite {
+    /// The error, saying it is a number of `what`.
+    fn of(self, what: impl Into<String>) -> PovError {
+        PovError::NotFinite { what: what.into(), value: self.0 }
+    }
+}
+
+/// The scene as a POV-Ray 3.7 file, or why it cannot be one: every number
+/// in it is finite, as POV-Ray reads them.
+pub fn to_pov(scene: &Scene, export: &Export<'_>) -> Result<String, PovError> {
     let mut text = String::new();
     let Export { source, time, depth, width, height } = *export;
+    let source = one_line(source);
     let _ = writeln!(text, "// {source} at time = {time}, exported by rayrepl for POV-Ray 3.7.");
     let _ = writeln!(text, "// Render it as rayrepl would ({width}x{height}, linear values, no anti-aliasing):");
     let _ = writeln!(text, "//   povray +Iscene.pov +Oscene.png +W{width} +H{height} -A -D File_Gamma=1.0");
@@ -62,35 +118,43 @@ pub fn to_pov(scene: &Scene, export: &Export<'_>) -> String {
         depth + 1
     );
     let camera = scene.camera;
+    let location = vector(DVec3::new(0.0, 0.0, camera.distance)).map_err(|e| e.of("the camera"))?;
+    let angle = number(camera.angle.to_degrees()).map_err(|e| e.of("the camera"))?;
     let _ = write!(
         text,
-        "camera {{\n  perspective\n  location {}\n  look_at <0, 0, 0>\n  right x * image_width / image_height\n  \
-         up y\n  angle {}\n}}\n\n",
-        vector(DVec3::new(0.0, 0.0, camera.distance)),
-        number(camera.angle.to_degrees())
+        "camera {{\n  perspective\n  location {location}\n  look_at <0, 0, 0>\n  right x * image_width / image_height\n  \
+         up y\n  angle {angle}\n}}\n\n",
     );
-    let far = light_distance(scene);
-    for light in &scene.lights {
-        let _ = writeln!(
-            text,
-            "light_source {{ {} color rgb {} parallel point_at <0, 0, 0> }}",
-            vector(light.direction * far),
-            number(light.intensity)
-        );
+    let far = light_distance(scene)?;
+    for (k, light) in scene.lights.iter().enumerate() {
+        let what = || format!("light {}", k + 1);
+        let position = vector(light.direction * far).map_err(|e| e.of(what()))?;
+        let intensity = number(light.intensity).map_err(|e| e.of(what()))?;
+        let _ = writeln!(text, "light_source {{ {position} color rgb {intensity} parallel point_at <0, 0, 0> }}");
     }
     text.push('\n');
-    for primitive in scene.primitives.iter().chain(&scene.timed_primitives) {
-        let _ = writeln!(text, "{}", object(primitive, scene.ambient));
+    for (k, primitive) in scene.primitives.iter().chain(&scene.timed_primitives).enumerate() {
+        let written = object(primitive, scene.ambient).map_err(|e| e.of(format!("primitive {}", k + 1)))?;
+        let _ = writeln!(text, "{written}");
     }
-    text
+    Ok(text)
+}
+
+/// `text` on one line, for a comment: a control character (a line break
+/// in a file's name) is written as its escape, or the rest of the name
+/// would be read as POV-Ray's code.
+fn one_line(text: &str) -> String {
+    text.chars().map(|c| if c.is_control() { c.escape_debug().to_string() } else { c.to_string() }).collect()
 }
 
 /// One primitive as a POV-Ray object.
-fn object(primitive: &Primitive, ambient: f64) -> String {
-    let texture = texture(&primitive.material, ambient);
-    match primitive.shape {
-        Shape::Sphere { center, radius } => format!("sphere {{ {}, {} {texture} }}", vector(center), number(radius)),
-        Shape::Plane { normal, shift } => format!("plane {{ {}, {} {texture} }}", vector(normal), number(shift)),
+fn object(primitive: &Primitive, ambient: f64) -> Result<String, NotFinite> {
+    let texture = texture(&primitive.material, ambient)?;
+    Ok(match primitive.shape {
+        Shape::Sphere { center, radius } => {
+            format!("sphere {{ {}, {} {texture} }}", vector(center)?, number(radius)?)
+        }
+        Shape::Plane { normal, shift } => format!("plane {{ {}, {} {texture} }}", vector(normal)?, number(shift)?),
         Shape::Box { center, half, axes } => {
             // A point q of the box in its own axes is at c + A q; in POV-Ray's
             // axes (S = diag(1, 1, -1)) at S c + (S A S) (S q), and S q spans
@@ -99,35 +163,39 @@ fn object(primitive: &Primitive, ambient: f64) -> String {
             let flip = DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0));
             let turned = flip * axes * flip;
             let rows = [turned.x_axis, turned.y_axis, turned.z_axis, flip * center];
-            let matrix: Vec<String> = rows.iter().flat_map(|row| row.to_array().map(number)).collect();
+            let matrix: Vec<String> =
+                rows.iter().flat_map(|row| row.to_array().map(number)).collect::<Result<_, _>>()?;
             format!(
                 "box {{ {}, {} matrix <{}> {texture} }}",
-                vector_as_is(-half),
-                vector_as_is(half),
+                vector_as_is(-half)?,
+                vector_as_is(half)?,
                 matrix.join(", ")
             )
         }
-    }
+    })
 }
 
 /// rayrepl's texture as POV-Ray's pigment and finish.
-fn texture(material: &Material, ambient: f64) -> String {
+fn texture(material: &Material, ambient: f64) -> Result<String, NotFinite> {
     let Material { color, kd, ks, phong } = *material;
-    format!(
+    Ok(format!(
         "pigment {{ color rgb {} }} finish {{ ambient {} diffuse {} specular {} roughness {} metallic reflection {} }}",
-        vector_as_is(color),
-        number(kd * ambient),
-        number(kd),
-        number(ks),
-        number(1.0 / phong),
-        number(ks)
-    )
+        vector_as_is(color)?,
+        number(kd * ambient)?,
+        number(kd)?,
+        number(ks)?,
+        number(1.0 / phong)?,
+        number(ks)?
+    ))
 }
 
 /// How far away the parallel lights are put: well beyond everything in the
 /// scene, whatever its scale (a parallel light in POV-Ray casts shadows
-/// only from objects between it and the point lit).
-fn light_distance(scene: &Scene) -> f64 {
+/// only from objects between it and the point lit). Everything lies in the
+/// cube of half side `extent` about the origin, so within `sqrt(3) extent`
+/// of it: 10^6 times `extent` where that is a finite number, twice it
+/// otherwise, or refused when even that is not.
+fn light_distance(scene: &Scene) -> Result<f64, PovError> {
     let extent = scene.primitives.iter().chain(&scene.timed_primitives).fold(scene.camera.distance.abs(), |far, p| {
         match p.shape {
             Shape::Sphere { center, radius } => far.max(center.abs().max_element() + radius),
@@ -135,24 +203,29 @@ fn light_distance(scene: &Scene) -> f64 {
             Shape::Box { center, half, .. } => far.max(center.abs().max_element() + half.length()),
         }
     });
-    1e6 * extent.max(f64::MIN_POSITIVE)
+    let extent = extent.max(f64::MIN_POSITIVE);
+    [1e6, 2.0].map(|times| times * extent).into_iter().find(|far| far.is_finite()).ok_or(PovError::TooLarge { extent })
 }
 
 /// A point or direction of rayrepl's axes in POV-Ray's: z negated.
-fn vector(v: DVec3) -> String {
+fn vector(v: DVec3) -> Result<String, NotFinite> {
     vector_as_is(DVec3::new(v.x, v.y, -v.z))
 }
 
 /// Three numbers as a POV-Ray vector.
-fn vector_as_is(v: DVec3) -> String {
-    format!("<{}, {}, {}>", number(v.x), number(v.y), number(v.z))
+fn vector_as_is(v: DVec3) -> Result<String, NotFinite> {
+    Ok(format!("<{}, {}, {}>", number(v.x)?, number(v.y)?, number(v.z)?))
 }
 
 /// A number as POV-Ray reads it: the shortest text that reads back the same
-/// f64, with an exponent for the very large and the very small.
-fn number(x: f64) -> String {
+/// f64, with an exponent for the very large and the very small; none for
+/// infinities and NaN, which POV-Ray has no words for.
+fn number(x: f64) -> Result<String, NotFinite> {
+    if !x.is_finite() {
+        return Err(NotFinite(x));
+    }
     let x = if x == 0.0 { 0.0 } else { x };
-    format!("{x:?}")
+    Ok(format!("{x:?}"))
 }
 
 #[cfg(test)]
@@ -181,7 +254,8 @@ mod tests {
 
     #[test]
     fn z_is_negated_and_textures_become_finishes() {
-        let text = to_pov(&scene(Shape::Sphere { center: DVec3::new(1.0, 2.0, 3.0), radius: 0.5 }), &export());
+        let text = to_pov(&scene(Shape::Sphere { center: DVec3::new(1.0, 2.0, 3.0), radius: 0.5 }), &export())
+            .expect("finite");
         assert!(text.contains("location <0.0, 0.0, -10.0>"), "{text}");
         assert!(text.contains("angle 90.0"), "{text}");
         assert!(text.contains("max_trace_level 6"), "{text}");
@@ -201,7 +275,7 @@ mod tests {
         // A quarter turn about y: rayrepl's x axis goes to -z.
         let axes = DMat3::from_rotation_y(std::f64::consts::FRAC_PI_2);
         let shape = Shape::Box { center: DVec3::new(0.0, 0.0, 2.0), half: DVec3::new(1.0, 2.0, 3.0), axes };
-        let text = to_pov(&scene(shape), &export());
+        let text = to_pov(&scene(shape), &export()).expect("finite");
         let line = text.lines().find(|line| line.starts_with("box")).expect("a box");
         assert!(line.starts_with("box { <-1.0, -2.0, -3.0>, <1.0, 2.0, 3.0> matrix <"), "{line}");
         // In POV-Ray's axes the box's x goes to +z (rayrepl's -z, negated), and its centre to z = -2.
@@ -214,9 +288,36 @@ mod tests {
 
     #[test]
     fn numbers_read_back_exactly_at_any_scale() {
+        let number = |x| number(x).expect("finite");
         assert_eq!(number(1e-200), "1e-200");
         assert_eq!(number(-0.0), "0.0");
         assert_eq!(number(2.5), "2.5");
         assert_eq!(number(1e150).parse::<f64>(), Ok(1e150));
+    }
+
+    #[test]
+    fn a_file_name_with_a_line_break_stays_in_the_comment() {
+        let export = Export { source: "a\n#declare x = 1;\r.ray", ..export() };
+        let text = to_pov(&scene(Shape::Sphere { center: DVec3::ZERO, radius: 1.0 }), &export).expect("finite");
+        assert!(text.starts_with("// a\\n#declare x = 1;\\r.ray at time = 2,"), "{text}");
+        assert!(!text.lines().any(|line| line.starts_with("#declare")), "{text}");
+    }
+
+    #[test]
+    fn every_number_of_a_huge_scene_is_finite_or_the_export_is_refused() {
+        let huge = to_pov(&scene(Shape::Sphere { center: DVec3::ZERO, radius: 1e303 }), &export()).expect("finite");
+        let light = huge.lines().find(|line| line.starts_with("light_source")).expect("a light");
+        assert!(light.starts_with("light_source { <0.0, 1.2e303, -1.6e303> color rgb 0.7"), "{light}");
+        assert!(!huge.contains("inf") && !huge.contains("NaN"), "{huge}");
+        let too_far = scene(Shape::Sphere { center: DVec3::new(1.7e308, 0.0, 0.0), radius: 1e308 });
+        assert!(matches!(to_pov(&too_far, &export()), Err(PovError::TooLarge { .. })));
+        let message = to_pov(&scene(Shape::Sphere { center: DVec3::ZERO, radius: 1e308 }), &export())
+            .expect_err("2e308 is not finite")
+            .to_string();
+        assert!(message.starts_with("cannot export to POV-Ray: the scene reaches 1e308 from the origin"), "{message}");
+        let mut flat = scene(Shape::Sphere { center: DVec3::ZERO, radius: 1.0 });
+        flat.primitives[0].material.phong = 0.0;
+        let error = to_pov(&flat, &export()).expect_err("roughness 1/0");
+        assert_eq!(error, PovError::NotFinite { what: "primitive 1".into(), value: f64::INFINITY });
     }
 }

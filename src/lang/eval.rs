@@ -173,10 +173,11 @@ struct Snapshot {
 
 impl Interpreter {
     /// A fresh interpreter evaluating with `time` bound to the given value.
-    /// Every number a program sees is finite, so a non-finite `time` is taken
-    /// as 0 (the command line should refuse one).
+    /// Every number a program sees is finite: the command line and the
+    /// session refuse a time that is not, naming the flag, the command or
+    /// the frame; should one get here all the same, a program that reads
+    /// `time` fails where it reads it (never a silent 0).
     pub fn new(time: f64, limits: Limits) -> Interpreter {
-        let time = if time.is_finite() { time } else { 0.0 };
         let mut env = Env::default();
         env.globals.insert("time".into(), Value::number(time, true));
         Interpreter {
@@ -432,4 +433,24 @@ fn sorted<'a>(names: impl Iterator<Item = &'a Rc<str>>) -> Vec<Rc<str>> {
     let mut names: Vec<Rc<str>> = names.cloned().collect();
     names.sort();
     names
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::{SourceMap, parse_items};
+
+    #[test]
+    fn a_time_that_is_not_finite_fails_where_it_is_read_never_zero() {
+        let mut sources = SourceMap::new();
+        let reads = sources.add("<test>", "print time", 0);
+        let program = parse_items(reads, "print time").expect("parses");
+        for time in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            let error = Interpreter::new(time, Limits::DEFAULT).run(&program).expect_err("refused");
+            assert_eq!(error.message, format!("`time` is {time} here, not a finite number"));
+        }
+        let ignores = sources.add("<test>", "let a = 1", 0);
+        let program = parse_items(ignores, "let a = 1").expect("parses");
+        Interpreter::new(f64::INFINITY, Limits::DEFAULT).run(&program).expect("`time` is not read");
+    }
 }

@@ -1,8 +1,11 @@
 //! Atomic, cancellable files: written into a temporary file in the target's
 //! folder, then renamed over the target, and removed on an interruption.
+//! An output that is a symbolic link is written through to the file it
+//! leads to (the link stays a link), and one with hard links keeps its
+//! inode (see [`PendingFile::commit`]).
 
-use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::fs::{File, Metadata};
+use std::io::{self, BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard, PoisonError};
@@ -36,28 +39,33 @@ pub(crate) fn exit_discarding_unfinished(code: i32) -> ! {
 }
 
 /// A file being written: a temporary file next to its target, which
-/// [`PendingFile::commit`] renames over the target. Dropped without a
+/// [`PendingFile::commit`] puts in place of the target. Dropped without a
 /// commit, the temporary file is removed and the target left as it was.
 pub(super) struct PendingFile {
+    /// The output as named, for messages.
     pub(super) path: PathBuf,
+    /// The file replaced: `path`, or the file its symbolic links lead to.
+    target: PathBuf,
     pub(super) temp_path: PathBuf,
     temp: Option<tempfile::NamedTempFile>,
     pub(super) cancel: &'static AtomicBool,
 }
 
 impl PendingFile {
-    /// A temporary file for `path`, and a writer into it that fails as soon
-    /// as `cancel` is raised.
+    /// A temporary file for `path` (in the folder of the file its links
+    /// lead to, so that a rename can replace that file), and a writer into
+    /// it that fails as soon as `cancel` is raised.
     pub(super) fn create(
         path: &Path,
         cancel: &'static AtomicBool,
     ) -> Result<(PendingFile, BufWriter<Cancellable<File>>), OutputError> {
+        let target = link_target(path).map_err(|e| io_error(path, e))?;
         let mut unfinished = unfinished();
-        let temp = temp_file_in(folder_of(path)).map_err(|e| io_error(path, e))?;
+        let temp = temp_file_in(folder_of(&target)).map_err(|e| io_error(path, e))?;
         unfinished.push(temp.path().to_owned());
         let file = temp.as_file().try_clone().map_err(|e| io_error(path, e))?;
-        let pending =
-            PendingFile { path: path.to_owned(), temp_path: temp.path().to_owned(), temp: Some(temp), cancel };
+        let temp_path = temp.path().to_owned();
+        let pending = PendingFile { path: path.to_owned(), target, temp_path, temp: Some(temp), cancel };
         Ok((pending, BufWriter::new(Cancellable { inner: file, cancel })))
     }
 
@@ -74,22 +82,101 @@ impl PendingFile {
     }
 
     /// Puts the written file in place of the target, with the target's
-    /// permissions if it existed; not if `cancel` was raised meanwhile
-    /// (syncing a large file to disk can take a while).
+    /// permissions and owner (where the process may give it) if it
+    /// existed; not if `cancel` was raised meanwhile (syncing a large file
+    /// to disk can take a while).
+    ///
+    /// A target with more than one hard link is not renamed over: that
+    /// would split it from its other names, which would keep the old
+    /// content. The whole new content is written and synced first (so a
+    /// failure or Ctrl-C while encoding still leaves the target as it was),
+    /// then copied into the existing file, which keeps its inode, its
+    /// links, mode and owner. That copy is the one step that is not atomic:
+    /// Ctrl-C and `kill` wait for it (they take the lock it holds), and
+    /// only a crash during it can leave the file part new. Refusing such a
+    /// target instead would make a hard-linked output unwritable.
     pub(super) fn commit(mut self) -> Result<(), OutputError> {
         let temp = self.temp.take().expect("a pending file is committed once");
         temp.as_file().sync_all().map_err(|e| io_error(&self.path, e))?;
         if self.cancelled() {
             return Err(OutputError::Cancelled { path: self.path.clone() });
         }
-        if let Ok(existing) = std::fs::metadata(&self.path) {
+        let existing = std::fs::metadata(&self.target).ok();
+        if let Some(existing) = &existing {
+            keep_owner(temp.as_file(), existing);
             temp.as_file().set_permissions(existing.permissions()).map_err(|e| io_error(&self.path, e))?;
         }
         let mut unfinished = unfinished();
-        let persisted = temp.persist(&self.path);
+        let put = match existing {
+            Some(existing) if hard_links(&existing) > 1 => {
+                let copied = copy_into(temp.as_file(), &self.target);
+                drop(temp);
+                copied
+            }
+            _ => temp.persist(&self.target).map(drop).map_err(|e| e.error),
+        };
         unfinished.retain(|p| *p != self.temp_path);
-        persisted.map(drop).map_err(|e| io_error(&self.path, e.error))
+        put.map_err(|e| io_error(&self.path, e))
     }
+}
+
+/// The most symbolic links followed from an output to its file (Linux's
+/// own limit).
+const MOST_LINKS: usize = 40;
+
+/// The file a write to `path` replaces: `path` itself, or, if it is a
+/// symbolic link, the file its links lead to (made if it does not exist
+/// yet), so that the link stays a link.
+pub(super) fn link_target(path: &Path) -> io::Result<PathBuf> {
+    let mut target = path.to_owned();
+    for _ in 0..MOST_LINKS {
+        match std::fs::symlink_metadata(&target) {
+            // A relative link is read from the link's folder.
+            Ok(meta) if meta.file_type().is_symlink() => target = folder_of(&target).join(std::fs::read_link(&target)?),
+            _ => return Ok(target),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
+}
+
+/// How many names (hard links) the file of `meta` has.
+fn hard_links(meta: &Metadata) -> u64 {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        meta.nlink()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = meta;
+        1
+    }
+}
+
+/// Gives `file` the owner and group of the file it replaces, as far as the
+/// process may: both as root, else the group if the process is in it, else
+/// neither (the new file is then the process's own, as any file it makes).
+fn keep_owner(file: &File, existing: &Metadata) {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{MetadataExt, fchown};
+        if fchown(file, Some(existing.uid()), Some(existing.gid())).is_err() {
+            let _ = fchown(file, None, Some(existing.gid()));
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (file, existing);
+}
+
+/// Copies the whole of `written` into the existing file at `target`, in
+/// place: same inode, same links (see [`PendingFile::commit`]).
+fn copy_into(written: &File, target: &Path) -> io::Result<()> {
+    let mut source = written.try_clone()?;
+    source.rewind()?;
+    let mut file = std::fs::OpenOptions::new().write(true).open(target)?;
+    let length = io::copy(&mut source, &mut file)?;
+    file.set_len(length)?;
+    file.sync_all()
 }
 
 impl Drop for PendingFile {

@@ -1,6 +1,7 @@
 //! An animation's frames as they arrive: encoded into one file (GIF, APNG,
 //! video) or written as numbered images, and the names of those images.
 
+use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
@@ -117,6 +118,16 @@ pub(crate) fn describe_files(files: &[PathBuf]) -> String {
         [first, .., last] => format!("{} ... {}", first.display(), last.display()),
         [] => String::new(),
     }
+}
+
+/// The numbered images of `frames` (from 1, of `count` in all) named after
+/// `base`, with their numbers.
+pub(crate) fn frame_names(
+    base: &Path,
+    frames: RangeInclusive<u32>,
+    count: u32,
+) -> impl Iterator<Item = (u32, PathBuf)> {
+    frames.map(move |k| (k, frame_path(base, k as usize, count as usize)))
 }
 
 /// The file name of frame `k` of `n`: the frame number, zero-padded to at

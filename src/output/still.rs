@@ -102,6 +102,62 @@ pub(super) mod tests {
     }
 
     #[test]
+    fn a_symbolic_link_stays_a_link_and_its_file_gets_the_image() {
+        use std::os::unix::fs::PermissionsExt;
+        let (dir, elsewhere) = (tempfile::tempdir().expect("temp dir"), tempfile::tempdir().expect("temp dir"));
+        let target = elsewhere.path().join("real.png");
+        std::fs::write(&target, b"old").expect("written");
+        std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o640)).expect("chmod");
+        let link = dir.path().join("link.png");
+        std::os::unix::fs::symlink(&target, &link).expect("linked");
+        // A relative link, through the first one, and one to a file not made yet.
+        let relative = dir.path().join("relative.png");
+        std::os::unix::fs::symlink("link.png", &relative).expect("linked");
+        let dangling = dir.path().join("dangling.png");
+        std::os::unix::fs::symlink("made.png", &dangling).expect("linked");
+        for path in [&link, &relative, &dangling] {
+            write_image(path, &sample()).expect("written through");
+            assert!(std::fs::symlink_metadata(path).expect("there").file_type().is_symlink(), "{path:?}");
+        }
+        assert_eq!(image::open(&target).expect("the target is the image").into_rgb8(), sample());
+        assert_eq!(std::fs::metadata(&target).expect("there").permissions().mode() & 0o777, 0o640);
+        assert_eq!(image::open(dir.path().join("made.png")).expect("made").into_rgb8(), sample());
+        assert_eq!(std::fs::read_dir(dir.path()).expect("list").count(), 4, "no temporary file left");
+        assert_eq!(std::fs::read_dir(elsewhere.path()).expect("list").count(), 1, "no temporary file left");
+    }
+
+    #[test]
+    fn a_hard_linked_output_keeps_its_inode_and_every_name_sees_the_image() {
+        use std::os::unix::fs::MetadataExt;
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (first, second) = (dir.path().join("a.png"), dir.path().join("b.png"));
+        std::fs::write(&first, vec![7; 100_000]).expect("written");
+        std::fs::hard_link(&first, &second).expect("linked");
+        let inode = std::fs::metadata(&first).expect("there").ino();
+        write_image(&second, &sample()).expect("written in place");
+        for path in [&first, &second] {
+            assert_eq!(std::fs::metadata(path).expect("there").ino(), inode, "{path:?}");
+            assert_eq!(image::open(path).expect("the image, whole and no longer").into_rgb8(), sample());
+        }
+        assert_eq!(std::fs::read_dir(dir.path()).expect("list").count(), 2, "no temporary file left");
+    }
+
+    #[test]
+    fn a_replaced_file_keeps_its_owner_where_the_process_may_give_it() {
+        use std::os::unix::fs::MetadataExt;
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("theirs.png");
+        std::fs::write(&path, b"old").expect("written");
+        if std::os::unix::fs::chown(&path, Some(4321), Some(4321)).is_err() {
+            eprintln!("not root: only root gives a file to another owner; skipped");
+            return;
+        }
+        write_image(&path, &sample()).expect("replaced");
+        let meta = std::fs::metadata(&path).expect("there");
+        assert_eq!((meta.uid(), meta.gid()), (4321, 4321));
+    }
+
+    #[test]
     fn a_cancelled_write_leaves_the_target_as_it_was_and_no_temporary_file() {
         static RAISED: AtomicBool = AtomicBool::new(true);
         let dir = tempfile::tempdir().expect("temp dir");

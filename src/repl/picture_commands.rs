@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
-use crate::output::{self, Content, FrameSink};
+use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::playback::AnimationOptions;
 use crate::settings::FRAMES;
 
@@ -15,6 +15,7 @@ use super::outputs::{FrontEnd, Output, Picture, PixelExplanation, PreviewSize};
 use super::render_steps::{duration, explain_defaults, render_frames, render_scene, write_failure};
 use super::rendering::{Size, render_options};
 use super::report::{counted, show_scene_warnings};
+use super::session::Session;
 use super::shell::Shell;
 
 pub(crate) fn render_command(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
@@ -107,6 +108,7 @@ pub(crate) fn save(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
         }
     };
     let path = PathBuf::from(file);
+    not_a_file_read(session, &path, None)?;
     check_output(&path, Content::Still)?;
     explain_defaults(session, front);
     show_scene_warnings(session, &mut shell.warned, front, size, false);
@@ -125,8 +127,11 @@ pub(crate) fn anim(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     };
     let frames = parse_count(frames, &FRAMES)?;
     let animation = AnimationOptions::parse_words(options).map_err(usage)?;
+    animation.timeline.check(1..=frames).map_err(usage)?;
     let path = PathBuf::from(file);
+    not_a_file_read(session, &path, None)?;
     let format = output::check_animation_output(&path, &animation).map_err(|e| CommandError::Failed(e.to_string()))?;
+    not_a_file_read(session, &path, Some((format, frames)))?;
     explain_defaults(session, front);
     let size = Size { width: session.settings().width, height: session.settings().height };
     show_scene_warnings(session, &mut shell.warned, front, size, true);
@@ -160,6 +165,29 @@ fn show_picture(front: &mut dyn FrontEnd, picture: Picture) -> Result<(), Comman
     front
         .present(Output::Picture(picture))
         .map_err(|e| CommandError::Failed(format!("cannot show the image here: {e}")))
+}
+
+/// Refuses an output that would write over a file the session read its
+/// inputs from (by any path or link), as the command line refuses the scene
+/// file: the file `path` names, or, with `numbered` (a format and the
+/// number of frames), one of the numbered images named after it. (`:write`
+/// writes the session's scene file over one on purpose.)
+fn not_a_file_read(session: &Session, path: &Path, numbered: Option<(ImageFormat, u32)>) -> Result<(), CommandError> {
+    for read in session.files_read() {
+        let over = match numbered {
+            None => output::same_file(path, read).then(|| (path.to_owned(), String::new())),
+            Some((format, frames)) => output::frame_over(read, path, format, 1..=frames, frames)
+                .map(|(frame, name)| (name, format!(", frame {frame} of the animation,"))),
+        };
+        if let Some((name, which)) = over {
+            return Err(CommandError::Failed(format!(
+                "`{}`{which} is the file loaded into the session (`:load {}`); give another output name",
+                name.display(),
+                read.display()
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Checks that `path` can receive `content` before any work is done.

@@ -108,6 +108,9 @@ pub struct Session {
     /// What `print` wrote and was not yet shown (also by the frames of an
     /// animation, which only read the session).
     printed: RefCell<PrintLog>,
+    /// Every file `:load`, `:reload`, `:watch` or `-i` read, which `:save`
+    /// and `:anim` must not write over (`:undo` and `:reset` keep them).
+    files_read: Vec<PathBuf>,
 }
 
 impl Session {
@@ -127,6 +130,7 @@ impl Session {
             printed: RefCell::default(),
             counts: Counts::default(),
             interrupt: None,
+            files_read: Vec::new(),
         }
     }
 
@@ -209,8 +213,16 @@ impl Session {
         self.history.iter().rev().find_map(|input| input.loaded_from.as_deref())
     }
 
+    /// The files the session read its inputs from, in the order first read.
+    pub(crate) fn files_read(&self) -> &[PathBuf] {
+        &self.files_read
+    }
+
     /// The input holding the text of the file at `path`, parsed.
     fn parse_file_input(&mut self, path: &Path, text: &str) -> Result<Input, Diagnostic> {
+        if !self.files_read.iter().any(|read| read == path) {
+            self.files_read.push(path.to_path_buf());
+        }
         let name = path.display().to_string();
         let source = self.sources.add(name.as_str(), text, 0);
         let program = parse_items(source, text)?;

@@ -55,6 +55,12 @@ impl Interpreter {
     fn number_variable(&mut self, name: &str, span: Span) -> EvalResult<Num> {
         match self.env.lookup(name) {
             Some(value) => match value.kind {
+                // Only `time` can hold one (see `Interpreter::new`).
+                Kind::Number(number) if !number.is_finite() => fail(
+                    Diagnostic::error(span, format!("`{name}` is {number} here, not a finite number"))
+                        .with_code("overflow")
+                        .with_label("not a finite number"),
+                ),
                 Kind::Number(number) => {
                     let tainted = value.tainted;
                     self.scene.time_use.read |= tainted;
