@@ -36,16 +36,10 @@ impl Timeline {
             None => Ok(()),
             Some(frame) => Err(PlaybackError::FrameTime {
                 frame,
-                time: format!("{} + {} * {}", exponent_form(self.start), frame - 1, exponent_form(self.step)),
+                time: format!("{} + {} * {}", format_number(self.start), frame - 1, format_number(self.step)),
             }),
         }
     }
-}
-
-/// `x` as the language writes it, or with an exponent when large (`1e308`,
-/// not 309 digits).
-fn exponent_form(x: f64) -> String {
-    if x.abs() < 1e15 { format_number(x) } else { format!("{x:e}") }
 }
 
 impl Default for Timeline {

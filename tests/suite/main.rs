@@ -15,6 +15,8 @@ mod eval;
 mod explain;
 mod fuzz;
 mod golden;
+mod hostile_files;
+mod hostile_scenes;
 mod lessons;
 mod parse;
 mod pov_export;

@@ -17,8 +17,7 @@ use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
 use rayrepl::scene::transform::rotation_matrix;
 use rayrepl::scene::{Primitive, Scene, Shape};
 
-mod common;
-use common::scenes::{light, material, scene};
+use crate::common::scenes::{light, material, scene};
 
 /// A mirror sphere of radius 1e40 around four ordinary spheres: the
 /// reflections start past the range of f32, where the tree's walk once met
