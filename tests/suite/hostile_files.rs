@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 
+use crate::common::interrupt::names_in;
+
 /// A small scene that reads `time`, in the order a file needs.
 const SCENE: &str = "camera distance 8 angle 1 end
 ambient 0.2
@@ -34,16 +36,6 @@ fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).expect("written");
     path
-}
-
-/// The names in `dir`, sorted.
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("listed")
-        .map(|entry| entry.expect("an entry").file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 // Point 5: a time that is not a finite number.
