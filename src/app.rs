@@ -245,10 +245,8 @@ impl ParsedScene {
             let checked = check_scene(interpreter.scene(), interpreter.origins(), &picture, allowed);
             warnings.extend(checked.into_iter().map(|warning| warning.diagnostic));
         }
-        for warning in warnings {
-            if self.warned.borrow_mut().first_time(&warning) {
-                show(&warning, &self.sources, diagnostics);
-            }
+        for warning in self.warned.borrow_mut().unseen(warnings) {
+            show(&warning, &self.sources, diagnostics);
         }
         match result {
             Ok(()) => Ok(interpreter),

@@ -9,7 +9,7 @@
 
 // Without the terminal (a core-only or wasm32 build), the parts of the
 // session core that only the terminal's front-end uses today are unused.
-#![cfg_attr(not(feature = "terminal"), allow(dead_code, unused_imports))]
+#![cfg_attr(not(feature = "terminal"), allow(dead_code, unused_imports, unused_macros))]
 
 pub mod animation;
 #[cfg(feature = "terminal")]

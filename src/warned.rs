@@ -1,7 +1,8 @@
 //! The one rule for showing a warning once: a warning is known by its code
 //! and the place it points at. The batch renderer (over the frames of an
-//! animation) and the session (over its renders) each show a warning only
-//! the first time one of their evaluations or renders raises it.
+//! animation) and the session (over its inputs and renders) pass every
+//! warning of an evaluation and every warning about the scene through
+//! [`Warned::unseen`], and show only what it gives back.
 
 use std::collections::HashSet;
 
@@ -14,8 +15,24 @@ pub(crate) struct Warned {
 }
 
 impl Warned {
-    /// Whether `warning` was not shown yet; from now on it counts as shown.
-    pub(crate) fn first_time(&mut self, warning: &Diagnostic) -> bool {
-        self.shown.insert((warning.code, warning.span))
+    /// The `warnings` not shown yet, in order; from now on they count as shown.
+    pub(crate) fn unseen(&mut self, warnings: impl IntoIterator<Item = Diagnostic>) -> Vec<Diagnostic> {
+        warnings.into_iter().filter(|warning| self.shown.insert((warning.code, warning.span))).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::SourceId;
+
+    #[test]
+    fn a_warning_is_shown_once_by_its_code_and_place() {
+        let at = |start| Span::new(SourceId(0), start, start + 1);
+        let warning = |code, start| Diagnostic::warning(at(start), "w").with_code(code);
+        let mut warned = Warned::default();
+        assert_eq!(warned.unseen([warning("a", 0), warning("a", 0), warning("b", 0)]).len(), 2);
+        let again = warned.unseen([warning("a", 0), warning("a", 1)]);
+        assert_eq!(again, [warning("a", 1)], "only the new place");
     }
 }

@@ -7,12 +7,10 @@ use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::FrontEnd;
 use super::picture_commands::render_command;
 use super::reload;
-use super::report::{self, show_printed};
-use super::session::Session;
+use super::report::{self, show_printed, show_warnings};
 use super::shell::Shell;
 
 pub(crate) fn load(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
-    let session = &mut shell.session;
     let [file] = arguments else {
         let problem = if arguments.is_empty() {
             "give the file to load"
@@ -21,24 +19,23 @@ pub(crate) fn load(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
         };
         return Err(CommandError::Usage(problem.to_string()));
     };
-    load_file(session, Path::new(file), front)
+    load_file(shell, Path::new(file), front)
 }
 
 /// Runs the file at `path` into the session, reporting any failure on the
 /// front; `Err(())` if it failed (the session is then unchanged).
-pub(crate) fn load_reporting(session: &mut Session, path: &Path, front: &mut dyn FrontEnd) -> Result<(), ()> {
-    let loaded = load_file(session, path, front);
-    show_printed(session, front);
-    loaded.map(|_| ()).map_err(|error| error.report(session, front))
+pub(crate) fn load_reporting(shell: &mut Shell, path: &Path, front: &mut dyn FrontEnd) -> Result<(), ()> {
+    let loaded = load_file(shell, path, front);
+    show_printed(&shell.session, front);
+    loaded.map(|_| ()).map_err(|error| error.report(&shell.session, front))
 }
 
 /// Runs the file at `path` into the session, as one input.
-fn load_file(session: &mut Session, path: &Path, front: &mut dyn FrontEnd) -> CommandResult {
+fn load_file(shell: &mut Shell, path: &Path, front: &mut dyn FrontEnd) -> CommandResult {
     let text = reload::read(path)?;
-    let accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
-    for warning in &accepted.warnings {
-        front.diagnostic(warning, session.sources());
-    }
+    let session = &mut shell.session;
+    let mut accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
+    show_warnings(session, &mut shell.warned, front, std::mem::take(&mut accepted.warnings));
     front.say(format!("loaded {}", path.display()));
     report::confirm(&accepted, session, front);
     Ok(Flow::Continue)

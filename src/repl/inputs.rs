@@ -5,7 +5,7 @@ use crate::lang::Diagnostic;
 use super::commands;
 use super::lessons;
 use super::outputs::FrontEnd;
-use super::report::{self, show_printed};
+use super::report::{self, show_printed, show_warnings};
 use super::session::Accepted;
 use super::shell::Shell;
 
@@ -33,10 +33,9 @@ pub(crate) fn report_input(
     let session = &shell.session;
     show_printed(session, front);
     match result {
-        Ok(accepted) => {
-            for warning in &accepted.warnings {
-                front.diagnostic(warning, session.sources());
-            }
+        Ok(mut accepted) => {
+            let warnings = std::mem::take(&mut accepted.warnings);
+            show_warnings(session, &mut shell.warned, front, warnings);
             report::confirm(&accepted, session, front);
             lessons::check_input(shell, front);
             Ok(())

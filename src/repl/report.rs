@@ -2,6 +2,7 @@
 
 use std::fmt::{self, Display};
 
+use crate::lang::Diagnostic;
 use crate::lang::ast::{InstrKind, Item};
 use crate::lang::number::Number;
 /// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
@@ -170,10 +171,19 @@ pub(crate) fn show_scene_warnings(
 ) {
     let screen = session.settings().screen;
     let picture = Picture { width: size.width, height: size.height, screen, animation };
-    for warning in session.scene_warnings(&picture) {
-        if warned.first_time(&warning) {
-            front.diagnostic(&warning, session.sources());
-        }
+    show_warnings(session, warned, front, session.scene_warnings(&picture));
+}
+
+/// Shows those of `warnings` (of an evaluation, or about the scene) not
+/// `warned` about before.
+pub(crate) fn show_warnings(
+    session: &Session,
+    warned: &mut Warned,
+    front: &mut dyn FrontEnd,
+    warnings: Vec<Diagnostic>,
+) {
+    for warning in warned.unseen(warnings) {
+        front.diagnostic(&warning, session.sources());
     }
 }
 

@@ -89,7 +89,7 @@ fn run_in(shell: &mut Shell, console: &mut Console, input: impl BufRead, options
     let mut script =
         Script { shell, console, keep_going: options.keep_going, errors: 0, wrote: false, interrupted: false };
     if let Some(path) = &options.initial_file {
-        let loaded = load_reporting(&mut script.shell.session, path, script.console);
+        let loaded = load_reporting(script.shell, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
             return Ended::Status(1);
         }

@@ -102,7 +102,7 @@ fn run_entries(lines: impl LineSource, front: &mut dyn FrontEnd, options: &Sessi
     let limits = Limits { raised_with: RaisedWith::Commands, ..options.limits };
     let mut shell = Shell::new(new_session(&SessionOptions { limits, ..options.clone() }, front.cancel()));
     if let Some(path) = &options.initial_file {
-        let _ = load_reporting(&mut shell.session, path, front);
+        let _ = load_reporting(&mut shell, path, front);
     }
     Repl { lines, shell, inputs: 0 }.run(front)
 }
