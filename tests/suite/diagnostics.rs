@@ -10,7 +10,7 @@
 //!
 //! The snapshots are in `tests/snapshots/{file,script,typed}/`. After a
 //! change of a message, review the differences and accept them with
-//! `INSTA_UPDATE=always cargo test --release --test diagnostics` (or
+//! `INSTA_UPDATE=always cargo test --release --test suite diagnostics::` (or
 //! `cargo insta review`); on CI (`CI` set) nothing is written and any
 //! difference fails.
 

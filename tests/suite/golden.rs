@@ -6,7 +6,7 @@
 //! report names each scene, how many pixels differ and by how much, and where
 //! the first ones are; the rendered image is saved next to the golden one as
 //! `target/golden/NAME.actual.png` for a look. After a deliberate change,
-//! `RAYREPL_BLESS=1 cargo test --release --test golden` rewrites the goldens.
+//! `RAYREPL_BLESS=1 cargo test --release --test suite golden::` rewrites the goldens.
 
 use std::path::{Path, PathBuf};
 
