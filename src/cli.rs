@@ -111,7 +111,7 @@ pub struct Cli {
     pub apng: bool,
 
     /// Write the scene evaluated at --time as a POV-Ray 3.7 scene file instead of rendering it (`-`: to stdout).
-    #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats"])]
+    #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats", "explain", "threads", "screen"])]
     pub export_pov: Option<PathBuf>,
 
     /// Deepest chain of procedure calls allowed.
@@ -137,7 +137,7 @@ pub struct Cli {
 
     /// Explain the colour of pixel X,Y (from the left and from the top) instead of writing an image: what the
     /// camera ray met and which `put` and calls placed it, each light's part, the reflections, and the bytes.
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["output", "anim", "frames", "watch"])]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["output", "anim", "frames", "watch", "stats"])]
     pub explain: Option<(u32, u32)>,
 
     /// With --explain: print the explanation as one JSON object. With --check: print each diagnostic as one
@@ -151,7 +151,7 @@ pub struct Cli {
 }
 
 /// The flags that only matter when an image is rendered, which `--check` does not do.
-const RENDER_ONLY: [&str; 19] = [
+const RENDER_ONLY: [&str; 20] = [
     "output",
     "watch",
     "quiet",
@@ -171,6 +171,7 @@ const RENDER_ONLY: [&str; 19] = [
     "loops",
     "apng",
     "explain",
+    "threads",
 ];
 
 /// The two screen conventions of SPEC 5.

@@ -500,6 +500,17 @@ fn flags_that_would_do_nothing_are_refused() {
         .assert()
         .code(2)
         .stderr(contains("'--check' cannot be used with '--output <FILE>'"));
+    // Flags the explanation, the check and the export have no use for.
+    let unused: [(&[&str], &str); 5] = [
+        (&["--explain", "1,1", "--stats"], "'--explain <X,Y>' cannot be used with '--stats'"),
+        (&["--export-pov", "x.pov", "--explain", "1,1"], "'--export-pov <OUT.pov>' cannot be used with '--explain"),
+        (&["--export-pov", "x.pov", "--threads", "2"], "'--export-pov <OUT.pov>' cannot be used with '--threads"),
+        (&["--export-pov", "x.pov", "--screen", "bottom"], "'--export-pov <OUT.pov>' cannot be used with '--screen"),
+        (&["--check", "--threads", "2"], "'--check' cannot be used with '--threads"),
+    ];
+    for (flags, message) in unused {
+        rayrepl().arg(&path).args(flags).assert().code(2).stderr(contains(message));
+    }
 }
 
 /// Whether `ffmpeg` can be run (videos need it).
