@@ -34,8 +34,8 @@ pub(crate) fn reload(shell: &mut Shell, arguments: &[String], front: &mut dyn Fr
 
 /// `:watch FILE`: loads the file (in place of what it brought before), then
 /// again at every save, rendering with `render` each time, until Ctrl-C. A
-/// version that fails is reported and leaves the session, and the last
-/// picture, as they were.
+/// version that fails, or an empty one, is reported and leaves the session,
+/// and the last picture, as they were.
 pub(crate) fn watch(
     shell: &mut Shell,
     arguments: &[String],
@@ -65,6 +65,12 @@ pub(crate) fn watch(
             }
             text = match read(&path) {
                 Ok(new) if Some(&new) == last_text.as_ref() => continue,
+                Ok(new) if new.trim().is_empty() => {
+                    // An editor that truncates the file before writing it
+                    // leaves it empty for a moment: not a scene to load.
+                    front.note(format!("{} is empty: the last version stays until it is saved again", path.display()));
+                    continue;
+                }
                 Ok(new) => new,
                 Err(error) => {
                     error.report(&shell.session, front);

@@ -407,6 +407,10 @@ fn watch_renders_at_every_save_until_ctrl_c() {
         .expect("saved");
     session.expect("(2 objects and 0 lights in the scene)").unwrap();
     session.expect("rendered 16×12").unwrap();
+    // Emptied, as an editor that truncates before writing leaves it: the
+    // last version stays (as `--watch` keeps its last good picture).
+    std::fs::write(&file, "").expect("emptied");
+    session.expect("watched.ray is empty: the last version stays until it is saved again").unwrap();
     session.send(ControlCode::EndOfText).unwrap();
     session.expect("stopped watching").unwrap();
     session.expect("ray> ").unwrap();
