@@ -10,6 +10,7 @@ use annotate_snippets::renderer::{DEFAULT_EMPHASIS_STYLE, DEFAULT_ERROR_STYLE, D
 use anstream::stream::RawStream;
 use anstream::{AutoStream, ColorChoice};
 
+use crate::failure::end_if_closed_pipe;
 use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
 
@@ -24,6 +25,9 @@ pub(crate) struct Console<'a> {
     err: AutoStream<&'a mut (dyn Write + 'static)>,
     /// Ctrl-C stops what an entry does through this switch, when installed.
     pub cancel: Option<&'static CancelSwitch>,
+    /// Why something could not be written (a full disk), the first time: a
+    /// script then fails.
+    pub unwritten: Option<String>,
     /// The line being written, kept to reuse its allocation.
     line: String,
 }
@@ -39,25 +43,36 @@ impl<'a> Console<'a> {
             out_choice,
             err: AutoStream::new(err as &mut dyn Write, err_choice),
             cancel: None,
+            unwritten: None,
             line: String::new(),
         }
     }
 
-    /// Writes one line of information. Output errors (a closed pipe) are
-    /// ignored: the session goes on and the exit status tells what happened.
+    /// Notes a write that failed: a closed pipe ends the program quietly
+    /// (`crate::failure`), anything else is remembered in `unwritten`, and
+    /// the session goes on.
+    fn written(&mut self, result: std::io::Result<()>) {
+        if let Err(error) = result {
+            end_if_closed_pipe(&error);
+            self.unwritten.get_or_insert_with(|| crate::output::io_reason(&error));
+        }
+    }
+
+    /// Writes one line of information.
     pub(crate) fn say(&mut self, text: impl Display) {
         use std::fmt::Write as _;
         // Formatted first, so that the stream sees one write per line.
         self.line.clear();
         let _ = writeln!(self.line, "{text}");
         let plain = self.line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
-        let _ = if plain {
+        let written = if plain {
             // Nothing to style or strip: most lines, such as confirmations.
             self.out.write_all(self.line.as_bytes())
         } else {
             AutoStream::new(&mut *self.out, self.out_choice).write_all(self.line.as_bytes())
         };
-        let _ = self.out.flush();
+        let flushed = written.and_then(|()| self.out.flush());
+        self.written(flushed);
     }
 
     /// Writes a one-line note that helps a learner along, styled as the
@@ -70,8 +85,9 @@ impl<'a> Console<'a> {
     /// the first line of a diagnostic.
     pub(crate) fn error(&mut self, text: impl Display) {
         let (error, emphasis) = (DEFAULT_ERROR_STYLE, DEFAULT_EMPHASIS_STYLE);
-        let _ = writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}");
-        let _ = self.err.flush();
+        let written = writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}");
+        let flushed = written.and_then(|()| self.err.flush());
+        self.written(flushed);
     }
 
     /// Writes a note about what the program printed, with the diagnostics.
@@ -81,8 +97,9 @@ impl<'a> Console<'a> {
 
     /// Writes a line the program printed (`print`), with the diagnostics.
     fn printed(&mut self, line: impl Display) {
-        let _ = writeln!(self.err, "{line}");
-        let _ = self.err.flush();
+        let written = writeln!(self.err, "{line}");
+        let flushed = written.and_then(|()| self.err.flush());
+        self.written(flushed);
     }
 
     /// Writes a diagnostic about program text.

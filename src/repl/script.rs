@@ -61,7 +61,13 @@ pub(crate) fn run_script_keeping_session(
     let mut console = Console::new(out, err);
     console.cancel = cancel;
     let mut shell = Shell::new(new_session(options, console.cancel));
-    let ended = run_in(&mut shell, &mut console, input, options);
+    let mut ended = run_in(&mut shell, &mut console, input, options);
+    if let Some(reason) = console.unwritten.take() {
+        console.error(format!("some of the script's answers could not be written: {reason}"));
+        if !matches!(ended, Ended::Status(code) if code != 0) {
+            ended = Ended::Status(1);
+        }
+    }
     drop(console);
     let code = match ended {
         Ended::Status(code) => code,

@@ -85,3 +85,19 @@ fn an_explanation_to_a_full_disk_fails_saying_why() {
     assert_eq!(output.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("rayrepl: cannot write the explanation to standard output: the disk is full"), "{stderr}");
 }
+
+#[test]
+fn a_script_whose_answers_cannot_be_written_fails_saying_why() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .stdin(Stdio::piped())
+        .stdout(full_disk())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("rayrepl starts");
+    let script = b":size 8 6\n:scene\n";
+    std::io::Write::write_all(&mut child.stdin.take().expect("its input"), script).expect("the script is written");
+    let output = child.wait_with_output().expect("rayrepl ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error: some of the script's answers could not be written: the disk is full"), "{stderr}");
+}
