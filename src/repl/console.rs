@@ -28,8 +28,6 @@ pub(crate) struct Console<'a> {
     /// Why something could not be written (a full disk), the first time: a
     /// script then fails.
     pub unwritten: Option<String>,
-    /// The line being written, kept to reuse its allocation.
-    line: String,
 }
 
 impl<'a> Console<'a> {
@@ -44,7 +42,6 @@ impl<'a> Console<'a> {
             err: AutoStream::new(err as &mut dyn Write, err_choice),
             cancel: None,
             unwritten: None,
-            line: String::new(),
         }
     }
 
@@ -60,16 +57,19 @@ impl<'a> Console<'a> {
 
     /// Writes one line of information.
     pub(crate) fn say(&mut self, text: impl Display) {
-        use std::fmt::Write as _;
-        // Formatted first, so that the stream sees one write per line.
-        self.line.clear();
-        let _ = writeln!(self.line, "{text}");
-        let plain = self.line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
+        self.say_line(text.to_string());
+    }
+
+    /// Writes `line` (a message already formatted, without its newline) in
+    /// one write, so that the stream sees whole lines.
+    fn say_line(&mut self, mut line: String) {
+        line.push('\n');
+        let plain = line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
         let written = if plain {
             // Nothing to style or strip: most lines, such as confirmations.
-            self.out.write_all(self.line.as_bytes())
+            self.out.write_all(line.as_bytes())
         } else {
-            AutoStream::new(&mut *self.out, self.out_choice).write_all(self.line.as_bytes())
+            AutoStream::new(&mut *self.out, self.out_choice).write_all(line.as_bytes())
         };
         let flushed = written.and_then(|()| self.out.flush());
         self.written(flushed);
@@ -113,15 +113,15 @@ impl FrontEnd for Console<'_> {
     /// play have no text of their own (their confirmation is a message).
     fn show(&mut self, output: Output, sources: &SourceMap) -> Result<(), String> {
         match output {
-            Output::Text { role: TextRole::Message, text } => self.say(text),
+            Output::Text { role: TextRole::Message, text } => self.say_line(text),
             Output::Text { role: TextRole::Note, text } => self.note(text),
             Output::Text { role: TextRole::Error, text } => self.error(text),
             Output::Text { role: TextRole::Printed, text } => self.printed(text),
             Output::Text { role: TextRole::PrintedNote, text } => self.printed_note(text),
             Output::Diagnostic(diagnostic) => self.diagnostic(&diagnostic, sources),
-            Output::Explanation(explanation) => self.say(&explanation.text),
-            Output::LessonStep(step) => self.say(step.to_text()),
-            Output::LessonVerdict(verdict) => self.say(verdict.to_text()),
+            Output::Explanation(explanation) => self.say_line(explanation.text),
+            Output::LessonStep(step) => self.say_line(step.to_text()),
+            Output::LessonVerdict(verdict) => self.say_line(verdict.to_text()),
             Output::Picture(_) | Output::Frames { .. } | Output::AnimationFile(_) => {}
         }
         Ok(())
