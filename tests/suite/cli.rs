@@ -765,6 +765,38 @@ fn watch_renders_again_at_every_save_and_keeps_the_last_good_picture() {
 }
 
 #[test]
+fn watch_follows_the_scene_when_its_folder_is_made_again() {
+    // As a `git checkout` or a build tool does: the folder removed, made
+    // again, and the scene written in it.
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let folder = dir.path().join("scenes");
+    std::fs::create_dir(&folder).expect("made");
+    let path = folder.join("scene.ray");
+    std::fs::write(&path, SPHERE).expect("scene written");
+    let out = dir.path().join("out.png");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .arg(&path)
+        .args(["--watch", "--width", "16", "--height", "12", "-o"])
+        .arg(&out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let mut stderr = StderrLines::of(&mut child);
+    stderr.wait_for("wrote");
+    let red = std::fs::read(&out).expect("the first picture");
+    for colour in ["0, 255, 0", "0, 0, 255"] {
+        std::fs::remove_dir_all(&folder).expect("removed");
+        std::thread::sleep(std::time::Duration::from_millis(200));
+        std::fs::create_dir(&folder).expect("made again");
+        std::fs::write(&path, SPHERE.replace("255, 0, 0", colour)).expect("saved");
+        stderr.wait_for("wrote");
+        assert_ne!(std::fs::read(&out).expect("the new picture"), red, "{colour}");
+    }
+    child.kill().expect("the watch ends");
+    let _ = child.wait();
+}
+
+#[test]
 fn watch_needs_a_scene_file() {
     let (_dir, path) = scene(SPHERE);
     rayrepl().args(["--watch"]).assert().code(2).stderr(contains("--watch does nothing in a session"));
