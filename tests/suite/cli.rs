@@ -728,18 +728,24 @@ impl StderrLines {
     }
 }
 
+/// `rayrepl SCENE --watch` at 16×12, writing to `out`, with its stderr.
+fn watch_16x12(scene: &Path, out: &Path) -> (std::process::Child, StderrLines) {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl"))
+        .arg(scene)
+        .args(["--watch", "--width", "16", "--height", "12", "-o"])
+        .arg(out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let stderr = StderrLines::of(&mut child);
+    (child, stderr)
+}
+
 #[test]
 fn watch_renders_again_at_every_save_and_keeps_the_last_good_picture() {
     let (dir, path) = scene(SPHERE);
     let out = dir.path().join("out.png");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl"))
-        .arg(&path)
-        .args(["--watch", "--width", "16", "--height", "12", "-o"])
-        .arg(&out)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut stderr = StderrLines::of(&mut child);
+    let (mut child, mut stderr) = watch_16x12(&path, &out);
     stderr.wait_for("watching");
     stderr.wait_for("wrote");
     let first = std::fs::read(&out).expect("the first picture");
@@ -774,14 +780,7 @@ fn watch_follows_the_scene_when_its_folder_is_made_again() {
     let path = folder.join("scene.ray");
     std::fs::write(&path, SPHERE).expect("scene written");
     let out = dir.path().join("out.png");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rayrepl"))
-        .arg(&path)
-        .args(["--watch", "--width", "16", "--height", "12", "-o"])
-        .arg(&out)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut stderr = StderrLines::of(&mut child);
+    let (mut child, mut stderr) = watch_16x12(&path, &out);
     stderr.wait_for("wrote");
     let red = std::fs::read(&out).expect("the first picture");
     for colour in ["0, 255, 0", "0, 0, 255"] {
