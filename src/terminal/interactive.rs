@@ -1,6 +1,7 @@
 //! The interactive session: prompts, the line editor, history on disk,
 //! Ctrl-C and Ctrl-D.
 
+use std::collections::VecDeque;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -104,7 +105,7 @@ fn run_entries(lines: impl LineSource, front: &mut dyn FrontEnd, options: &Sessi
     if let Some(path) = &options.initial_file {
         let _ = load_reporting(&mut shell, path, front);
     }
-    Repl { lines, shell, inputs: 0 }.run(front)
+    Repl { lines, shell, inputs: 0, queued: VecDeque::new() }.run(front)
 }
 
 /// Where the session's lines come from: the line editor, or lines given in
@@ -182,6 +183,9 @@ struct Repl<L> {
     shell: Shell,
     /// Inputs submitted so far, to name each one in diagnostics.
     inputs: usize,
+    /// The lines of one read not handled yet: the lines of a paste (or of
+    /// an entry recalled from history) are handled one at a time, as typed.
+    queued: VecDeque<EnteredLine>,
 }
 
 impl<L: LineSource> Repl<L> {
@@ -193,7 +197,11 @@ impl<L: LineSource> Repl<L> {
         loop {
             let prompt = if pending.is_empty() { self.prompt() } else { continuation_prompt(&pending) };
             let fixing = !to_fix.is_empty();
-            match self.lines.read(&prompt, &std::mem::take(&mut to_fix), &pending, &self.shell.session) {
+            let read = match self.queued.pop_front() {
+                Some(line) => Ok(line),
+                None => self.read(&prompt, &std::mem::take(&mut to_fix), &pending),
+            };
+            match read {
                 Ok(EnteredLine { text: line, typed }) => {
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
@@ -204,6 +212,7 @@ impl<L: LineSource> Repl<L> {
                         }
                         let armed = front.cancel().map(|switch| switch.arm());
                         let flow = commands::execute(&mut self.shell, &line, front);
+                        self.drop_queued_if(armed.as_ref().is_some_and(|armed| armed.pressed()), front);
                         drop(armed);
                         let unwritten = self.shell.session.unwritten();
                         if flow == Ok(Flow::Quit) && leave(&pending, unwritten, &mut quit_warned, ":quit", front) {
@@ -252,6 +261,31 @@ impl<L: LineSource> Repl<L> {
         }
     }
 
+    /// The next line from the editor; a read of several lines gives the
+    /// first, and queues the others.
+    fn read(&mut self, prompt: &str, initial: &str, pending: &str) -> Result<EnteredLine, ReadlineError> {
+        let EnteredLine { text, typed } = self.lines.read(prompt, initial, pending, &self.shell.session)?;
+        let mut lines: VecDeque<EnteredLine> =
+            text.split('\n').map(|line| EnteredLine { text: line.to_string(), typed: false }).collect();
+        // Only the last line was ended by a person's Enter, if any.
+        if let Some(last) = lines.back_mut() {
+            last.typed = typed;
+        }
+        let first = lines.pop_front();
+        self.queued = lines;
+        // `split` gives at least one line: the text itself if it has no line end.
+        Ok(first.unwrap_or(EnteredLine { text: String::new(), typed }))
+    }
+
+    /// Drops the lines still queued if Ctrl-C was `pressed` during the
+    /// entry before them: it stops a paste as it stops a script.
+    fn drop_queued_if(&mut self, pressed: bool, front: &mut dyn FrontEnd) {
+        if pressed && !self.queued.is_empty() {
+            front.say(format!("(the rest of the paste dropped: {})", counted(self.queued.len(), "line")));
+            self.queued.clear();
+        }
+    }
+
     /// The prompt for a new entry, with the number that names it in
     /// messages (`<input 3>`), as IPython's `In [3]:`.
     fn prompt(&self) -> String {
@@ -265,8 +299,9 @@ impl<L: LineSource> Repl<L> {
         self.lines.remember(input);
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
-        let _armed = front.cancel().map(|switch| switch.arm());
+        let armed = front.cancel().map(|switch| switch.arm());
         let _ = handle_input(&mut self.shell, front, &name, input, 0);
+        self.drop_queued_if(armed.as_ref().is_some_and(|armed| armed.pressed()), front);
     }
 }
 

@@ -422,6 +422,50 @@ fn watch_renders_at_every_save_until_ctrl_c() {
     session.expect(Eof).unwrap();
 }
 
+/// `text` as a terminal sends a bracketed paste: its line ends as Enter (CR).
+fn bracketed_paste(text: &str) -> String {
+    format!("\x1b[200~{}\x1b[201~", text.replace('\n', "\r"))
+}
+
+#[test]
+fn a_bracketed_paste_runs_its_lines_as_if_typed() {
+    let (mut session, _home) = fresh(false);
+    // A command among program lines, and a construct over two lines: each
+    // line as if typed and ended with Enter, the last one included.
+    let pasted = "let a = 1\nlet b = a + 1\n:scene\nput sphere center 0, 0, 0 radius b\n  kd 1 ks 0 phong 1 color 255, 0, 0 end\n";
+    session.send(bracketed_paste(pasted)).unwrap();
+    session.expect("b = 2").unwrap();
+    session.expect("objects:  0").unwrap();
+    session.expect("put 1 sphere").unwrap();
+    session.expect("[5] ray> ").unwrap();
+    // A second paste is an entry of its own.
+    session.send(bracketed_paste("print a\n")).unwrap();
+    session.expect("<input 5>:1: a = 1").unwrap();
+    session.expect("[6] ray> ").unwrap();
+    // A paste without a line end waits in the editor, to be edited.
+    session.send(bracketed_paste("let c = 3")).unwrap();
+    session.send(" + 1").unwrap();
+    session.send("\r").unwrap();
+    session.expect("c = 4").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
+fn ctrl_c_drops_the_rest_of_a_paste() {
+    let (mut session, _home) = fresh(false);
+    let pasted = "proc f(n) if n > 0 then f(n - 1) f(n - 1) end end\nf(60)\nlet after = 1\nlet also = 2\n";
+    session.send(bracketed_paste(pasted)).unwrap();
+    session.expect("defined proc f(n)").unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("stopped by Ctrl-C").unwrap();
+    session.expect("(the rest of the paste dropped: 2 lines)").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("numbers:    time = 0").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
 #[test]
 fn a_long_line_pasted_without_bracketed_paste_is_written_once() {
     // Each key of a pasted line arrives alone. The editor writes each at

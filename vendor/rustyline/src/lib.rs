@@ -831,8 +831,28 @@ impl<H: Helper, I: History> Editor<H, I> {
                 self.term.cursor = s.layout.cursor.col as usize;
             }
 
+            // rayrepl's patch: a bracketed paste that ends with a line end
+            // ends with Enter, as the same lines typed would.
+            let pasted_enter = if let Cmd::Insert(_, text) = &mut cmd
+                && text.ends_with('\n')
+            {
+                text.pop();
+                true
+            } else {
+                false
+            };
+
             // Execute things can be done solely on a state object
-            match command::execute(cmd, &mut s, &input_state, &mut self.kill_ring, &self.config)? {
+            let mut status =
+                command::execute(cmd, &mut s, &input_state, &mut self.kill_ring, &self.config)?;
+            if pasted_enter && matches!(status, command::Status::Proceed) {
+                let enter = Cmd::AcceptOrInsertLine {
+                    accept_in_the_middle: true,
+                };
+                status =
+                    command::execute(enter, &mut s, &input_state, &mut self.kill_ring, &self.config)?;
+            }
+            match status {
                 command::Status::Proceed => continue,
                 command::Status::Submit => break,
             }
