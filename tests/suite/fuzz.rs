@@ -9,8 +9,9 @@ use crate::common::sexpr::{cond, expr};
 
 // ---- Anything at all ------------------------------------------------------------
 
-/// Every keyword, symbol, and some names, numbers and noise.
-fn vocabulary() -> Vec<&'static str> {
+/// Every keyword, symbol, and some names, numbers and noise (the
+/// hostile runs insert them too).
+pub(crate) fn vocabulary() -> Vec<&'static str> {
     rayrepl::lang::words::keyword_names().chain(SYMBOLS_AND_NOISE.iter().copied()).collect()
 }
 

@@ -16,6 +16,7 @@ mod explain;
 mod fuzz;
 mod golden;
 mod hostile_files;
+mod hostile_runs;
 mod hostile_scenes;
 mod lessons;
 mod parse;

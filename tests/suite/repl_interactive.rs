@@ -451,6 +451,18 @@ fn a_bracketed_paste_runs_its_lines_as_if_typed() {
 }
 
 #[test]
+fn keys_typed_right_after_ctrl_c_are_kept() {
+    let (mut session, _home) = fresh(false);
+    session.send("let a = 1").unwrap();
+    // Ctrl-C and the next line in one write: the editor reads them together.
+    session.send("\x03let b = 2\r").unwrap();
+    session.expect("b = 2").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("numbers:    b = 2, time = 0").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
 fn ctrl_c_drops_the_rest_of_a_paste() {
     let (mut session, _home) = fresh(false);
     let pasted = "proc f(n) if n > 0 then f(n - 1) f(n - 1) end end\nf(60)\nlet after = 1\nlet also = 2\n";

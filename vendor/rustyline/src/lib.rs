@@ -844,17 +844,24 @@ impl<H: Helper, I: History> Editor<H, I> {
 
             // Execute things can be done solely on a state object
             let mut status =
-                command::execute(cmd, &mut s, &input_state, &mut self.kill_ring, &self.config)?;
-            if pasted_enter && matches!(status, command::Status::Proceed) {
+                command::execute(cmd, &mut s, &input_state, &mut self.kill_ring, &self.config);
+            if pasted_enter && matches!(status, Ok(command::Status::Proceed)) {
                 let enter = Cmd::AcceptOrInsertLine {
                     accept_in_the_middle: true,
                 };
                 status =
-                    command::execute(enter, &mut s, &input_state, &mut self.kill_ring, &self.config)?;
+                    command::execute(enter, &mut s, &input_state, &mut self.kill_ring, &self.config);
             }
             match status {
-                command::Status::Proceed => continue,
-                command::Status::Submit => break,
+                Ok(command::Status::Proceed) => continue,
+                Ok(command::Status::Submit) => break,
+                // rayrepl's patch: the keys read ahead are kept for the next
+                // line when this one ends by Ctrl-C or Ctrl-D, as when it ends
+                // by Enter (they were lost: keys typed after a Ctrl-C).
+                Err(error) => {
+                    self.buffer = rdr.unbuffer();
+                    return Err(error);
+                }
             }
         }
 
