@@ -12,6 +12,7 @@ use std::fmt::Display;
 use std::io::{ErrorKind, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use crate::interruption::may_block;
 use crate::output::exit_discarding_unfinished;
 
 /// The name in front of the program's own failures.
@@ -41,8 +42,10 @@ pub(crate) use tell;
 /// Writes `line` and a newline on standard error, as this module says
 /// when it cannot.
 pub fn tell_line(line: impl Display) {
-    let mut stderr = std::io::stderr().lock();
-    let written = writeln!(stderr, "{line}").and_then(|()| stderr.flush());
+    let written = may_block(|| {
+        let mut stderr = std::io::stderr().lock();
+        writeln!(stderr, "{line}").and_then(|()| stderr.flush())
+    });
     if let Err(error) = written {
         end_if_closed_pipe(&error);
         UNWRITTEN.store(true, Ordering::SeqCst);

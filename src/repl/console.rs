@@ -11,6 +11,7 @@ use anstream::stream::RawStream;
 use anstream::{AutoStream, ColorChoice};
 
 use crate::failure::end_if_closed_pipe;
+use crate::interruption::may_block;
 use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
 
@@ -65,13 +66,15 @@ impl<'a> Console<'a> {
     fn say_line(&mut self, mut line: String) {
         line.push('\n');
         let plain = line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
-        let written = if plain {
-            // Nothing to style or strip: most lines, such as confirmations.
-            self.out.write_all(line.as_bytes())
-        } else {
-            AutoStream::new(&mut *self.out, self.out_choice).write_all(line.as_bytes())
-        };
-        let flushed = written.and_then(|()| self.out.flush());
+        let flushed = may_block(|| {
+            let written = if plain {
+                // Nothing to style or strip: most lines, such as confirmations.
+                self.out.write_all(line.as_bytes())
+            } else {
+                AutoStream::new(&mut *self.out, self.out_choice).write_all(line.as_bytes())
+            };
+            written.and_then(|()| self.out.flush())
+        });
         self.written(flushed);
     }
 
@@ -85,8 +88,9 @@ impl<'a> Console<'a> {
     /// the first line of a diagnostic.
     pub(crate) fn error(&mut self, text: impl Display) {
         let (error, emphasis) = (DEFAULT_ERROR_STYLE, DEFAULT_EMPHASIS_STYLE);
-        let written = writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}");
-        let flushed = written.and_then(|()| self.err.flush());
+        let flushed = may_block(|| {
+            writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}").and_then(|()| self.err.flush())
+        });
         self.written(flushed);
     }
 
@@ -97,14 +101,13 @@ impl<'a> Console<'a> {
 
     /// Writes a line the program printed (`print`), with the diagnostics.
     fn printed(&mut self, line: impl Display) {
-        let written = writeln!(self.err, "{line}");
-        let flushed = written.and_then(|()| self.err.flush());
+        let flushed = may_block(|| writeln!(self.err, "{line}").and_then(|()| self.err.flush()));
         self.written(flushed);
     }
 
     /// Writes a diagnostic about program text.
     fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
-        emit(&mut self.err, diagnostic, sources);
+        may_block(|| emit(&mut self.err, diagnostic, sources));
     }
 }
 
