@@ -42,9 +42,11 @@ pub(crate) use tell;
 /// Writes `line` and a newline on standard error, as this module says
 /// when it cannot.
 pub fn tell_line(line: impl Display) {
+    // Formatted first: only the write may block (`crate::interruption`).
+    let text = format!("{line}\n");
     let written = may_block(|| {
         let mut stderr = std::io::stderr().lock();
-        writeln!(stderr, "{line}").and_then(|()| stderr.flush())
+        stderr.write_all(text.as_bytes()).and_then(|()| stderr.flush())
     });
     if let Err(error) = written {
         end_if_closed_pipe(&error);

@@ -12,7 +12,6 @@ use anstream::{AutoStream, ColorChoice};
 
 use crate::failure::end_if_closed_pipe;
 use crate::interruption::may_block;
-use crate::lang::diagnostic::emit;
 use crate::lang::{Diagnostic, SourceMap};
 
 use super::cancel::CancelSwitch;
@@ -88,10 +87,19 @@ impl<'a> Console<'a> {
     /// the first line of a diagnostic.
     pub(crate) fn error(&mut self, text: impl Display) {
         let (error, emphasis) = (DEFAULT_ERROR_STYLE, DEFAULT_EMPHASIS_STYLE);
-        let flushed = may_block(|| {
-            writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}").and_then(|()| self.err.flush())
-        });
+        self.write_err(format!("{error}error{error:#}{emphasis}: {text}{emphasis:#}\n"));
+    }
+
+    /// Writes `text`, already formatted, on the error stream, noting a failure.
+    fn write_err(&mut self, text: String) {
+        let flushed = self.write_err_marked(&text);
         self.written(flushed);
+    }
+
+    /// Writes `text` on the error stream, marked as a write that may block
+    /// (only the write: the text is formatted before, see `crate::interruption`).
+    fn write_err_marked(&mut self, text: &str) -> std::io::Result<()> {
+        may_block(|| self.err.write_all(text.as_bytes()).and_then(|()| self.err.flush()))
     }
 
     /// Writes a note about what the program printed, with the diagnostics.
@@ -101,13 +109,15 @@ impl<'a> Console<'a> {
 
     /// Writes a line the program printed (`print`), with the diagnostics.
     fn printed(&mut self, line: impl Display) {
-        let flushed = may_block(|| writeln!(self.err, "{line}").and_then(|()| self.err.flush()));
-        self.written(flushed);
+        self.write_err(format!("{line}\n"));
     }
 
     /// Writes a diagnostic about program text.
     fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
-        may_block(|| emit(&mut self.err, diagnostic, sources));
+        // Rendered first: finding lines in a long text is no blocked write.
+        let text = diagnostic.render(sources, true);
+        // As `emit` does, a diagnostic that cannot be written is not noted.
+        let _ = self.write_err_marked(&text);
     }
 }
 
