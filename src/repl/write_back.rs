@@ -32,6 +32,9 @@ use super::report::counted;
 use super::session::{Input, Session};
 use super::shell::Shell;
 
+/// How many instructions are written between two looks at the cancel flag.
+const CANCEL_EVERY: usize = 4096;
+
 /// `:write FILE.ray`.
 pub(crate) fn write(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
@@ -51,7 +54,7 @@ pub(crate) fn write(shell: &mut Shell, arguments: &[String], front: &mut dyn Fro
     let parts = Parts::of(session.inputs());
     parts.check(session.sources()).map_err(|inexact| CommandError::Failed(inexact.to_string()))?;
     let command = batch_command(path, session.settings(), session.limits());
-    let text = parts.file_text(session, &command);
+    let text = parts.file_text(session, &command, cancel).ok_or_else(cancelled)?;
     match gives_the_scene(&text, session, cancel) {
         _ if cancel.load(Ordering::SeqCst) => return Err(cancelled()),
         true => {}
@@ -206,8 +209,8 @@ impl<'s> Parts<'s> {
     }
 
     /// The text of the file: a header saying how to render it, then the
-    /// parts in a file's order.
-    fn file_text(&self, session: &Session, command: &str) -> String {
+    /// parts in a file's order; `None` once `cancel` is raised.
+    fn file_text(&self, session: &Session, command: &str, cancel: &AtomicBool) -> Option<String> {
         let sources = session.sources();
         let mut text = format!(
             "# Written by rayrepl's `:write` from a session of {}.\n\
@@ -228,13 +231,20 @@ impl<'s> Parts<'s> {
         };
         let lights: Vec<String> = self.lights.iter().map(|light| item_text(sources, light.span)).collect();
         let procs: Vec<String> = self.procs.iter().map(|def| item_text(sources, def.span)).collect();
-        let instrs: Vec<String> = self.instrs().map(|instr| item_text(sources, instr.span)).collect();
-        let sections = [vec![camera, ambient], lights, procs, instrs];
+        let sections = [vec![camera, ambient], lights, procs];
         let sections: Vec<String> =
             sections.iter().filter(|section| !section.is_empty()).map(|section| section.join("\n")).collect();
         text.push_str(&sections.join("\n\n"));
+        // The instructions, the most of a long session, go straight into the text.
+        for (k, instr) in self.instrs().enumerate() {
+            if k % CANCEL_EVERY == 0 && cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            text.push_str(if k == 0 { "\n\n" } else { "\n" });
+            text.push_str(&item_text(sources, instr.span));
+        }
         text.push('\n');
-        text
+        Some(text)
     }
 
     /// What the file holds, in words.

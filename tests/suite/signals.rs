@@ -14,7 +14,7 @@ use std::process::{Child, Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
 use expectrl::process::unix::WaitStatus;
-use expectrl::{ControlCode, Eof, Expect, Session};
+use expectrl::{Any, ControlCode, Eof, Expect, Session};
 
 use crate::common::interrupt::{is_temporary, names_in};
 
@@ -227,7 +227,8 @@ fn a_signal_while_the_output_folder_is_checked_leaves_no_temporary_file() {
         }
         // To the group: strace (which outlives fatal signals while it runs a
         // program) passes it on to rayrepl.
-        let sent = Command::new("kill").arg(format!("-{signal}")).arg(format!("-{}", child.id())).status();
+        let group = format!("-{}", child.id());
+        let sent = Command::new("kill").arg(format!("-{signal}")).args(["--", &group]).status();
         assert!(sent.expect("kill runs").success());
         let status = ended(&mut child, &format!("the check of the folder, SIG{signal}"));
         let stderr = stderr_of(&mut child);
@@ -297,5 +298,70 @@ fn ctrl_c_drops_the_load_of_a_fifo_no_one_writes_and_the_session_goes_on() {
     session.expect("reading never.ray was cancelled; the session is as it was").unwrap();
     session.send_line(":env").unwrap();
     session.expect("numbers:    keep = 7").unwrap();
+    assert_eq!(quit(session), 0);
+}
+
+/// The memory the process `pid` holds, in kB (0 where the kernel does not say).
+fn resident_kb(pid: u32) -> u64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+    let line = status.lines().find(|line| line.starts_with("VmRSS:")).unwrap_or_default();
+    line.split_whitespace().nth(1).and_then(|kb| kb.parse().ok()).unwrap_or(0)
+}
+
+#[test]
+fn ctrl_c_stops_the_load_of_a_large_file_and_the_session_is_as_it_was() {
+    let (home, dir) = (tempfile::tempdir().expect("a folder"), folder());
+    // 100 MB of spheres: seconds to parse and evaluate.
+    let line = "put sphere center 1, 2, 3 radius 0.5 kd 0.8 ks 0.3 phong 50 color 220, 40, 40 end\n";
+    std::fs::write(dir.path().join("big.ray"), line.repeat(100_000_000 / line.len())).expect("written");
+    let mut session = session("xterm-256color", home.path(), dir.path());
+    session.send_line("let keep = 7").unwrap();
+    session.expect("keep = 7").unwrap();
+    session.expect("ray> ").unwrap();
+    let pid = session.get_process().pid().as_raw() as u32;
+    let before = resident_kb(pid);
+    session.send_line(":load big.ray").unwrap();
+    // Once the file is in memory, it is being parsed.
+    let start = Instant::now();
+    while resident_kb(pid) < before + 90_000 && start.elapsed() < REACHES_WITHIN {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    session.send(ControlCode::EndOfText).unwrap();
+    // Stopped while it is read, or parsed, or evaluated.
+    let stopped: [Box<dyn expectrl::Needle>; 2] =
+        [Box::new("the session is as it was"), Box::new("nothing of this input was kept")];
+    session.expect(Any::boxed(stopped.into())).unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line(":scene").unwrap();
+    session.expect("objects:  0 ").unwrap();
+    session.send_line(":env").unwrap();
+    session.expect("numbers:    keep = 7").unwrap();
+    assert_eq!(quit(session), 0);
+}
+
+#[test]
+fn ctrl_c_stops_the_write_of_a_long_session_soon_and_leaves_no_file() {
+    let (home, dir) = (tempfile::tempdir().expect("a folder"), folder());
+    let mut session = session("xterm-256color", home.path(), dir.path());
+    // 16 million calls, which `:write` runs again to check the file.
+    session.send_line("proc f(n) if n > 0 then f(n - 1) f(n - 1) end end").unwrap();
+    session.expect("defined proc f(n)").unwrap();
+    session.expect("ray> ").unwrap();
+    let start = Instant::now();
+    session.send_line("f(24)").unwrap();
+    session.expect("nothing was put").unwrap();
+    let evaluation = start.elapsed();
+    session.expect("ray> ").unwrap();
+    session.send_line(":write w.ray").unwrap();
+    std::thread::sleep(evaluation / 10);
+    let signalled = Instant::now();
+    session.send(ControlCode::EndOfText).unwrap();
+    session.expect("writing `w.ray` was cancelled: the file is as it was before").unwrap();
+    let stopped = signalled.elapsed();
+    // Before, the whole check ran first: most of the evaluation's time.
+    assert!(stopped < evaluation / 2, "stopped {stopped:?} after Ctrl-C; the evaluation took {evaluation:?}");
+    assert_eq!(names_in(dir.path()), ["scene.ray"], "no file, no temporary file");
+    session.send_line(":write w.ray").unwrap();
+    session.expect("wrote w.ray").unwrap();
     assert_eq!(quit(session), 0);
 }
