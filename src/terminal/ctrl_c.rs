@@ -20,8 +20,9 @@
 
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use crate::clock::Stopwatch;
 use crate::interruption::{Signal, write_in_progress};
 use crate::output::{INTERRUPTED_EXIT_CODE, discarding_unfinished, exit_discarding_unfinished};
 use crate::repl::CancelSwitch;
@@ -86,7 +87,7 @@ fn on_signal(signal: Signal) {
 /// Watches the job `signal` stopped until its switch is disarmed: if a
 /// marked write stays blocked for [`STUCK`] meanwhile, ends the process.
 fn end_if_stuck(switch: &CancelSwitch, signal: Signal) {
-    let mut watched: Option<(u64, Instant)> = None;
+    let mut watched: Option<(u64, Stopwatch)> = None;
     loop {
         match (write_in_progress(), watched) {
             (Some(write), Some((seen, since))) if write == seen => {
@@ -94,7 +95,7 @@ fn end_if_stuck(switch: &CancelSwitch, signal: Signal) {
                     end_stuck(signal);
                 }
             }
-            (Some(write), _) => watched = Some((write, Instant::now())),
+            (Some(write), _) => watched = Some((write, Stopwatch::start())),
             (None, _) if !switch.is_armed() => return,
             (None, _) => watched = None,
         }
