@@ -17,6 +17,7 @@ use crate::cli::Cli;
 use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
 use crate::failure::{end_if_closed_pipe, report_failure, tell};
+use crate::interruption::may_block;
 use crate::job::{Animation, Destination, DiagnosticFormat, Job, JobError, Render, SceneFile, Task};
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
@@ -44,6 +45,9 @@ const USAGE_EXIT_CODE: u8 = 2;
 /// With no scene, or with `-i`, that is a session (interactive on a
 /// terminal, a script otherwise); with a scene, a check or a render.
 pub fn run(cli: Cli) -> ExitCode {
+    // Before the job is built: the check of an output folder makes a file,
+    // which a signal must remove.
+    ctrl_c::install();
     let job = match Job::from_cli(cli) {
         Ok(job) => job,
         Err(error) => {
@@ -352,7 +356,9 @@ fn write_still(output: &Destination, image: &RgbImage, cancel: &'static AtomicBo
 /// flushes it.
 fn write_stdout(what: &str, write: impl FnOnce(&mut StdoutLock<'static>) -> io::Result<()>) -> Result<(), String> {
     let mut stdout = std::io::stdout().lock();
-    write(&mut stdout).and_then(|()| stdout.flush()).map_err(|e| {
+    // A reader that does not read blocks the write: a signal then ends the
+    // process (`crate::interruption`).
+    may_block(|| write(&mut stdout).and_then(|()| stdout.flush())).map_err(|e| {
         end_if_closed_pipe(&e);
         format!("cannot write {what} to standard output: {}", output::io_reason(&e))
     })

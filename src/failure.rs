@@ -12,6 +12,7 @@ use std::fmt::Display;
 use std::io::{ErrorKind, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use crate::interruption::may_block;
 use crate::output::exit_discarding_unfinished;
 
 /// The name in front of the program's own failures.
@@ -41,8 +42,12 @@ pub(crate) use tell;
 /// Writes `line` and a newline on standard error, as this module says
 /// when it cannot.
 pub fn tell_line(line: impl Display) {
-    let mut stderr = std::io::stderr().lock();
-    let written = writeln!(stderr, "{line}").and_then(|()| stderr.flush());
+    // Formatted first: only the write may block (`crate::interruption`).
+    let text = format!("{line}\n");
+    let written = may_block(|| {
+        let mut stderr = std::io::stderr().lock();
+        stderr.write_all(text.as_bytes()).and_then(|()| stderr.flush())
+    });
     if let Err(error) = written {
         end_if_closed_pipe(&error);
         UNWRITTEN.store(true, Ordering::SeqCst);

@@ -17,4 +17,5 @@ pub mod words;
 pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};
 pub use parser::{Entry, EntryState, entry_state, is_incomplete, parse_entries, parse_file, parse_items};
+pub(crate) use parser::{parse_file_interruptible, parse_items_interruptible};
 pub use source::{SourceFile, SourceId, SourceMap, Span};

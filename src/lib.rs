@@ -20,6 +20,7 @@ pub mod clock;
 mod data_dir;
 pub mod explain;
 pub mod failure;
+mod interruption;
 #[cfg(feature = "terminal")]
 mod job;
 pub mod lang;

@@ -240,7 +240,10 @@ impl Interpreter {
     pub fn run(&mut self, program: &Program) -> Result<(), Diagnostic> {
         let snapshot = self.snapshot();
         self.created = self.live_primitives();
-        let result = program.items.iter().try_for_each(|item| self.run_item(item));
+        let result = program.items.iter().try_for_each(|item| {
+            self.stop_if_interrupted(item.span(), || "it was running this".to_string())?;
+            self.run_item(item)
+        });
         self.env.reset_locals();
         if let Some(calls) = &mut self.origins.calls {
             calls.end_run();

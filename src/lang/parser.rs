@@ -13,6 +13,8 @@ mod context;
 mod errors;
 mod order;
 
+use std::sync::atomic::AtomicBool;
+
 use lalrpop_util::{ParseError, lalrpop_mod};
 
 use super::ast::{Instr, InstrKind, Item, Program};
@@ -33,20 +35,44 @@ lalrpop_mod!(
 /// Parses a whole `.ray` file: camera, ambient, lights, procedures, then
 /// instructions, in the order SPEC 2 gives.
 pub fn parse_file(source: SourceId, text: &str) -> Result<Program, Diagnostic> {
-    let program = parse(source, text, Mode::File)?;
+    parse_file_interruptible(source, text, None)
+}
+
+/// [`parse_file`], stopped with an error once `interrupt` is raised (Ctrl-C).
+pub(crate) fn parse_file_interruptible(
+    source: SourceId,
+    text: &str,
+    interrupt: Option<&'static AtomicBool>,
+) -> Result<Program, Diagnostic> {
+    let program = parse(source, text, Mode::File, interrupt)?;
     order::check(source, text, &program)?;
     Ok(program)
 }
 
 /// Parses one input of the interactive session: any items, in any order (SPEC 7).
 pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> {
-    parse(source, text, Mode::Session)
+    parse(source, text, Mode::Session, None)
+}
+
+/// [`parse_items`], stopped with an error once `interrupt` is raised (Ctrl-C).
+pub(crate) fn parse_items_interruptible(
+    source: SourceId,
+    text: &str,
+    interrupt: Option<&'static AtomicBool>,
+) -> Result<Program, Diagnostic> {
+    parse(source, text, Mode::Session, interrupt)
 }
 
 /// Runs the generated parser over the tokens, recording what they open so
 /// that a syntax error can say what is not closed.
-fn parse(source: SourceId, text: &str, mode: Mode) -> Result<Program, Diagnostic> {
+fn parse(
+    source: SourceId,
+    text: &str,
+    mode: Mode,
+    interrupt: Option<&'static AtomicBool>,
+) -> Result<Program, Diagnostic> {
     let mut tokens = Tracked::new(source, text);
+    tokens.interrupt = interrupt;
     let parsed = grammar::ItemsParser::new().parse(&Sources::One(source), &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),

@@ -30,12 +30,33 @@ pub(crate) const INTERRUPTED_EXIT_CODE: i32 = 130;
 /// with `code`: what an interruption (Ctrl-C, `kill`) does, so that it
 /// leaves no temporary file behind and every target as it was.
 pub(crate) fn exit_discarding_unfinished(code: i32) -> ! {
+    discarding_unfinished(code, std::process::exit)
+}
+
+/// Removes the temporary files of unfinished writes, then ends the
+/// process with `exit(code)`: a signal handler's end, which must not wait
+/// for the main thread (stuck in a write to a pipe nobody reads, it holds
+/// the lock of standard output, which `std::process::exit` would flush).
+pub(crate) fn discarding_unfinished(code: i32, exit: fn(i32) -> !) -> ! {
     // The lock is held until the end: no write starts or finishes meanwhile.
     let unfinished = unfinished();
     for path in unfinished.iter() {
         let _ = std::fs::remove_file(path);
     }
-    std::process::exit(code)
+    exit(code)
+}
+
+/// Makes a temporary file in `dir` and removes it at once: whether files
+/// can be made there, checked before any work. While it exists it is
+/// registered as unfinished, so an interruption removes it too.
+pub(super) fn probe_folder(dir: &Path) -> io::Result<()> {
+    let mut unfinished = unfinished();
+    let temp = temp_file_in(dir)?;
+    let path = temp.path().to_owned();
+    unfinished.push(path.clone());
+    drop(temp);
+    unfinished.retain(|p| *p != path);
+    Ok(())
 }
 
 /// A file being written: a temporary file next to its target, which
@@ -223,7 +244,7 @@ pub(super) fn folder_of(path: &Path) -> &Path {
 
 /// A temporary file in `dir`, readable by others like an ordinary new file
 /// (tempfile's default is owner-only).
-pub(super) fn temp_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
+fn temp_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
     let mut builder = tempfile::Builder::new();
     builder.prefix(".rayrepl-").suffix(".tmp");
     #[cfg(unix)]

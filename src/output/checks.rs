@@ -4,7 +4,7 @@
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-use super::atomic::{folder_of, link_target, temp_file_in};
+use super::atomic::{folder_of, link_target, probe_folder};
 use super::error::{OutputError, io_error};
 use super::formats::{Content, ImageFormat};
 use super::frames::frame_names;
@@ -32,7 +32,7 @@ pub(crate) fn check_output(path: &Path, content: Content) -> Result<ImageFormat,
     // The write goes through a temporary file in the folder of the file
     // replaced (through symbolic links): make one now.
     let target = link_target(path).map_err(|e| io_error(path, e))?;
-    temp_file_in(folder_of(&target)).map_err(|e| io_error(path, e))?;
+    probe_folder(folder_of(&target)).map_err(|e| io_error(path, e))?;
     Ok(format)
 }
 

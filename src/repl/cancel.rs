@@ -4,7 +4,9 @@
 //! `crate::terminal::ctrl_c`); at any other time the front-end does what
 //! it would do anyway.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
+
+use crate::interruption::Signal;
 
 /// The switch that stops a running job.
 #[derive(Debug, Default)]
@@ -13,16 +15,25 @@ pub struct CancelSwitch {
     cancel: AtomicBool,
     /// How many cancellable jobs are running (an entry, a render inside it).
     armed: AtomicUsize,
+    /// The signal that raised the flag ([`Signal::code`]), 0 before one.
+    signal: AtomicU8,
 }
 
 impl CancelSwitch {
-    /// Raises the flag if a job is running; says whether one was.
-    pub(crate) fn cancel_if_armed(&self) -> bool {
-        let armed = self.armed.load(Ordering::SeqCst) > 0;
+    /// Raises the flag if a job is running, recording that `signal` asked;
+    /// says whether one was.
+    pub(crate) fn cancel_if_armed(&self, signal: Signal) -> bool {
+        let armed = self.is_armed();
         if armed {
+            self.signal.store(signal.code(), Ordering::SeqCst);
             self.cancel.store(true, Ordering::SeqCst);
         }
         armed
+    }
+
+    /// Whether a cancellable job is running.
+    pub(crate) fn is_armed(&self) -> bool {
+        self.armed.load(Ordering::SeqCst) > 0
     }
 
     /// Arms the switch for one job; it is disarmed when the guard drops. A
@@ -58,9 +69,15 @@ impl ArmedSwitch {
         &self.switch.cancel
     }
 
-    /// Whether Ctrl-C was pressed since the outermost job started.
+    /// Whether Ctrl-C was pressed (or another signal asked to stop) since
+    /// the outermost job started.
     pub(crate) fn pressed(&self) -> bool {
         self.switch.cancel.load(Ordering::SeqCst)
+    }
+
+    /// The signal that raised the flag since the outermost job started.
+    pub(crate) fn signal(&self) -> Option<Signal> {
+        self.pressed().then(|| Signal::from_code(self.switch.signal.load(Ordering::SeqCst))).flatten()
     }
 }
 

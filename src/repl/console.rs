@@ -11,7 +11,7 @@ use anstream::stream::RawStream;
 use anstream::{AutoStream, ColorChoice};
 
 use crate::failure::end_if_closed_pipe;
-use crate::lang::diagnostic::emit;
+use crate::interruption::may_block;
 use crate::lang::{Diagnostic, SourceMap};
 
 use super::cancel::CancelSwitch;
@@ -65,13 +65,15 @@ impl<'a> Console<'a> {
     fn say_line(&mut self, mut line: String) {
         line.push('\n');
         let plain = line.bytes().all(|byte| (b' '..=b'~').contains(&byte) || byte == b'\n');
-        let written = if plain {
-            // Nothing to style or strip: most lines, such as confirmations.
-            self.out.write_all(line.as_bytes())
-        } else {
-            AutoStream::new(&mut *self.out, self.out_choice).write_all(line.as_bytes())
-        };
-        let flushed = written.and_then(|()| self.out.flush());
+        let flushed = may_block(|| {
+            let written = if plain {
+                // Nothing to style or strip: most lines, such as confirmations.
+                self.out.write_all(line.as_bytes())
+            } else {
+                AutoStream::new(&mut *self.out, self.out_choice).write_all(line.as_bytes())
+            };
+            written.and_then(|()| self.out.flush())
+        });
         self.written(flushed);
     }
 
@@ -85,9 +87,19 @@ impl<'a> Console<'a> {
     /// the first line of a diagnostic.
     pub(crate) fn error(&mut self, text: impl Display) {
         let (error, emphasis) = (DEFAULT_ERROR_STYLE, DEFAULT_EMPHASIS_STYLE);
-        let written = writeln!(self.err, "{error}error{error:#}{emphasis}: {text}{emphasis:#}");
-        let flushed = written.and_then(|()| self.err.flush());
+        self.write_err(format!("{error}error{error:#}{emphasis}: {text}{emphasis:#}\n"));
+    }
+
+    /// Writes `text`, already formatted, on the error stream, noting a failure.
+    fn write_err(&mut self, text: String) {
+        let flushed = self.write_err_marked(&text);
         self.written(flushed);
+    }
+
+    /// Writes `text` on the error stream, marked as a write that may block
+    /// (only the write: the text is formatted before, see `crate::interruption`).
+    fn write_err_marked(&mut self, text: &str) -> std::io::Result<()> {
+        may_block(|| self.err.write_all(text.as_bytes()).and_then(|()| self.err.flush()))
     }
 
     /// Writes a note about what the program printed, with the diagnostics.
@@ -97,14 +109,15 @@ impl<'a> Console<'a> {
 
     /// Writes a line the program printed (`print`), with the diagnostics.
     fn printed(&mut self, line: impl Display) {
-        let written = writeln!(self.err, "{line}");
-        let flushed = written.and_then(|()| self.err.flush());
-        self.written(flushed);
+        self.write_err(format!("{line}\n"));
     }
 
     /// Writes a diagnostic about program text.
     fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
-        emit(&mut self.err, diagnostic, sources);
+        // Rendered first: finding lines in a long text is no blocked write.
+        let text = diagnostic.render(sources, true);
+        // As `emit` does, a diagnostic that cannot be written is not noted.
+        let _ = self.write_err_marked(&text);
     }
 }
 

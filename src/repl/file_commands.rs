@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use super::cancel::cancel_flag;
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::FrontEnd;
 use super::picture_commands::render_command;
@@ -32,7 +33,7 @@ pub(crate) fn load_reporting(shell: &mut Shell, path: &Path, front: &mut dyn Fro
 
 /// Runs the file at `path` into the session, as one input.
 fn load_file(shell: &mut Shell, path: &Path, front: &mut dyn FrontEnd) -> CommandResult {
-    let text = reload::read(path)?;
+    let text = reload::read(path, cancel_flag(front.cancel()))?;
     let session = &mut shell.session;
     let mut accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
     show_warnings(session, &mut shell.warned, front, std::mem::take(&mut accepted.warnings));

@@ -4,10 +4,14 @@
 //! and `:undo` takes a reload back.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::Duration;
 
 use crate::lang::source::text_of;
 use crate::output;
 
+use super::cancel::cancel_flag;
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::{FrontEnd, Waited};
 use super::report::{self, counted};
@@ -28,7 +32,7 @@ pub(crate) fn reload(shell: &mut Shell, arguments: &[String], front: &mut dyn Fr
             "nothing was loaded: `:load FILE` first, then `:reload` after changing the file".to_string(),
         ));
     };
-    let text = read(&path)?;
+    let text = read(&path, cancel_flag(front.cancel()))?;
     reload_text(session, &path, &text, front)
 }
 
@@ -50,7 +54,7 @@ pub(crate) fn watch(
     let Some(switch) = front.cancel() else {
         return Err(CommandError::Failed("Ctrl-C cannot be caught here, so nothing could stop a watch".to_string()));
     };
-    let mut text = read(&path)?;
+    let mut text = read(&path, switch.flag())?;
     front.say(format!("watching {}: every save loads it again and renders it; Ctrl-C stops", path.display()));
     let mut last_text = None;
     let result = loop {
@@ -63,7 +67,7 @@ pub(crate) fn watch(
                 Ok(Waited::Cancelled) => break Ok(Flow::Continue),
                 Err(error) => break Err(CommandError::Failed(error)),
             }
-            text = match read(&path) {
+            text = match read(&path, switch.flag()) {
                 Ok(new) if Some(&new) == last_text.as_ref() => continue,
                 Ok(new) if new.trim().is_empty() => {
                     // An editor that truncates the file before writing it
@@ -118,9 +122,36 @@ fn reload_text(session: &mut Session, path: &Path, text: &str, front: &mut dyn F
     Ok(Flow::Continue)
 }
 
-/// The text of the file at `path`.
-pub(crate) fn read(path: &Path) -> Result<String, CommandError> {
+/// How often a read looks at its cancel flag.
+const LOOK: Duration = Duration::from_millis(5);
+
+/// The text of the file at `path`, unless `cancel` is raised first. The
+/// file is read on a thread of its own, which a cancelled read abandons:
+/// `open` of a FIFO that no one writes waits forever, a large file takes a
+/// while, and neither looks at a flag (the thread ends with the process,
+/// or when its read does).
+pub(crate) fn read(path: &Path, cancel: &'static AtomicBool) -> Result<String, CommandError> {
     let failed = |reason: String| CommandError::Failed(format!("cannot read {}: {reason}", path.display()));
-    let bytes = std::fs::read(path).map_err(|e| failed(output::io_reason(&e)))?;
+    let (sent, received) = mpsc::channel();
+    let file = path.to_owned();
+    let reader = std::thread::Builder::new().name("read".to_string()).spawn(move || {
+        let _ = sent.send(std::fs::read(file));
+    });
+    let read = match reader {
+        Ok(_) => loop {
+            match received.recv_timeout(LOOK) {
+                Ok(read) => break read,
+                Err(_) if cancel.load(Ordering::SeqCst) => {
+                    let what = format!("reading {} was cancelled; the session is as it was", path.display());
+                    return Err(CommandError::Cancelled(what));
+                }
+                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => break Err(std::io::Error::other("the reading thread stopped")),
+            }
+        },
+        // No thread (a platform without them): read here.
+        Err(_) => std::fs::read(path),
+    };
+    let bytes = read.map_err(|e| failed(output::io_reason(&e)))?;
     text_of(bytes).map_err(failed)
 }

@@ -20,6 +20,7 @@ use super::inputs::report_input;
 use super::options::{SessionOptions, new_session};
 use super::session::Session;
 use super::shell::Shell;
+use crate::interruption::Signal;
 use crate::output::INTERRUPTED_EXIT_CODE;
 use lines::{LineError, MOST_LINE_BYTES, ScriptLine, ScriptLines};
 
@@ -256,14 +257,16 @@ impl Script<'_, '_> {
         }
     }
 
-    /// Whether Ctrl-C was pressed while the entry at `line` ran: if so the
-    /// script says where it stopped.
+    /// Whether Ctrl-C (or SIGTERM, SIGHUP) stopped the entry at `line`: if
+    /// so the script says which and where it stopped, while the switch is
+    /// still armed (a signal then ends the process if that message cannot
+    /// be written, see `crate::interruption`).
     fn stopped_by_ctrl_c(&mut self, armed: Option<ArmedSwitch>, line: usize) -> bool {
-        self.interrupted = armed.is_some_and(|armed| armed.pressed());
-        if self.interrupted {
-            self.console.error(format!("interrupted by Ctrl-C: the script stopped at line {line}"));
-        }
-        self.interrupted
+        let Some(armed) = armed.filter(ArmedSwitch::pressed) else { return false };
+        let signal = armed.signal().unwrap_or(Signal::Interrupt);
+        self.console.error(format!("interrupted by {signal}: the script stopped at line {line}"));
+        self.interrupted = true;
+        true
     }
 
     fn after(&mut self, succeeded: bool) -> Step {

@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_items};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_items, parse_items_interruptible};
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
@@ -225,7 +225,7 @@ impl Session {
         }
         let name = path.display().to_string();
         let source = self.sources.add(name.as_str(), text, 0);
-        let program = parse_items(source, text)?;
+        let program = parse_items_interruptible(source, text, self.interrupt)?;
         let text = format!(":load {name}").into();
         Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Rc::new(program) })
     }

@@ -13,12 +13,13 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::path::Path;
 use std::rc::Rc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::lang::ast::{AmbientDef, CameraDef, Instr, Item, LightDef, ProcDef};
 use crate::lang::eval::{DEFAULT_AMBIENT, DEFAULT_CAMERA};
 use crate::lang::walk::{bound_name, called_name, same_level, variables};
-use crate::lang::{Interpreter, Limits, SourceMap, Span, parse_file};
-use crate::output;
+use crate::lang::{Interpreter, Limits, SourceMap, Span, parse_file_interruptible};
+use crate::output::{self, OutputError};
 use crate::render::Screen;
 use crate::settings::RenderSettings;
 
@@ -30,6 +31,9 @@ use super::render_steps::write_failure;
 use super::report::counted;
 use super::session::{Input, Session};
 use super::shell::Shell;
+
+/// How many instructions are written between two looks at the cancel flag.
+const CANCEL_EVERY: usize = 4096;
 
 /// `:write FILE.ray`.
 pub(crate) fn write(shell: &mut Shell, arguments: &[String], front: &mut dyn FrontEnd) -> CommandResult {
@@ -44,15 +48,22 @@ pub(crate) fn write(shell: &mut Shell, arguments: &[String], front: &mut dyn Fro
     if session.inputs().is_empty() {
         return Err(CommandError::Failed("the session is empty: there is nothing to write yet".to_string()));
     }
+    // Ctrl-C stops each step: the file and the session stay as they were.
+    let cancel = cancel_flag(front.cancel());
+    let cancelled = || write_failure(OutputError::Cancelled { path: path.to_owned() });
     let parts = Parts::of(session.inputs());
     parts.check(session.sources()).map_err(|inexact| CommandError::Failed(inexact.to_string()))?;
     let command = batch_command(path, session.settings(), session.limits());
-    let text = parts.file_text(session, &command);
-    if !gives_the_scene(&text, session) {
-        let bug = "the file would not give the session's scene (a bug of rayrepl: please report it)";
-        return Err(CommandError::Failed(format!("{bug}; nothing was written")));
+    let text = parts.file_text(session, &command, cancel).ok_or_else(cancelled)?;
+    match gives_the_scene(&text, session, cancel) {
+        _ if cancel.load(Ordering::SeqCst) => return Err(cancelled()),
+        true => {}
+        false => {
+            let bug = "the file would not give the session's scene (a bug of rayrepl: please report it)";
+            return Err(CommandError::Failed(format!("{bug}; nothing was written")));
+        }
     }
-    output::write_text(path, &text, cancel_flag(front.cancel())).map_err(write_failure)?;
+    output::write_text(path, &text, cancel).map_err(write_failure)?;
     let summary = parts.summary();
     session.mark_written();
     front.say(format!("wrote {} ({summary})", path.display()));
@@ -198,8 +209,8 @@ impl<'s> Parts<'s> {
     }
 
     /// The text of the file: a header saying how to render it, then the
-    /// parts in a file's order.
-    fn file_text(&self, session: &Session, command: &str) -> String {
+    /// parts in a file's order; `None` once `cancel` is raised.
+    fn file_text(&self, session: &Session, command: &str, cancel: &AtomicBool) -> Option<String> {
         let sources = session.sources();
         let mut text = format!(
             "# Written by rayrepl's `:write` from a session of {}.\n\
@@ -220,13 +231,20 @@ impl<'s> Parts<'s> {
         };
         let lights: Vec<String> = self.lights.iter().map(|light| item_text(sources, light.span)).collect();
         let procs: Vec<String> = self.procs.iter().map(|def| item_text(sources, def.span)).collect();
-        let instrs: Vec<String> = self.instrs().map(|instr| item_text(sources, instr.span)).collect();
-        let sections = [vec![camera, ambient], lights, procs, instrs];
+        let sections = [vec![camera, ambient], lights, procs];
         let sections: Vec<String> =
             sections.iter().filter(|section| !section.is_empty()).map(|section| section.join("\n")).collect();
         text.push_str(&sections.join("\n\n"));
+        // The instructions, the most of a long session, go straight into the text.
+        for (k, instr) in self.instrs().enumerate() {
+            if k % CANCEL_EVERY == 0 && cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            text.push_str(if k == 0 { "\n\n" } else { "\n" });
+            text.push_str(&item_text(sources, instr.span));
+        }
         text.push('\n');
-        text
+        Some(text)
     }
 
     /// What the file holds, in words.
@@ -311,10 +329,11 @@ fn batch_command(path: &Path, settings: &RenderSettings, limits: Limits) -> Stri
 
 /// Whether `text`, read as a file and evaluated as a batch render would,
 /// gives the session's scene: the last guard against writing a wrong file.
-fn gives_the_scene(text: &str, session: &Session) -> bool {
+/// Once `cancel` is raised it stops, with an answer that means nothing.
+fn gives_the_scene(text: &str, session: &Session, cancel: &'static AtomicBool) -> bool {
     let mut sources = SourceMap::new();
     let id = sources.add("<written>", text, 0);
-    let Ok(program) = parse_file(id, text) else { return false };
-    let mut interpreter = Interpreter::new(session.settings().time, session.limits());
+    let Ok(program) = parse_file_interruptible(id, text, Some(cancel)) else { return false };
+    let mut interpreter = Interpreter::new(session.settings().time, session.limits()).interruptible(cancel);
     interpreter.run(&program).is_ok() && interpreter.scene() == session.scene()
 }

@@ -2,7 +2,9 @@
 //! Ctrl-C and Ctrl-D.
 
 use std::collections::VecDeque;
+use std::io::{BufRead, Write};
 use std::path::PathBuf;
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::Duration;
 
 use anstream::stream::RawStream;
@@ -63,6 +65,14 @@ impl std::error::Error for ReplError {
 /// the user's data directory (`rayrepl/history`); problems with that file
 /// are ignored.
 pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
+    let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
+    let mut console = Console::new(&mut out, &mut err);
+    console.cancel = ctrl_c::install();
+    let front: &mut dyn FrontEnd = &mut TerminalFrontEnd { console, preview: Preview::new(options.no_preview) };
+    if editor_unsupported() {
+        greet(front);
+        return run_entries(PlainTerminal::start(), front, options);
+    }
     // The editor draws prompts and highlighting on standard output.
     let color = AutoStream::choice(&std::io::stdout()) != ColorChoice::Never;
     let mut editor = new_editor(color).map_err(ReplError::Terminal)?;
@@ -70,15 +80,22 @@ pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     if let Some(path) = &history {
         let _ = editor.load_history(path);
     }
-    let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
-    let mut console = Console::new(&mut out, &mut err);
-    console.cancel = ctrl_c::install();
-    let front: &mut dyn FrontEnd = &mut TerminalFrontEnd { console, preview: Preview::new(options.no_preview) };
+    greet(front);
+    run_entries(Terminal { editor, history }, front, options)
+}
+
+fn greet(front: &mut dyn FrontEnd) {
     front.say(format!(
         "rayrepl {}: type items of the .ray language, `:help` to learn, Ctrl-D to leave",
         env!("CARGO_PKG_VERSION")
     ));
-    run_entries(Terminal { editor, history }, front, options)
+}
+
+/// Whether the line editor leaves this terminal alone (rustyline's list:
+/// `TERM=dumb`, as Emacs shells and some IDE consoles set it, `cons25`,
+/// `emacs`) and reads lines as the terminal edits them.
+fn editor_unsupported() -> bool {
+    std::env::var("TERM").is_ok_and(|term| ["dumb", "cons25", "emacs"].iter().any(|t| t.eq_ignore_ascii_case(&term)))
 }
 
 /// Runs the interactive session's entry loop on `lines` as if each was
@@ -164,6 +181,67 @@ impl LineSource for Terminal {
             let _ = self.editor.append_history(path);
         }
     }
+}
+
+/// Lines as a terminal the editor does not support edits them, read on a
+/// thread of their own. There Ctrl-C is no key but SIGINT (the terminal
+/// drops the line being typed): while a prompt waits it drops the entry,
+/// as the editor's Ctrl-C does, instead of ending the session.
+struct PlainTerminal {
+    lines: Receiver<std::io::Result<String>>,
+}
+
+impl PlainTerminal {
+    fn start() -> PlainTerminal {
+        let (sent, lines) = mpsc::sync_channel(0);
+        let reader = std::thread::Builder::new().name("lines".to_string()).spawn(move || {
+            let mut stdin = std::io::stdin().lock();
+            loop {
+                let mut line = String::new();
+                match stdin.read_line(&mut line) {
+                    Ok(0) => break,
+                    read => {
+                        let failed = read.is_err();
+                        if sent.send(read.map(|_| line)).is_err() || failed {
+                            break;
+                        }
+                    }
+                }
+            }
+        });
+        // Without the thread, the channel is closed: the session ends as at Ctrl-D.
+        drop(reader);
+        PlainTerminal { lines }
+    }
+}
+
+impl LineSource for PlainTerminal {
+    fn read(&mut self, prompt: &str, initial: &str, _: &str, _: &Session) -> Result<EnteredLine, ReadlineError> {
+        let mut stdout = std::io::stdout();
+        // An entry given back to fix cannot be edited here: it is shown again.
+        let shown = if initial.is_empty() { String::new() } else { format!("{initial}\n") };
+        let _ = write!(stdout, "{shown}{prompt}").and_then(|()| stdout.flush());
+        let started = Stopwatch::start();
+        let waiting = ctrl_c::at_plain_prompt();
+        loop {
+            match self.lines.recv_timeout(ctrl_c::LOOK) {
+                Ok(Ok(mut text)) => {
+                    let end = text.trim_end_matches(['\n', '\r']).len();
+                    text.truncate(end);
+                    return Ok(EnteredLine { text, typed: started.elapsed() >= TYPING });
+                }
+                Ok(Err(error)) => return Err(ReadlineError::Io(error)),
+                Err(RecvTimeoutError::Timeout) if waiting.interrupted() => {
+                    let _ = writeln!(stdout);
+                    return Err(ReadlineError::Interrupted);
+                }
+                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => return Err(ReadlineError::Eof),
+            }
+        }
+    }
+
+    fn remember(&mut self, _entry: &str) {}
 }
 
 /// Lines given in advance, typed one after the other; Ctrl-D after the last.

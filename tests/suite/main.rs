@@ -28,5 +28,6 @@ mod repl_interactive;
 mod repl_script;
 mod scale;
 mod scale_out;
+mod signals;
 mod stability;
 mod warnings;

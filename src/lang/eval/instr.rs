@@ -189,14 +189,7 @@ impl Interpreter {
         if self.depth >= self.limits.max_call_depth {
             return Err(self.too_deep(name, span));
         }
-        if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
-            return fail(
-                Diagnostic::error(span, "stopped by Ctrl-C")
-                    .with_code("interrupted")
-                    .with_label(format!("it was calling `{}` here", name.name))
-                    .with_note("nothing of this input was kept"),
-            );
-        }
+        self.stop_if_interrupted(span, || format!("it was calling `{}` here", name.name))?;
         let caller = self.env.prepare_call();
         for (param, arg) in proc.params.iter().zip(args) {
             let n = self.eval_expr(arg)?;
@@ -219,6 +212,20 @@ impl Interpreter {
     /// Records the call of `name` at `span` that just started, with the
     /// values its parameters `params` were given (to explain a pixel).
     #[inline(never)]
+    /// Fails, pointing at `span` with `label`, once Ctrl-C raised the
+    /// interrupt flag: a runaway program, or a long file, stops there.
+    pub(crate) fn stop_if_interrupted(&self, span: Span, label: impl FnOnce() -> String) -> EvalResult<()> {
+        if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+            return fail(
+                Diagnostic::error(span, "stopped by Ctrl-C")
+                    .with_code("interrupted")
+                    .with_label(label())
+                    .with_note("nothing of this input was kept"),
+            );
+        }
+        Ok(())
+    }
+
     fn record_call(&mut self, name: &Ident, params: &[Ident], span: Span) {
         let arguments = params
             .iter()

@@ -9,6 +9,8 @@
 //! probably meant for that one, so the construct it closed instead is the
 //! one whose `end` is missing.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::lexer::{Lexer, Spanned};
 use crate::lang::source::{SourceId, Span};
@@ -280,12 +282,14 @@ pub(super) struct Tracked<'t> {
     lexer: Lexer<'t>,
     source: SourceId,
     context: Context,
+    /// Raised by Ctrl-C: the tokens end in an error (a long file stops).
+    pub(super) interrupt: Option<&'static AtomicBool>,
 }
 
 impl<'t> Tracked<'t> {
     /// The tokens of `text`, whose spans name `source`.
     pub(super) fn new(source: SourceId, text: &'t str) -> Tracked<'t> {
-        Tracked { lexer: Lexer::new(source, text), source, context: Context::default() }
+        Tracked { lexer: Lexer::new(source, text), source, context: Context::default(), interrupt: None }
     }
 
     /// What the tokens before the last one handed out leave open (all of
@@ -300,6 +304,11 @@ impl Iterator for Tracked<'_> {
 
     fn next(&mut self) -> Option<Self::Item> {
         self.context.count_handed();
+        if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+            let at = Span::new(self.source, self.lexer.line_start(), self.lexer.line_start());
+            let stopped = Diagnostic::error(at, "stopped by Ctrl-C while reading").with_code("interrupted");
+            return Some(Err(Box::new(stopped.with_note("nothing of this input was kept"))));
+        }
         let result = match self.lexer.next_word()? {
             Ok(((start, token, end), word)) => {
                 let span = Span::new(self.source, start, end);
