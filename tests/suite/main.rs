@@ -18,6 +18,7 @@ mod golden;
 mod hostile_files;
 mod hostile_scenes;
 mod lessons;
+mod memory_limits;
 mod parse;
 mod pov_export;
 mod print;
