@@ -95,3 +95,74 @@ fn pick_of_4096_samples_of_1000_reflections_keeps_a_bounded_record() {
     assert_eq!(out.matches("... and 4088 more samples").count(), 2, "{out}");
     assert!(!out.contains("changed since"), "{out}");
 }
+
+/// 2^20 = 1,048,576 rotated boxes, from a recursion 20 calls deep: about
+/// 190 MB to evaluate, 520 MB to render.
+const MILLION_BOXES: &str = "camera distance 30 angle 1 end
+ambient 0.2
+light vector 1, 1, 1 intensity 1 end
+proc tree(d, x, y)
+  if d > 0 then
+    tree(d - 1, x * 2, y + 1)
+    tree(d - 1, x * 2 + 1, y + 1)
+  else
+    put rotate box center x * 0.0001, y * 0.01, 0 length 0.005, 0.005, 0.005
+      kd 0.7 ks 0.2 phong 10 color 200, 100, 50 end by 0.3, 0.2, 0.1 end
+  end
+end
+tree(20, 0, 0)
+";
+
+/// Room to evaluate [`MILLION_BOXES`] but not to render it, in KiB (on two
+/// threads: each thread adds its stack and its allocator's arena to the
+/// address space `ulimit -v` counts).
+const EVALUATION_ONLY_KIB: u64 = 580 << 10;
+
+/// The message of a scene too large for the memory.
+const NOT_ENOUGH: &str = "not enough memory for 1048576 primitives: about ";
+
+/// The files in `folder`, sorted.
+fn files_in(folder: &Path) -> Vec<String> {
+    let entries = std::fs::read_dir(folder).expect("the folder is read");
+    let mut names: Vec<String> = entries.map(|entry| entry.expect("an entry").file_name().to_string_lossy().into()).collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_scene_too_large_for_the_memory_is_a_message_on_the_command_line() {
+    let folder = tempfile::tempdir().expect("a temporary folder");
+    let scene = scene_file(folder.path(), "boxes.ray", MILLION_BOXES);
+    let scene = scene.to_str().expect("a UTF-8 path");
+    let size = ["--width", "64", "--height", "48", "--threads", "2"];
+    for output in ["boxes.png", "frames.gif"] {
+        let target = folder.path().join(output);
+        let mut args = vec![scene, "-q", "-o", target.to_str().expect("UTF-8")];
+        args.extend(size);
+        if output.ends_with(".gif") {
+            args.extend(["--anim", "2"]);
+        }
+        let run = run_limited_to(EVALUATION_ONLY_KIB, &args, "");
+        let message = stderr(&run);
+        assert_eq!(run.status.code(), Some(1), "{output}: {message}");
+        assert!(message.starts_with(&format!("rayrepl: {NOT_ENOUGH}")) && message.contains(" GB needed"), "{message}");
+        assert_eq!(files_in(folder.path()), ["boxes.ray"], "{output}: nothing written, nothing left");
+    }
+}
+
+#[test]
+fn a_scene_too_large_for_the_memory_is_a_message_in_a_session_that_goes_on() {
+    let folder = tempfile::tempdir().expect("a temporary folder");
+    let scene = scene_file(folder.path(), "boxes.ray", MILLION_BOXES);
+    let saved = folder.path().join("saved.png");
+    let script =
+        format!(":load {}\n:save {} 64 48\n:render 64 48\nprint 6 * 7\n", scene.display(), saved.display());
+    // `--keep-going`: the script runs on after an error, as a typed session does.
+    let run = run_limited_to(EVALUATION_ONLY_KIB, &["--keep-going", "--threads", "2"], &script);
+    let (out, message) = (String::from_utf8_lossy(&run.stdout), stderr(&run));
+    let everything = format!("{out}{message}");
+    assert_eq!(everything.matches(NOT_ENOUGH).count(), 2, "{everything}");
+    assert!(everything.contains("42"), "the session goes on: {everything}");
+    assert_eq!(run.status.code(), Some(1), "the errors said at the end: {everything}");
+    assert_eq!(files_in(folder.path()), ["boxes.ray"], "nothing written, nothing left");
+}
