@@ -102,6 +102,9 @@ mod tests {
         assert_eq!(reserve_for(&scene, &RenderOptions::DEFAULT), Ok(()));
         // 1.8e19 pixels: past any address space.
         let huge = RenderOptions { width: u32::MAX, height: u32::MAX, ..RenderOptions::DEFAULT };
-        assert_eq!(reserve_for(&scene, &huge).map_err(|refused| (refused.primitives, refused.needed)), Err((0, u64::MAX)));
+        assert_eq!(
+            reserve_for(&scene, &huge).map_err(|refused| (refused.primitives, refused.needed)),
+            Err((0, u64::MAX))
+        );
     }
 }

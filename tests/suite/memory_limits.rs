@@ -124,7 +124,8 @@ const NOT_ENOUGH: &str = "not enough memory for 1048576 primitives: about ";
 /// The files in `folder`, sorted.
 fn files_in(folder: &Path) -> Vec<String> {
     let entries = std::fs::read_dir(folder).expect("the folder is read");
-    let mut names: Vec<String> = entries.map(|entry| entry.expect("an entry").file_name().to_string_lossy().into()).collect();
+    let mut names: Vec<String> =
+        entries.map(|entry| entry.expect("an entry").file_name().to_string_lossy().into()).collect();
     names.sort();
     names
 }
@@ -155,8 +156,7 @@ fn a_scene_too_large_for_the_memory_is_a_message_in_a_session_that_goes_on() {
     let folder = tempfile::tempdir().expect("a temporary folder");
     let scene = scene_file(folder.path(), "boxes.ray", MILLION_BOXES);
     let saved = folder.path().join("saved.png");
-    let script =
-        format!(":load {}\n:save {} 64 48\n:render 64 48\nprint 6 * 7\n", scene.display(), saved.display());
+    let script = format!(":load {}\n:save {} 64 48\n:render 64 48\nprint 6 * 7\n", scene.display(), saved.display());
     // `--keep-going`: the script runs on after an error, as a typed session does.
     let run = run_limited_to(EVALUATION_ONLY_KIB, &["--keep-going", "--threads", "2"], &script);
     let (out, message) = (String::from_utf8_lossy(&run.stdout), stderr(&run));
