@@ -18,7 +18,9 @@ use std::sync::Arc;
 use image::RgbImage;
 
 use crate::render::intersect::Aabb;
-use crate::render::{self, Cancelled, FrameReuse, Geometry, RenderControl, RenderOptions, RenderStats, SceneGeometry};
+use crate::render::{
+    self, Cancelled, FrameReuse, Geometry, OutOfMemory, RenderControl, RenderOptions, RenderStats, SceneGeometry,
+};
 use crate::scene::Scene;
 
 /// Most frames evaluated ahead of rendering for [`FrameReuse`]: a pixel is
@@ -37,6 +39,8 @@ pub enum AnimationError<E> {
     Failed(E),
     /// The render was cancelled through [`RenderControl::cancel`].
     Cancelled,
+    /// The memory to render the first frame cannot be had.
+    OutOfMemory(OutOfMemory),
 }
 
 impl<E> From<Cancelled> for AnimationError<E> {
@@ -64,6 +68,7 @@ pub fn render_animation<E>(
         return Ok(total);
     }
     let first = evaluate(start, false).map_err(AnimationError::Failed)?;
+    render::reserve_for(&first, options).map_err(AnimationError::OutOfMemory)?;
     let first_prepared = SceneGeometry::new(&first);
     if !first.depends_on_time() {
         let (image, stats) = render::render(&first, &first_prepared, options, control)?;

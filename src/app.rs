@@ -274,6 +274,7 @@ fn check(parsed: &ParsedScene) -> Result<(), BatchError> {
 fn explain(parsed: &ParsedScene, options: &RenderOptions, (x, y): (u32, u32), json: bool) -> Result<(), BatchError> {
     let interpreter = Interpreter::new(parsed.file.time, parsed.file.limits).recording_calls();
     let interpreter = parsed.run(interpreter, true)?;
+    render::reserve_for(interpreter.scene(), options).map_err(|error| error.to_string())?;
     let explanation = ExplainedScene::new(&interpreter, &parsed.sources, options).explain(x, y);
     let text = if json { format!("{}\n", explanation.to_json()) } else { explanation.to_string() };
     write_stdout("the explanation", |stdout| stdout.write_all(text.as_bytes()))?;
@@ -370,6 +371,7 @@ fn render_still(parsed: &ParsedScene, render: &Render, cancel: &AtomicBool) -> R
     let start = Stopwatch::start();
     let scene = parsed.evaluate(parsed.file.time, false)?;
     let evaluated = start.elapsed();
+    render::reserve_for(&scene, &render.options).map_err(|error| error.to_string())?;
     let prepared = SceneGeometry::new(&scene);
     let built = start.elapsed() - evaluated;
     let options = &render.options;
@@ -510,6 +512,7 @@ fn animate(
         Ok(total) => total,
         Err(AnimationError::Failed(error)) => return Err(unless_interrupted(error, cancel, frames_out.written())),
         Err(AnimationError::Cancelled) => return Err(BatchError::Interrupted(frames_out.written().to_vec())),
+        Err(AnimationError::OutOfMemory(error)) => return Err(BatchError::Other(error.to_string())),
     };
     progress.finish();
     if render.stats {

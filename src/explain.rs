@@ -16,7 +16,7 @@ use serde_json::{Map, Value, json};
 use crate::lang::eval::{Call, Origins};
 use crate::lang::number::format_number;
 use crate::lang::{Interpreter, SourceMap, Span};
-use crate::render::pixel_paths::{Level, LightPart, SamplePath, Surface};
+use crate::render::pixel_paths::{LEVELS_RECORDED, Level, LightPart, SAMPLES_RECORDED, SamplePath, Surface};
 use crate::render::{Explainer, PixelPaths, RenderOptions};
 use crate::scene::{Scene, Shape};
 
@@ -77,27 +77,58 @@ impl Explanation<'_> {
     /// The explanation as one JSON object: `pixel`, `rgb` (the bytes
     /// written), `color` (the average before rounding), `path` (the first
     /// sample's surfaces, camera ray first) and, with several samples,
-    /// `samples` (each one's `color` and `path`).
+    /// `samples` (each recorded one's `color` and `path`). What was traced
+    /// but not recorded is counted: `more_reflections` beside a path cut
+    /// short, `more_samples` (how many, their average `color`), and a `note`
+    /// saying so.
     pub fn to_json(&self) -> Value {
         let (x, y) = self.paths.pixel;
         let samples = &self.paths.samples;
         let mut object = Map::new();
         object.insert("pixel".into(), json!([x, y]));
         object.insert("rgb".into(), json!(self.paths.rgb));
-        object.insert("color".into(), triple(self.average()));
+        object.insert("color".into(), triple(self.paths.colour));
         object.insert("path".into(), samples.first().map_or(json!([]), |path| self.path_json(path)));
-        if samples.len() > 1 {
-            let each = samples.iter().map(|path| json!({"color": triple(path.colour()), "path": self.path_json(path)}));
+        if let Some(more) = samples.first().map(|path| path.unrecorded_levels).filter(|&more| more > 0) {
+            object.insert("more_reflections".into(), json!(more));
+        }
+        if self.paths.traced > 1 {
+            let each = samples.iter().map(|path| {
+                let mut sample = Map::new();
+                sample.insert("color".into(), triple(path.colour()));
+                sample.insert("path".into(), self.path_json(path));
+                if path.unrecorded_levels > 0 {
+                    sample.insert("more_reflections".into(), json!(path.unrecorded_levels));
+                }
+                Value::Object(sample)
+            });
             object.insert("samples".into(), Value::Array(each.collect()));
+        }
+        if self.paths.unrecorded() > 0 {
+            let more = json!({"count": self.paths.unrecorded(), "color": triple(self.paths.unrecorded_colour)});
+            object.insert("more_samples".into(), more);
+        }
+        if let Some(note) = self.note() {
+            object.insert("note".into(), json!(note));
         }
         Value::Object(object)
     }
 
-    /// The average of the samples' colours, which the bytes round.
-    fn average(&self) -> DVec3 {
-        let samples = &self.paths.samples;
-        let sum: DVec3 = samples.iter().map(SamplePath::colour).sum();
-        if samples.len() == 1 { sum } else { sum / samples.len() as f64 }
+    /// What was traced but not recorded, if anything was.
+    fn note(&self) -> Option<String> {
+        let cut_paths = self.paths.samples.iter().any(|path| path.unrecorded_levels > 0);
+        let cut_samples = self.paths.unrecorded() > 0;
+        let what = match (cut_samples, cut_paths) {
+            (false, false) => return None,
+            (true, false) => format!("the paths of the first {SAMPLES_RECORDED} samples"),
+            (false, true) => format!("the first {LEVELS_RECORDED} rays of each path"),
+            (true, true) => {
+                format!("the paths of the first {SAMPLES_RECORDED} samples, each to its first {LEVELS_RECORDED} rays,")
+            }
+        };
+        Some(format!(
+            "only {what} are shown: every sample was traced down to the depth, and the colour and the bytes count them all"
+        ))
     }
 
     fn path_json(&self, path: &SamplePath) -> Value {
@@ -205,25 +236,38 @@ impl Explanation<'_> {
 }
 
 impl std::fmt::Display for Explanation<'_> {
-    /// The explanation in words: each sample's path, level by level, then
-    /// the bytes.
+    /// The explanation in words: each recorded sample's path, level by
+    /// level, what was traced but not recorded, then the bytes.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (x, y) = self.paths.pixel;
-        let samples = &self.paths.samples;
+        let (samples, traced) = (&self.paths.samples, self.paths.traced);
         writeln!(f, "pixel ({x}, {y})")?;
         for (k, path) in samples.iter().enumerate() {
-            if samples.len() > 1 {
-                writeln!(f, "sample {} of {}: colour {}", k + 1, samples.len(), colour(path.colour()))?;
+            if traced > 1 {
+                writeln!(f, "sample {} of {traced}: colour {}", k + 1, colour(path.colour()))?;
             }
             for (depth, level) in path.levels.iter().enumerate() {
-                let last = depth + 1 == path.levels.len();
+                let last = depth + 1 == path.levels.len() && path.unrecorded_levels == 0;
                 f.write_str(&self.level_text(depth, level, last))?;
             }
+            if path.unrecorded_levels > 0 {
+                let indent = "  ".repeat(path.levels.len());
+                let more = more(path.unrecorded_levels, "reflection", "reflections");
+                writeln!(f, "{indent}... and {more}, traced but not shown")?;
+            }
+        }
+        let unrecorded = self.paths.unrecorded();
+        if unrecorded > 0 {
+            let (first, average) = (samples.len() + 1, colour(self.paths.unrecorded_colour));
+            let more = more(unrecorded, "sample", "samples");
+            writeln!(f, "... and {more} ({first} to {traced}), traced but not shown: their average colour {average}")?;
+        }
+        if let Some(note) = self.note() {
+            writeln!(f, "note: {note}")?;
         }
         let [r, g, b] = self.paths.rgb;
-        let mean =
-            if samples.len() > 1 { format!("the average of {} samples, ", samples.len()) } else { String::new() };
-        writeln!(f, "rgb ({r}, {g}, {b}) = round(255 × {mean}{})", colour(self.average()))
+        let mean = if traced > 1 { format!("the average of {traced} samples, ") } else { String::new() };
+        writeln!(f, "rgb ({r}, {g}, {b}) = round(255 × {mean}{})", colour(self.paths.colour))
     }
 }
 
@@ -321,6 +365,11 @@ fn insert_place(object: &mut Map<String, Value>, place: &Place) {
     object.insert("file".into(), json!(place.file));
     object.insert("line".into(), json!(place.line));
     object.insert("column".into(), json!(place.column));
+}
+
+/// "1 more reflection", "985 more reflections".
+fn more(count: usize, one: &str, many: &str) -> String {
+    format!("{count} more {}", if count == 1 { one } else { many })
 }
 
 /// `[x, y, z]`.

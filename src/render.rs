@@ -37,6 +37,7 @@ pub mod bvh;
 pub mod camera;
 pub mod geometry;
 pub mod intersect;
+pub mod memory;
 pub mod moving_bounds;
 mod options;
 pub mod pixel_paths;
@@ -50,6 +51,7 @@ pub use adaptive::{ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, FINE_DETAIL, Glimpse
 pub use camera::{PrimaryRays, Screen, sample_offsets};
 pub use geometry::{Geometry, SceneGeometry, SurfaceHit};
 pub use intersect::Ray;
+pub use memory::{OutOfMemory, reserve_for};
 pub use options::{
     Cancelled, MAX_DEPTH, REFERENCE_SAMPLES, RayCounts, RenderControl, RenderOptions, RenderStats, Skips,
 };

@@ -7,12 +7,13 @@ use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
 use crate::output::{self, Content, FrameSink, ImageFormat};
 use crate::playback::AnimationOptions;
+use crate::render::reserve_for;
 use crate::settings::FRAMES;
 
 use super::cancel::cancel_flag;
 use super::outcome::{CommandError, CommandResult, Flow, parse_count, parse_size, usage};
 use super::outputs::{FrontEnd, Output, Picture, PixelExplanation, PreviewSize};
-use super::render_steps::{duration, explain_defaults, render_frames, render_scene, write_failure};
+use super::render_steps::{duration, explain_defaults, out_of_memory, render_frames, render_scene, write_failure};
 use super::rendering::{Size, render_options};
 use super::report::{counted, show_scene_warnings};
 use super::session::Session;
@@ -82,6 +83,7 @@ pub(crate) fn pick(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     let (x, y) = (coordinate(x, size.width, "X")?, coordinate(y, size.height, "Y")?);
     let interpreter = session.replay_recording_calls().map_err(|d| CommandError::Program(Box::new(d)))?;
     let options = render_options(size, session.settings());
+    reserve_for(interpreter.scene(), &options).map_err(out_of_memory)?;
     let explanation = ExplainedScene::new(&interpreter, session.sources(), &options).explain(x, y);
     if front.picture_size(size).is_some() {
         show_picture(front, Picture { image: picture.clone(), marked: Some((x, y)), saved_to: None })?;

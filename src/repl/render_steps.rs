@@ -11,7 +11,7 @@ use crate::clock::Stopwatch;
 use crate::lang::Diagnostic;
 use crate::output::OutputError;
 use crate::playback::Timeline;
-use crate::render::{RenderControl, SceneGeometry};
+use crate::render::{OutOfMemory, RenderControl, SceneGeometry, reserve_for};
 use crate::scene::Scene;
 
 use super::outcome::CommandError;
@@ -53,6 +53,7 @@ pub(crate) fn render_scene(
     let armed = front.cancel().map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
+    reserve_for(scene, &render_options(size, settings)).map_err(out_of_memory)?;
     let image =
         render_image(scene, &SceneGeometry::new(scene), size, settings, cancel, &*tick).map_err(render_failure)?;
     Ok((image, started.elapsed()))
@@ -89,7 +90,13 @@ pub(crate) fn render_frames(
         Ok(_) => Ok(()),
         Err(AnimationError::Failed(error)) => Err(error),
         Err(AnimationError::Cancelled) => Err(render_failure(RenderError::Cancelled)),
+        Err(AnimationError::OutOfMemory(error)) => Err(out_of_memory(error)),
     }
+}
+
+/// The memory a render needs cannot be had: the session goes on as it was.
+pub(crate) fn out_of_memory(error: OutOfMemory) -> CommandError {
+    CommandError::Failed(format!("{error}; the session is as it was"))
 }
 
 fn frame_failure(diagnostic: Diagnostic, frame: u32, time: f64) -> CommandError {

@@ -19,6 +19,7 @@ mod hostile_files;
 mod hostile_runs;
 mod hostile_scenes;
 mod lessons;
+mod memory_limits;
 mod parse;
 mod pov_export;
 mod print;
