@@ -18,6 +18,7 @@ use lalrpop_util::{ParseError, lalrpop_mod};
 use super::ast::{Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
 use super::lexer::{Lexer, Spanned};
+use super::nesting::Nesting;
 use super::source::{SourceId, Span};
 use super::token::Token;
 use super::words::Word;
@@ -144,6 +145,8 @@ pub struct Entry {
     /// How many constructs and parentheses the tokens leave open.
     constructs: usize,
     parens: usize,
+    /// How deeply they nest, to go on counting on the next line.
+    nesting: Nesting,
 }
 
 impl Entry {
@@ -151,7 +154,7 @@ impl Entry {
     pub fn read(text: String) -> Entry {
         // About a token for two bytes of text: one allocation instead of growing.
         let tokens = Some(Vec::with_capacity(text.len() / 2));
-        let mut entry = Entry { text, tokens, constructs: 0, parens: 0 };
+        let mut entry = Entry { text, tokens, constructs: 0, parens: 0, nesting: Nesting::default() };
         entry.read_from(0);
         entry
     }
@@ -183,7 +186,8 @@ impl Entry {
     /// does not parse is read again that way.
     fn read_from(&mut self, start: usize) {
         let Some(tokens) = &mut self.tokens else { return };
-        let mut lexer = Lexer::from_line(SourceId::default(), &self.text, start);
+        let nesting = std::mem::take(&mut self.nesting);
+        let mut lexer = Lexer::from_line(SourceId::default(), &self.text, start, nesting);
         while let Some(token) = lexer.next_word() {
             let Ok((spanned, word)) = token else {
                 self.tokens = None;
@@ -207,6 +211,7 @@ impl Entry {
             }
             tokens.push(spanned);
         }
+        self.nesting = lexer.take_nesting();
     }
 }
 

@@ -237,6 +237,11 @@ impl Script<'_, '_> {
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;
         }
+        // A full session refuses every input after: even `--keep-going` stops.
+        if result.is_err() && self.shell.session.is_full() {
+            self.errors += 1;
+            return Step::Stop;
+        }
         self.after(result.is_ok())
     }
 
