@@ -15,8 +15,8 @@ pub(crate) struct EvalError {
     /// For a too deep recursion: every active call (procedure, call site),
     /// innermost first, as they are collected while the error unwinds; the
     /// note that summarises them once the sources are known reads them
-    /// outermost first.
-    pub chain: Vec<(Rc<str>, Span)>,
+    /// outermost first. `None` for the other errors.
+    pub chain: Option<Vec<(Rc<str>, Span)>>,
 }
 
 /// Boxed, so that results on the hot path stay two words wide.
@@ -24,7 +24,7 @@ pub(crate) type EvalResult<T> = Result<T, Box<EvalError>>;
 
 impl From<Diagnostic> for Box<EvalError> {
     fn from(diagnostic: Diagnostic) -> Box<EvalError> {
-        Box::new(EvalError { diagnostic, chain: Vec::new() })
+        Box::new(EvalError { diagnostic, chain: None })
     }
 }
 

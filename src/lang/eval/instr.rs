@@ -7,7 +7,8 @@ use std::sync::atomic::Ordering;
 use super::env::same_name;
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
 use super::value::{Kind, Value};
-use super::{Interpreter, grow};
+use super::Interpreter;
+use super::stack::grow;
 use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ObjKind, ProcDef};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::source::Span;
@@ -38,7 +39,7 @@ impl Interpreter {
             InstrKind::Call(name, args) => self.exec_call(name, args, instr.span),
             InstrKind::Put(obj) => self.exec_put(obj, instr.span),
             InstrKind::Print(values) => self.exec_print(values, instr.span),
-            InstrKind::If(cond, then, otherwise) => grow(|| {
+            InstrKind::If(cond, then, otherwise) => grow(instr.span, || {
                 let (holds, tainted) = self.eval_cond(cond)?;
                 self.origins.branched_on_time |= tainted;
                 // Under a tainted context every variable of this scope is
@@ -207,7 +208,7 @@ impl Interpreter {
             self.record_call(name, &proc.params, span);
         }
         self.depth += 1;
-        let result = grow(|| self.exec_block(&proc.body));
+        let result = grow(span, || self.exec_block(&proc.body));
         self.depth -= 1;
         self.env.leave(caller);
         if let Some(calls) = &mut self.origins.calls {
@@ -274,7 +275,7 @@ impl Interpreter {
                 self.limits.raised_with.how("calls")
             ));
         // The callers add themselves as the error unwinds (see `in_call`).
-        Box::new(EvalError { diagnostic, chain: vec![(name.name.clone(), span)] })
+        Box::new(EvalError { diagnostic, chain: Some(vec![(name.name.clone(), span)]) })
     }
 }
 
@@ -283,8 +284,8 @@ impl Interpreter {
 /// them all), and
 /// adds the call to a recursion error's chain.
 fn in_call(mut error: Box<EvalError>, name: &Rc<str>, span: Span) -> Box<EvalError> {
-    if !error.chain.is_empty() {
-        error.chain.push((name.clone(), span));
+    if let Some(chain) = &mut error.chain {
+        chain.push((name.clone(), span));
     }
     let diagnostic = &mut error.diagnostic;
     let shown = span == diagnostic.span || diagnostic.related.iter().any(|(s, _)| *s == span);
