@@ -2,7 +2,7 @@
 
 use std::rc::Rc;
 
-use crate::lang::diagnostic::{Diagnostic, Note};
+use crate::lang::diagnostic::{Diagnostic, Note, shown_name};
 use crate::lang::number::format_number;
 use crate::lang::source::Span;
 use crate::lang::suggest;
@@ -100,7 +100,10 @@ pub(crate) fn wrong_arity(span: Span, name: &str, params: &[&str], given: usize)
 /// calls (mutual recursion), are folded.
 pub(crate) fn summarise_chain(chain: &[(Rc<str>, Span)]) -> Note {
     let calls = |calls: &[(Rc<str>, Span)]| {
-        Note::joined(calls.iter().map(|(name, span)| Note::from(format!("{name} (")).place(*span).text(")")), " -> ")
+        Note::joined(
+            calls.iter().map(|(name, span)| Note::from(format!("{} (", shown_name(name))).place(*span).text(")")),
+            " -> ",
+        )
     };
     let mut parts = Vec::new();
     let mut i = 0;
