@@ -3,8 +3,8 @@
 use std::fmt::{self, Display};
 
 use crate::lang::Diagnostic;
-use crate::lang::diagnostic::shown_name;
 use crate::lang::ast::{InstrKind, Item};
+use crate::lang::diagnostic::shown_name;
 use crate::lang::number::Number;
 /// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
 pub(crate) use crate::lang::number::format_number as number;

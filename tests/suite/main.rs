@@ -17,6 +17,7 @@ mod fuzz;
 mod golden;
 mod hostile_files;
 mod hostile_scenes;
+mod language_limits;
 mod lessons;
 mod parse;
 mod pov_export;

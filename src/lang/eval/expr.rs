@@ -7,10 +7,10 @@
 
 use std::f64::consts::PI;
 
-use super::errors::{EvalResult, fail, with_suggestion, wrong_kind};
-use super::value::{Kind, Num};
 use super::Interpreter;
+use super::errors::{EvalResult, fail, with_suggestion, wrong_kind};
 use super::stack::grow;
+use super::value::{Kind, Num};
 use crate::lang::ast::{BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::number::Number;

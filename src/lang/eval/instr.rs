@@ -4,13 +4,13 @@ use std::mem;
 use std::rc::Rc;
 use std::sync::atomic::Ordering;
 
+use super::Interpreter;
 use super::env::same_name;
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
-use super::value::{Kind, Value};
-use super::Interpreter;
 use super::stack::grow;
+use super::value::{Kind, Value};
 use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ObjKind, ProcDef};
-use crate::lang::diagnostic::{Diagnostic, shown_name};
+use crate::lang::diagnostic::{Diagnostic, with_names_shortened};
 use crate::lang::source::Span;
 
 /// How many calls of a failing call chain are shown as "in this call" places.
@@ -290,7 +290,7 @@ fn in_call(mut error: Box<EvalError>, name: &Rc<str>, span: Span) -> Box<EvalErr
     let diagnostic = &mut error.diagnostic;
     let shown = span == diagnostic.span || diagnostic.related.iter().any(|(s, _)| *s == span);
     if !shown && diagnostic.related.len() < CALLS_SHOWN {
-        diagnostic.related.push((span, format!("in this call of `{}`", shown_name(name))));
+        diagnostic.related.push((span, with_names_shortened(format!("in this call of `{name}`"))));
     }
     error
 }

@@ -7,10 +7,10 @@
 
 use glam::{DMat3, DVec3};
 
-use super::errors::{EvalResult, fail, wrong_kind};
-use super::value::{Kind, Num};
 use super::Interpreter;
+use super::errors::{EvalResult, fail, wrong_kind};
 use super::stack::grow;
+use super::value::{Kind, Num};
 use crate::lang::ast::{Expr, Obj, ObjKind, Texture, Triple};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::number::Number;

@@ -12,9 +12,15 @@ pub const MEMORY_KIB: u64 = 6 << 20;
 /// Runs `rayrepl ARGS` with its memory capped at [`MEMORY_KIB`] and `stdin`
 /// on its standard input; a failed allocation would end it by an abort.
 pub fn run_limited(args: &[&str], stdin: &str) -> Output {
+    run_limited_to(MEMORY_KIB, args, stdin)
+}
+
+/// Runs `rayrepl ARGS` as [`run_limited`] does, its memory capped at
+/// `memory_kib` KiB.
+pub fn run_limited_to(memory_kib: u64, args: &[&str], stdin: &str) -> Output {
     let mut child = Command::new("sh")
         .arg("-c")
-        .arg(format!("ulimit -v {MEMORY_KIB} && exec \"$0\" \"$@\""))
+        .arg(format!("ulimit -v {memory_kib} && exec \"$0\" \"$@\""))
         .arg(env!("CARGO_BIN_EXE_rayrepl"))
         .args(args)
         .stdin(Stdio::piped())
