@@ -15,7 +15,7 @@ mod order;
 
 use lalrpop_util::{ParseError, lalrpop_mod};
 
-use super::ast::{Instr, InstrKind, Item, Program};
+use super::ast::{Cond, Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
 use super::lexer::{Lexer, Spanned};
 use super::nesting::Nesting;
@@ -88,6 +88,17 @@ impl Sources<'_> {
 pub(crate) fn push_instr(mut items: Vec<Item>, kind: InstrKind, span: Span) -> Vec<Item> {
     items.push(Item::Instr(Instr { kind, span }));
     items
+}
+
+/// The `if` of `cond` with its branches, without the room their lists kept
+/// for more instructions: deeply nested `if`s would take four times the
+/// memory (docs/language.md, section 10).
+pub(crate) fn if_instr(cond: Cond, mut then: Vec<Instr>, mut otherwise: Option<Vec<Instr>>) -> InstrKind {
+    then.shrink_to_fit();
+    if let Some(otherwise) = &mut otherwise {
+        otherwise.shrink_to_fit();
+    }
+    InstrKind::If(cond, then, otherwise)
 }
 
 /// Appends the instruction of `kind` spanning `span` to a block.
