@@ -169,6 +169,15 @@ impl Script<'_, '_> {
             let armed = self.console.cancel.map(|switch| switch.arm());
             let entry = match pending.take() {
                 Some(mut entry) => {
+                    if entry.text().len() + line.len() > MOST_LINE_BYTES {
+                        // An input that never ends (a line ending in `+`,
+                        // again and again) must not fill the memory either.
+                        if self.run_ready(&mut ready) == Step::Next {
+                            self.console.error(input_too_long(first_line));
+                            self.errors += 1;
+                        }
+                        return;
+                    }
                     entry.add_line(line);
                     entry
                 }
@@ -278,6 +287,15 @@ impl Script<'_, '_> {
         self.errors += 1;
         if self.keep_going { Step::Next } else { Step::Stop }
     }
+}
+
+/// Why the input starting at line `first_line` of the script cannot run.
+fn input_too_long(first_line: usize) -> String {
+    format!(
+        "the input starting at line {first_line} of the script is longer than {} MiB, the most an input may be \
+         (a long program is better read from a file with `:load`)",
+        MOST_LINE_BYTES >> 20
+    )
 }
 
 /// Why line `number` of the script cannot run, in words.

@@ -169,3 +169,13 @@ fn a_megabyte_long_name_is_shortened_in_every_message() {
     // The source lines are shown cut too: nothing near the name's length is written.
     assert!(stderr.len() + stdout.len() < 20_000, "{} bytes", stderr.len() + stdout.len());
 }
+
+#[test]
+fn an_input_that_never_ends_stops_the_script_before_it_fills_the_memory() {
+    // Every line leaves the input unfinished: it would grow forever.
+    let script = "let a = 1 +\n".repeat((64 << 20) / 12 + 10);
+    let (status, stderr) = run(&[], &script);
+    assert_eq!(status, Some(1), "{}", start(&stderr));
+    let message = "error: the input starting at line 1 of the script is longer than 64 MiB, the most an input may be";
+    assert!(stderr.starts_with(message), "{}", start(&stderr));
+}
