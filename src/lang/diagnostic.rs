@@ -70,6 +70,7 @@ pub struct Replacement {
 
 impl Diagnostic {
     /// An error at `span`.
+    #[inline(never)]
     pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
@@ -341,6 +342,7 @@ fn is_long_name(quoted: &str) -> bool {
 /// `text` with every long name it quotes between backquotes shortened as
 /// [`shown_name`] does (`aaaa…` (1000000 characters)): the one rule for
 /// every message, label, note and help.
+#[inline(never)]
 pub(crate) fn with_names_shortened(text: String) -> String {
     // Most texts are short, or quote no long name.
     if text.len() <= LONGEST_NAME_SHOWN || !text.split('`').skip(1).step_by(2).any(is_long_name) {

@@ -26,7 +26,7 @@ impl Interpreter {
             }
             ExprKind::Pi => Ok(Num::constant(PI)),
             ExprKind::Var(name) => self.number_variable(name, expr.span),
-            _ => grow(expr.span, || self.eval_compound(expr)),
+            _ => grow(|| expr.span, || self.eval_compound(expr)),
         }
     }
 
@@ -93,7 +93,7 @@ impl Interpreter {
                 let b = self.eval_expr(right)?;
                 Ok((compare(*op, a.value, b.value), a.tainted | b.tainted))
             }
-            _ => grow(cond.span, || self.eval_connective(cond)),
+            _ => grow(|| cond.span, || self.eval_connective(cond)),
         }
     }
 

@@ -39,27 +39,30 @@ impl Interpreter {
             InstrKind::Call(name, args) => self.exec_call(name, args, instr.span),
             InstrKind::Put(obj) => self.exec_put(obj, instr.span),
             InstrKind::Print(values) => self.exec_print(values, instr.span),
-            InstrKind::If(cond, then, otherwise) => grow(instr.span, || {
-                let (holds, tainted) = self.eval_cond(cond)?;
-                self.origins.branched_on_time |= tainted;
-                // Under a tainted context every variable of this scope is
-                // already tainted (bound in that context, or tainted by the
-                // walk of the enclosing `if`), so the walk is needed once only.
-                if tainted && !self.context_tainted {
-                    self.taint_bindings_in(then, otherwise.as_deref());
-                }
-                let (branch, skipped) =
-                    if holds { (Some(then), otherwise.as_deref()) } else { (otherwise.as_ref(), Some(&then[..])) };
-                if let Some(skipped) = skipped
-                    && self.origins.objects.has_unused()
-                {
-                    self.mark_objects_named_in(skipped);
-                }
-                match branch {
-                    Some(body) => self.exec_in_context(tainted, body),
-                    None => Ok(()),
-                }
-            }),
+            InstrKind::If(cond, then, otherwise) => grow(
+                || instr.span,
+                || {
+                    let (holds, tainted) = self.eval_cond(cond)?;
+                    self.origins.branched_on_time |= tainted;
+                    // Under a tainted context every variable of this scope is
+                    // already tainted (bound in that context, or tainted by the
+                    // walk of the enclosing `if`), so the walk is needed once only.
+                    if tainted && !self.context_tainted {
+                        self.taint_bindings_in(then, otherwise.as_deref());
+                    }
+                    let (branch, skipped) =
+                        if holds { (Some(then), otherwise.as_deref()) } else { (otherwise.as_ref(), Some(&then[..])) };
+                    if let Some(skipped) = skipped
+                        && self.origins.objects.has_unused()
+                    {
+                        self.mark_objects_named_in(skipped);
+                    }
+                    match branch {
+                        Some(body) => self.exec_in_context(tainted, body),
+                        None => Ok(()),
+                    }
+                },
+            ),
         }
     }
 
@@ -208,7 +211,7 @@ impl Interpreter {
             self.record_call(name, &proc.params, span);
         }
         self.depth += 1;
-        let result = grow(span, || self.exec_block(&proc.body));
+        let result = grow(|| span, || self.exec_block(&proc.body));
         self.depth -= 1;
         self.env.leave(caller);
         if let Some(calls) = &mut self.origins.calls {

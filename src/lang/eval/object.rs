@@ -53,7 +53,7 @@ impl Interpreter {
                 out.push(Primitive { shape, material });
                 Ok(c | s | m)
             }
-            _ => grow(obj.span, || self.emit_compound(obj, out)),
+            _ => grow(|| obj.span, || self.emit_compound(obj, out)),
         }
     }
 

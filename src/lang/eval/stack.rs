@@ -24,27 +24,28 @@ thread_local! {
     static SEGMENTS: Cell<usize> = const { Cell::new(0) };
 }
 
-/// Runs `f` (evaluating the construct at `span`) on a fresh stack segment
+/// Runs `f` (evaluating the construct at `span()`) on a fresh stack segment
 /// if the current one is nearly full; the error "recursion too deep for
 /// the memory" if the segments would pass half of the machine's memory, or
 /// the memory the process may still take (`ulimit -v`) could not hold one
 /// more.
 #[inline]
-pub(crate) fn grow<R>(span: Span, f: impl FnOnce() -> EvalResult<R>) -> EvalResult<R> {
-    match stacker::remaining_stack() {
-        Some(left) if left < RED_ZONE => grow_segment(span, f),
-        Some(_) => f(),
-        // Where the stack's end is unknown, stacker finds it on a segment
-        // of its own, or runs `f` where it is.
-        None => stacker::maybe_grow(RED_ZONE, STACK_SEGMENT, f),
-    }
+pub(crate) fn grow<R>(span: impl FnOnce() -> Span, f: impl FnOnce() -> EvalResult<R>) -> EvalResult<R> {
+    if stacker::remaining_stack().is_some_and(|left| left >= RED_ZONE) { f() } else { grow_segment(span, f) }
 }
 
 /// Runs `f` on a new segment, as [`grow`] says.
-fn grow_segment<R>(span: Span, f: impl FnOnce() -> EvalResult<R>) -> EvalResult<R> {
+#[cold]
+#[inline(never)]
+fn grow_segment<R>(span: impl FnOnce() -> Span, f: impl FnOnce() -> EvalResult<R>) -> EvalResult<R> {
+    if stacker::remaining_stack().is_none() {
+        // Where the stack's end is unknown, stacker finds it on a segment
+        // of its own, or runs `f` where it is.
+        return stacker::maybe_grow(RED_ZONE, STACK_SEGMENT, f);
+    }
     let segments = SEGMENTS.get();
     if segments >= most_segments() || !segment_fits() {
-        return Err(too_deep_for_the_memory(span));
+        return Err(too_deep_for_the_memory(span()));
     }
     SEGMENTS.set(segments + 1);
     let result = stacker::grow(STACK_SEGMENT, f);
