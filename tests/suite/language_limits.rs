@@ -157,7 +157,7 @@ fn a_megabyte_long_name_is_shortened_in_every_message() {
         format!("note: {shown} is a number, not a procedure"),
         format!("error: unknown variable {shown}"),
         format!("error: {long_shown} takes 1 argument (r) but was given 2"),
-        format!("error: recursion deeper than 10 calls"),
+        "error: recursion deeper than 10 calls".to_string(),
         format!("in this call of {long_shown}"),
         format!(
             "call chain: {long_bare} (line 7) -> {long_bare} (line 5) -> ... `{long_bare} (line 5)` repeated 9 more times"
