@@ -179,3 +179,29 @@ fn an_input_that_never_ends_stops_the_script_before_it_fills_the_memory() {
     let message = "error: the input starting at line 1 of the script is longer than 64 MiB, the most an input may be";
     assert!(stderr.starts_with(message), "{}", start(&stderr));
 }
+
+/// `n` with a comma between each group of three digits, as the docs write it.
+fn with_commas(n: usize) -> String {
+    let digits = n.to_string();
+    let mut written = String::new();
+    for (index, digit) in digits.chars().enumerate() {
+        if index > 0 && (digits.len() - index) % 3 == 0 {
+            written.push(',');
+        }
+        written.push(digit);
+    }
+    written
+}
+
+#[test]
+fn the_limits_are_documented_beside_the_others() {
+    use rayrepl::repl::MOST_INPUTS;
+    let language = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/language.md")).expect("the docs");
+    let limits = language.split_once("## 10. Limits").expect("section 10").1.split_once("\n## ").expect("its end").0;
+    assert!(limits.contains(&format!("- **Nesting**: at most {} levels", with_commas(MAX_NESTING))));
+    assert!(limits.contains(&format!("- **Inputs of a session**: at most {}", with_commas(MOST_INPUTS))));
+    assert!(limits.contains("- **Stack**:"));
+    let help = include_str!("../../src/repl/help_pages/commands/limits.txt");
+    assert!(help.contains(&format!("nested at most {MAX_NESTING} levels")), "{help}");
+    assert!(help.contains(&format!("at most {MOST_INPUTS}\n  inputs")), "{help}");
+}
