@@ -6,6 +6,7 @@ pub mod diagnostic;
 pub mod eval;
 pub(crate) mod fast_hash;
 pub mod lexer;
+pub mod nesting;
 pub mod number;
 pub mod parser;
 pub mod source;
@@ -16,6 +17,7 @@ pub mod words;
 
 pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};
+pub use nesting::MAX_NESTING;
 pub use parser::{Entry, EntryState, entry_state, is_incomplete, parse_entries, parse_file, parse_items};
 pub(crate) use parser::{parse_file_interruptible, parse_items_interruptible};
 pub use source::{SourceFile, SourceId, SourceMap, Span};

@@ -52,6 +52,6 @@ pub use outputs::{
 };
 pub use rendering::{RenderSettings, Size};
 pub use script::run_script;
-pub use session::Session;
 pub(crate) use session::Vocabulary;
+pub use session::{MOST_INPUTS, Session};
 pub(crate) use shell::Shell;

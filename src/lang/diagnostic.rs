@@ -10,6 +10,7 @@
 //! (its code, its [`Place`]s as the rendering shows them, the edits its help
 //! proposes).
 
+use std::borrow::Cow;
 use std::io::Write;
 use std::ops::Range;
 
@@ -69,11 +70,12 @@ pub struct Replacement {
 
 impl Diagnostic {
     /// An error at `span`.
+    #[inline(never)]
     pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
             code: "error",
-            message: message.into(),
+            message: with_names_shortened(message.into()),
             span,
             label: None,
             related: Vec::new(),
@@ -102,13 +104,13 @@ impl Diagnostic {
 
     /// Adds the text shown next to the caret.
     pub fn with_label(mut self, label: impl Into<String>) -> Diagnostic {
-        self.label = Some(label.into());
+        self.label = Some(with_names_shortened(label.into()));
         self
     }
 
     /// Adds another place to show.
     pub fn with_related(mut self, span: Span, text: impl Into<String>) -> Diagnostic {
-        self.related.push((span, text.into()));
+        self.related.push((span, with_names_shortened(text.into())));
         self
     }
 
@@ -120,7 +122,7 @@ impl Diagnostic {
 
     /// Adds a suggested fix.
     pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
-        self.help = Some(help.into());
+        self.help = Some(with_names_shortened(help.into()));
         self
     }
 
@@ -261,7 +263,7 @@ enum NotePiece {
 impl Note {
     /// Adds text at the end.
     pub fn text(mut self, text: impl Into<String>) -> Note {
-        self.pieces.push(NotePiece::Text(text.into()));
+        self.pieces.push(NotePiece::Text(with_names_shortened(text.into())));
         self
     }
 
@@ -306,6 +308,65 @@ impl Note {
             })
             .collect()
     }
+}
+
+/// Names longer than this many characters are shortened in messages.
+const LONGEST_NAME_SHOWN: usize = 48;
+
+/// How many of a shortened name's first characters a message shows.
+const NAME_START_SHOWN: usize = 40;
+
+/// `name` as a message shows it: whole up to [`LONGEST_NAME_SHOWN`]
+/// characters, otherwise its first [`NAME_START_SHOWN`], `…` and its length
+/// (`aaaa…` (1000000 characters)): a name a megabyte long is not echoed whole.
+pub fn shown_name(name: &str) -> Cow<'_, str> {
+    // A name has at most as many characters as bytes.
+    if name.len() <= LONGEST_NAME_SHOWN {
+        return Cow::Borrowed(name);
+    }
+    let characters = name.chars().count();
+    if characters <= LONGEST_NAME_SHOWN {
+        return Cow::Borrowed(name);
+    }
+    let start: String = name.chars().take(NAME_START_SHOWN).collect();
+    Cow::Owned(format!("{start}… ({characters} characters)"))
+}
+
+/// Whether the text between two backquotes is a name too long to show whole.
+fn is_long_name(quoted: &str) -> bool {
+    quoted.len() > LONGEST_NAME_SHOWN
+        && quoted.chars().all(|c| c.is_alphanumeric() || c == '_')
+        && quoted.chars().count() > LONGEST_NAME_SHOWN
+}
+
+/// `text` with every long name it quotes between backquotes shortened as
+/// [`shown_name`] does (`aaaa…` (1000000 characters)): the one rule for
+/// every message, label, note and help.
+#[inline(never)]
+pub(crate) fn with_names_shortened(text: String) -> String {
+    // Most texts are short, or quote no long name.
+    if text.len() <= LONGEST_NAME_SHOWN || !text.split('`').skip(1).step_by(2).any(is_long_name) {
+        return text;
+    }
+    let parts: Vec<&str> = text.split('`').collect();
+    let mut shortened = String::with_capacity(text.len().min(1024));
+    for (index, part) in parts.iter().enumerate() {
+        let quoted = index % 2 == 1;
+        let closed = index + 1 < parts.len();
+        if quoted {
+            shortened.push('`');
+        }
+        if quoted && closed && is_long_name(part) {
+            let start: String = part.chars().take(NAME_START_SHOWN).collect();
+            shortened.push_str(&format!("{start}…` ({} characters)", part.chars().count()));
+        } else {
+            shortened.push_str(part);
+            if quoted && closed {
+                shortened.push('`');
+            }
+        }
+    }
+    shortened
 }
 
 impl From<String> for Note {

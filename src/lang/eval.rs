@@ -25,6 +25,7 @@ mod instr;
 mod object;
 mod origins;
 mod print;
+mod stack;
 mod value;
 
 use std::collections::HashSet;
@@ -51,19 +52,6 @@ pub const DEFAULT_CAMERA: Camera = Camera { distance: 10.0, angle: 1.0 };
 
 /// The ambient intensity used before a program defines one.
 pub const DEFAULT_AMBIENT: f64 = 0.2;
-
-/// Free native stack below which a nested evaluation switches to a new segment.
-const RED_ZONE: usize = 256 * 1024;
-
-/// Size of each new native stack segment.
-const STACK_SEGMENT: usize = 8 * 1024 * 1024;
-
-/// Runs `f` on a fresh stack segment if the current one is nearly full, so
-/// deep recursion in the program (or deeply nested expressions) never
-/// overflows the native stack.
-fn grow<R>(f: impl FnOnce() -> R) -> R {
-    stacker::maybe_grow(RED_ZONE, STACK_SEGMENT, f)
-}
 
 /// Resource limits that turn runaway programs into clear errors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -253,9 +241,9 @@ impl Interpreter {
         result.map_err(|error| {
             self.restore(snapshot);
             let mut diagnostic = error.diagnostic;
-            if !error.chain.is_empty() {
+            if let Some(chain) = error.chain.filter(|chain| !chain.is_empty()) {
                 // Collected while unwinding, innermost first.
-                let chain: Vec<_> = error.chain.into_iter().rev().collect();
+                let chain: Vec<_> = chain.into_iter().rev().collect();
                 diagnostic = diagnostic.with_note(Note::from("call chain: ").then(summarise_chain(&chain)));
             }
             diagnostic

@@ -13,6 +13,7 @@ use unicode_width::UnicodeWidthChar;
 
 use super::diagnostic::Diagnostic;
 use super::fast_hash::FastHash;
+use super::nesting::Nesting;
 use super::source::{SourceId, Span};
 use super::token::Token;
 use super::words::{self, Word};
@@ -26,8 +27,8 @@ pub type WordToken = (Spanned, Option<&'static Word>);
 /// Splits a text into tokens, skipping blanks and `#` comments (and a
 /// byte-order mark at the start, which some editors write).
 ///
-/// Yields `Err` once, at the first character that cannot start a token, and
-/// then stops.
+/// Yields `Err` once, at the first character that cannot start a token or
+/// at the token that nests too deeply ([`super::nesting`]), and then stops.
 #[derive(Debug)]
 pub struct Lexer<'a> {
     text: &'a str,
@@ -39,6 +40,8 @@ pub struct Lexer<'a> {
     names: HashMap<&'a str, Rc<str>, FastHash>,
     /// Where the line of the last token starts.
     line_start: usize,
+    /// How deeply the tokens read so far nest.
+    nesting: Nesting,
     failed: bool,
 }
 
@@ -59,16 +62,37 @@ impl<'a> Lexer<'a> {
     pub fn new(source: SourceId, text: &'a str) -> Lexer<'a> {
         let pos = if text.starts_with(BYTE_ORDER_MARK) { BYTE_ORDER_MARK.len_utf8() } else { 0 };
         let keywords = KEYWORDS.with(|keywords| *keywords);
-        Lexer { text, pos, source, keywords, names: HashMap::default(), line_start: 0, failed: false }
+        Lexer {
+            text,
+            pos,
+            source,
+            keywords,
+            names: HashMap::default(),
+            line_start: 0,
+            nesting: Nesting::default(),
+            failed: false,
+        }
     }
 
-    /// A lexer over `text` from byte `start`, where a line starts, on: the
-    /// tokens from there that [`Lexer::new`] would read.
-    pub fn from_line(source: SourceId, text: &'a str, start: usize) -> Lexer<'a> {
+    /// A lexer over `text` from byte `start`, where a line starts, on, the
+    /// tokens before leaving `nesting` open: the tokens from there that
+    /// [`Lexer::new`] would read.
+    pub fn from_line(source: SourceId, text: &'a str, start: usize, nesting: Nesting) -> Lexer<'a> {
         if start == 0 {
-            return Lexer::new(source, text);
+            return Lexer { nesting, ..Lexer::new(source, text) };
         }
-        Lexer { pos: start, line_start: start, ..Lexer::new(source, text) }
+        Lexer { pos: start, line_start: start, nesting, ..Lexer::new(source, text) }
+    }
+
+    /// How deeply the tokens read so far nest.
+    pub fn nesting(&self) -> &Nesting {
+        &self.nesting
+    }
+
+    /// How deeply the tokens read so far nest, taken to go on reading with
+    /// [`Lexer::from_line`].
+    pub fn take_nesting(&mut self) -> Nesting {
+        std::mem::take(&mut self.nesting)
     }
 
     /// Where the line of the last token read starts, as a byte offset.
@@ -85,7 +109,11 @@ impl<'a> Lexer<'a> {
         if self.pos >= self.text.len() {
             return None;
         }
-        let result = self.token();
+        let result = self.token().and_then(|(spanned, word)| {
+            let (start, token, end) = &spanned;
+            self.nesting.count(token, word, Span::new(self.source, *start, *end))?;
+            Ok((spanned, word))
+        });
         self.failed = result.is_err();
         Some(result)
     }

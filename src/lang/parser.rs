@@ -17,9 +17,10 @@ use std::sync::atomic::AtomicBool;
 
 use lalrpop_util::{ParseError, lalrpop_mod};
 
-use super::ast::{Instr, InstrKind, Item, Program};
+use super::ast::{Cond, Instr, InstrKind, Item, Program};
 use super::diagnostic::Diagnostic;
 use super::lexer::{Lexer, Spanned};
+use super::nesting::Nesting;
 use super::source::{SourceId, Span};
 use super::token::Token;
 use super::words::Word;
@@ -115,6 +116,17 @@ pub(crate) fn push_instr(mut items: Vec<Item>, kind: InstrKind, span: Span) -> V
     items
 }
 
+/// The `if` of `cond` with its branches, without the room their lists kept
+/// for more instructions: deeply nested `if`s would take four times the
+/// memory (docs/language.md, section 10).
+pub(crate) fn if_instr(cond: Cond, mut then: Vec<Instr>, mut otherwise: Option<Vec<Instr>>) -> InstrKind {
+    then.shrink_to_fit();
+    if let Some(otherwise) = &mut otherwise {
+        otherwise.shrink_to_fit();
+    }
+    InstrKind::If(cond, then, otherwise)
+}
+
 /// Appends the instruction of `kind` spanning `span` to a block.
 pub(crate) fn push(mut instrs: Vec<Instr>, kind: InstrKind, span: Span) -> Vec<Instr> {
     instrs.push(Instr { kind, span });
@@ -170,6 +182,8 @@ pub struct Entry {
     /// How many constructs and parentheses the tokens leave open.
     constructs: usize,
     parens: usize,
+    /// How deeply they nest, to go on counting on the next line.
+    nesting: Nesting,
 }
 
 impl Entry {
@@ -177,7 +191,7 @@ impl Entry {
     pub fn read(text: String) -> Entry {
         // About a token for two bytes of text: one allocation instead of growing.
         let tokens = Some(Vec::with_capacity(text.len() / 2));
-        let mut entry = Entry { text, tokens, constructs: 0, parens: 0 };
+        let mut entry = Entry { text, tokens, constructs: 0, parens: 0, nesting: Nesting::default() };
         entry.read_from(0);
         entry
     }
@@ -209,7 +223,8 @@ impl Entry {
     /// does not parse is read again that way.
     fn read_from(&mut self, start: usize) {
         let Some(tokens) = &mut self.tokens else { return };
-        let mut lexer = Lexer::from_line(SourceId::default(), &self.text, start);
+        let nesting = std::mem::take(&mut self.nesting);
+        let mut lexer = Lexer::from_line(SourceId::default(), &self.text, start, nesting);
         while let Some(token) = lexer.next_word() {
             let Ok((spanned, word)) = token else {
                 self.tokens = None;
@@ -233,6 +248,7 @@ impl Entry {
             }
             tokens.push(spanned);
         }
+        self.nesting = lexer.take_nesting();
     }
 }
 

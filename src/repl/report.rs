@@ -4,6 +4,7 @@ use std::fmt::{self, Display};
 
 use crate::lang::Diagnostic;
 use crate::lang::ast::{InstrKind, Item};
+use crate::lang::diagnostic::shown_name;
 use crate::lang::number::Number;
 /// Numbers the way a learner writes them (`3`, not `3.0`), as everywhere.
 pub(crate) use crate::lang::number::format_number as number;
@@ -73,17 +74,17 @@ fn say_definitions(accepted: &Accepted, session: &Session, front: &mut dyn Front
                 let name = &*proc_def.name.name;
                 let known = accepted.redefined.iter().any(|before| &**before == name);
                 let verb = if known { "redefined" } else { "defined" };
-                let params: Vec<&str> = proc_def.params.iter().map(|p| &*p.name).collect();
-                front.say(format_args!("{verb} proc {name}({})", params.join(", ")));
+                let params: Vec<_> = proc_def.params.iter().map(|p| shown_name(&p.name)).collect();
+                front.say(format_args!("{verb} proc {}({})", shown_name(name), params.join(", ")));
             }
             Item::Instr(instr) => match &instr.kind {
                 InstrKind::Let(name, _) => match session.global_number(&name.name) {
-                    Some(value) => front.say(format_args!("{} = {}", name.name, Number(value))),
-                    None => front.say(format_args!("{} defined", name.name)),
+                    Some(value) => front.say(format_args!("{} = {}", shown_name(&name.name), Number(value))),
+                    None => front.say(format_args!("{} defined", shown_name(&name.name))),
                 },
                 InstrKind::Object(name, _) => {
                     let what = session.describe_object(&name.name).unwrap_or_else(|| "object".to_string());
-                    front.say(format_args!("object {} = {what}", name.name));
+                    front.say(format_args!("object {} = {what}", shown_name(&name.name)));
                 }
                 InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) | InstrKind::Print(_) => {}
             },
@@ -98,9 +99,9 @@ fn definition_names(accepted: &Accepted) -> Vec<String> {
         match item {
             Item::Camera(_) => names.push("the camera".to_string()),
             Item::Ambient(_) => names.push("the ambient light".to_string()),
-            Item::Proc(proc_def) => names.push(format!("proc {}", proc_def.name.name)),
+            Item::Proc(proc_def) => names.push(format!("proc {}", shown_name(&proc_def.name.name))),
             Item::Instr(instr) => match &instr.kind {
-                InstrKind::Let(name, _) | InstrKind::Object(name, _) => names.push(name.name.to_string()),
+                InstrKind::Let(name, _) | InstrKind::Object(name, _) => names.push(shown_name(&name.name).into_owned()),
                 _ => {}
             },
             Item::Light(_) => {}

@@ -170,6 +170,15 @@ impl Script<'_, '_> {
             let armed = self.console.cancel.map(|switch| switch.arm());
             let entry = match pending.take() {
                 Some(mut entry) => {
+                    if entry.text().len() + line.len() > MOST_LINE_BYTES {
+                        // An input that never ends (a line ending in `+`,
+                        // again and again) must not fill the memory either.
+                        if self.run_ready(&mut ready) == Step::Next {
+                            self.console.error(input_too_long(first_line));
+                            self.errors += 1;
+                        }
+                        return;
+                    }
                     entry.add_line(line);
                     entry
                 }
@@ -238,6 +247,11 @@ impl Script<'_, '_> {
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;
         }
+        // A full session refuses every input after: even `--keep-going` stops.
+        if result.is_err() && self.shell.session.is_full() {
+            self.errors += 1;
+            return Step::Stop;
+        }
         self.after(result.is_ok())
     }
 
@@ -276,6 +290,15 @@ impl Script<'_, '_> {
         self.errors += 1;
         if self.keep_going { Step::Next } else { Step::Stop }
     }
+}
+
+/// Why the input starting at line `first_line` of the script cannot run.
+fn input_too_long(first_line: usize) -> String {
+    format!(
+        "the input starting at line {first_line} of the script is longer than {} MiB, the most an input may be \
+         (a long program is better read from a file with `:load`)",
+        MOST_LINE_BYTES >> 20
+    )
 }
 
 /// Why line `number` of the script cannot run, in words.

@@ -10,12 +10,19 @@ use std::sync::atomic::AtomicBool;
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_items, parse_items_interruptible};
+use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items, parse_items_interruptible};
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::scene::{Counts, Scene};
 
 use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
+
+/// The most inputs a session holds (each line of a piped script that is a
+/// whole item is one, a `:load`ed file is one): the history keeps every
+/// accepted input, for `:undo`, `:write` and the replays of `:time`, and an
+/// endless script would otherwise fill the memory. At the limit the
+/// history takes about 0.6 GB for the smallest inputs.
+pub const MOST_INPUTS: usize = 1_000_000;
 
 /// One accepted input, kept so the session can be rebuilt without it, and
 /// written back, listed or shown.
@@ -232,6 +239,11 @@ impl Session {
 
     /// Runs a parsed input and records it in the history.
     fn run(&mut self, input: Input) -> Result<Accepted, Diagnostic> {
+        if self.is_full()
+            && let (Some(first), Some(last)) = (input.program.items.first(), input.program.items.last())
+        {
+            return Err(too_many_inputs(first.span().to(last.span())));
+        }
         if self.interpreter_time != self.settings.time {
             // What the earlier inputs print was shown when they ran.
             self.rebuild(self.history.clone())?;
@@ -271,6 +283,11 @@ impl Session {
             self.undo_steps.push(UndoStep::Input);
         }
         Ok(Accepted { program, warnings, redefined, counts_before })
+    }
+
+    /// Whether the session holds [`MOST_INPUTS`] inputs: it accepts no more.
+    pub(crate) fn is_full(&self) -> bool {
+        self.history.len() >= MOST_INPUTS
     }
 
     /// How many primitives of each kind, and lights, the scene holds.
@@ -535,6 +552,16 @@ impl Session {
                 .collect(),
         }
     }
+}
+
+/// The error of an input that a full session cannot take (the input at `span`).
+#[cold]
+fn too_many_inputs(span: Span) -> Diagnostic {
+    Diagnostic::error(span, format!("the session already holds {MOST_INPUTS} inputs, the most it may"))
+        .with_code("too-many-inputs")
+        .with_label("this input is one too many")
+        .with_note("the session keeps every input it accepted, for `:undo`, `:write` and `:time`")
+        .with_help("put the program in a file and `:load` it: a file is one input")
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use std::rc::Rc;
 
-use crate::lang::diagnostic::{Diagnostic, Note};
+use crate::lang::diagnostic::{Diagnostic, Note, shown_name};
 use crate::lang::number::format_number;
 use crate::lang::source::Span;
 use crate::lang::suggest;
@@ -15,8 +15,8 @@ pub(crate) struct EvalError {
     /// For a too deep recursion: every active call (procedure, call site),
     /// innermost first, as they are collected while the error unwinds; the
     /// note that summarises them once the sources are known reads them
-    /// outermost first.
-    pub chain: Vec<(Rc<str>, Span)>,
+    /// outermost first. `None` for the other errors.
+    pub chain: Option<Vec<(Rc<str>, Span)>>,
 }
 
 /// Boxed, so that results on the hot path stay two words wide.
@@ -24,7 +24,7 @@ pub(crate) type EvalResult<T> = Result<T, Box<EvalError>>;
 
 impl From<Diagnostic> for Box<EvalError> {
     fn from(diagnostic: Diagnostic) -> Box<EvalError> {
-        Box::new(EvalError { diagnostic, chain: Vec::new() })
+        Box::new(EvalError { diagnostic, chain: None })
     }
 }
 
@@ -100,7 +100,10 @@ pub(crate) fn wrong_arity(span: Span, name: &str, params: &[&str], given: usize)
 /// calls (mutual recursion), are folded.
 pub(crate) fn summarise_chain(chain: &[(Rc<str>, Span)]) -> Note {
     let calls = |calls: &[(Rc<str>, Span)]| {
-        Note::joined(calls.iter().map(|(name, span)| Note::from(format!("{name} (")).place(*span).text(")")), " -> ")
+        Note::joined(
+            calls.iter().map(|(name, span)| Note::from(format!("{} (", shown_name(name))).place(*span).text(")")),
+            " -> ",
+        )
     };
     let mut parts = Vec::new();
     let mut i = 0;

@@ -7,9 +7,10 @@
 
 use std::f64::consts::PI;
 
+use super::Interpreter;
 use super::errors::{EvalResult, fail, with_suggestion, wrong_kind};
+use super::stack::grow;
 use super::value::{Kind, Num};
-use super::{Interpreter, grow};
 use crate::lang::ast::{BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::number::Number;
@@ -25,7 +26,7 @@ impl Interpreter {
             }
             ExprKind::Pi => Ok(Num::constant(PI)),
             ExprKind::Var(name) => self.number_variable(name, expr.span),
-            _ => grow(|| self.eval_compound(expr)),
+            _ => grow(|| expr.span, || self.eval_compound(expr)),
         }
     }
 
@@ -92,7 +93,7 @@ impl Interpreter {
                 let b = self.eval_expr(right)?;
                 Ok((compare(*op, a.value, b.value), a.tainted | b.tainted))
             }
-            _ => grow(|| self.eval_connective(cond)),
+            _ => grow(|| cond.span, || self.eval_connective(cond)),
         }
     }
 

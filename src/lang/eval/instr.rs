@@ -4,12 +4,13 @@ use std::mem;
 use std::rc::Rc;
 use std::sync::atomic::Ordering;
 
+use super::Interpreter;
 use super::env::same_name;
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
+use super::stack::grow;
 use super::value::{Kind, Value};
-use super::{Interpreter, grow};
 use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ObjKind, ProcDef};
-use crate::lang::diagnostic::Diagnostic;
+use crate::lang::diagnostic::{Diagnostic, with_names_shortened};
 use crate::lang::source::Span;
 
 /// How many calls of a failing call chain are shown as "in this call" places.
@@ -38,27 +39,30 @@ impl Interpreter {
             InstrKind::Call(name, args) => self.exec_call(name, args, instr.span),
             InstrKind::Put(obj) => self.exec_put(obj, instr.span),
             InstrKind::Print(values) => self.exec_print(values, instr.span),
-            InstrKind::If(cond, then, otherwise) => grow(|| {
-                let (holds, tainted) = self.eval_cond(cond)?;
-                self.origins.branched_on_time |= tainted;
-                // Under a tainted context every variable of this scope is
-                // already tainted (bound in that context, or tainted by the
-                // walk of the enclosing `if`), so the walk is needed once only.
-                if tainted && !self.context_tainted {
-                    self.taint_bindings_in(then, otherwise.as_deref());
-                }
-                let (branch, skipped) =
-                    if holds { (Some(then), otherwise.as_deref()) } else { (otherwise.as_ref(), Some(&then[..])) };
-                if let Some(skipped) = skipped
-                    && self.origins.objects.has_unused()
-                {
-                    self.mark_objects_named_in(skipped);
-                }
-                match branch {
-                    Some(body) => self.exec_in_context(tainted, body),
-                    None => Ok(()),
-                }
-            }),
+            InstrKind::If(cond, then, otherwise) => grow(
+                || instr.span,
+                || {
+                    let (holds, tainted) = self.eval_cond(cond)?;
+                    self.origins.branched_on_time |= tainted;
+                    // Under a tainted context every variable of this scope is
+                    // already tainted (bound in that context, or tainted by the
+                    // walk of the enclosing `if`), so the walk is needed once only.
+                    if tainted && !self.context_tainted {
+                        self.taint_bindings_in(then, otherwise.as_deref());
+                    }
+                    let (branch, skipped) =
+                        if holds { (Some(then), otherwise.as_deref()) } else { (otherwise.as_ref(), Some(&then[..])) };
+                    if let Some(skipped) = skipped
+                        && self.origins.objects.has_unused()
+                    {
+                        self.mark_objects_named_in(skipped);
+                    }
+                    match branch {
+                        Some(body) => self.exec_in_context(tainted, body),
+                        None => Ok(()),
+                    }
+                },
+            ),
         }
     }
 
@@ -200,7 +204,7 @@ impl Interpreter {
             self.record_call(name, &proc.params, span);
         }
         self.depth += 1;
-        let result = grow(|| self.exec_block(&proc.body));
+        let result = grow(|| span, || self.exec_block(&proc.body));
         self.depth -= 1;
         self.env.leave(caller);
         if let Some(calls) = &mut self.origins.calls {
@@ -281,7 +285,7 @@ impl Interpreter {
                 self.limits.raised_with.how("calls")
             ));
         // The callers add themselves as the error unwinds (see `in_call`).
-        Box::new(EvalError { diagnostic, chain: vec![(name.name.clone(), span)] })
+        Box::new(EvalError { diagnostic, chain: Some(vec![(name.name.clone(), span)]) })
     }
 }
 
@@ -290,13 +294,13 @@ impl Interpreter {
 /// them all), and
 /// adds the call to a recursion error's chain.
 fn in_call(mut error: Box<EvalError>, name: &Rc<str>, span: Span) -> Box<EvalError> {
-    if !error.chain.is_empty() {
-        error.chain.push((name.clone(), span));
+    if let Some(chain) = &mut error.chain {
+        chain.push((name.clone(), span));
     }
     let diagnostic = &mut error.diagnostic;
     let shown = span == diagnostic.span || diagnostic.related.iter().any(|(s, _)| *s == span);
     if !shown && diagnostic.related.len() < CALLS_SHOWN {
-        diagnostic.related.push((span, format!("in this call of `{name}`")));
+        diagnostic.related.push((span, with_names_shortened(format!("in this call of `{name}`"))));
     }
     error
 }

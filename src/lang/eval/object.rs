@@ -7,9 +7,10 @@
 
 use glam::{DMat3, DVec3};
 
+use super::Interpreter;
 use super::errors::{EvalResult, fail, wrong_kind};
+use super::stack::grow;
 use super::value::{Kind, Num};
-use super::{Interpreter, grow};
 use crate::lang::ast::{Expr, Obj, ObjKind, Texture, Triple};
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::number::Number;
@@ -52,7 +53,7 @@ impl Interpreter {
                 out.push(Primitive { shape, material });
                 Ok(c | s | m)
             }
-            _ => grow(|| self.emit_compound(obj, out)),
+            _ => grow(|| obj.span, || self.emit_compound(obj, out)),
         }
     }
 
