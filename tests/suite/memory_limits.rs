@@ -166,3 +166,15 @@ fn a_scene_too_large_for_the_memory_is_a_message_in_a_session_that_goes_on() {
     assert_eq!(run.status.code(), Some(1), "the errors said at the end: {everything}");
     assert_eq!(files_in(folder.path()), ["boxes.ray"], "nothing written, nothing left");
 }
+
+#[test]
+fn a_program_whose_evaluation_runs_out_of_memory_is_an_error_at_its_construct() {
+    // Room for neither the million boxes' evaluation nor their render.
+    let folder = tempfile::tempdir().expect("a temporary folder");
+    let scene = scene_file(folder.path(), "boxes.ray", MILLION_BOXES);
+    let run = run_limited_to(120 << 10, &["--check", scene.to_str().expect("a UTF-8 path")], "");
+    let message = stderr(&run);
+    assert_eq!(run.status.code(), Some(1), "{message}");
+    assert!(message.starts_with("error: not enough memory for "), "{message}");
+    assert!(message.contains("boxes.ray:9:16") && message.contains("no memory for these"), "{message}");
+}

@@ -28,7 +28,7 @@ impl Interpreter {
                 let r = self.eval_expr(radius)?;
                 positive(r.value, radius.span, "a sphere's radius")?;
                 let (material, m) = self.eval_texture(texture)?;
-                self.count_primitives(1, obj.span)?;
+                self.make_room(1, obj.span, out)?;
                 out.push(Primitive { shape: Shape::Sphere { center, radius: r.value }, material });
                 Ok(c | r.tainted | m)
             }
@@ -36,7 +36,7 @@ impl Interpreter {
                 let (angles, a) = self.eval_triple(rotation)?;
                 let d = self.eval_expr(shift)?;
                 let (material, m) = self.eval_texture(texture)?;
-                self.count_primitives(1, obj.span)?;
+                self.make_room(1, obj.span, out)?;
                 let normal = rotated_up(&self.rotation(angles));
                 out.push(Primitive { shape: Shape::Plane { normal, shift: d.value }, material });
                 Ok(a | d.tainted | m)
@@ -48,7 +48,7 @@ impl Interpreter {
                     positive(value, part.span, "a box's length")?;
                 }
                 let (material, m) = self.eval_texture(texture)?;
-                self.count_primitives(1, obj.span)?;
+                self.make_room(1, obj.span, out)?;
                 let shape = Shape::Box { center, half: size * 0.5, axes: DMat3::IDENTITY };
                 out.push(Primitive { shape, material });
                 Ok(c | s | m)
@@ -112,13 +112,15 @@ impl Interpreter {
         };
         self.scene.time_use.read |= tainted;
         self.origins.objects.mark_used(definition);
-        self.count_primitives(primitives.len(), span)?;
+        self.make_room(primitives.len(), span, out)?;
         out.extend_from_slice(&primitives);
         Ok(tainted)
     }
 
-    /// Counts `n` new primitives against [`super::Limits::max_primitives`].
-    fn count_primitives(&mut self, n: usize, span: Span) -> EvalResult<()> {
+    /// Counts `n` new primitives against [`super::Limits::max_primitives`],
+    /// and makes room for them in `out`: running out of memory is an error
+    /// at the construct that needed it, not an abort.
+    fn make_room(&mut self, n: usize, span: Span, out: &mut Vec<Primitive>) -> EvalResult<()> {
         let total = self.created.saturating_add(n);
         if total > self.limits.max_primitives {
             return fail(
@@ -136,6 +138,9 @@ impl Interpreter {
                     self.limits.raised_with.how("primitives")
                 )),
             );
+        }
+        if out.try_reserve(n).is_err() {
+            return fail(not_enough_memory(span, total));
         }
         self.created = total;
         Ok(())
@@ -241,4 +246,14 @@ fn transform(primitives: &mut [Primitive], span: Span, f: impl Fn(&mut Primitive
                 .with_label("coordinates are no longer finite numbers"),
         )
     }
+}
+
+/// The error when the memory for `total` primitives cannot be had (at
+/// about 180 bytes each while the program runs, docs/language.md section 10).
+#[cold]
+fn not_enough_memory(span: Span, total: usize) -> Diagnostic {
+    Diagnostic::error(span, format!("not enough memory for {total} primitives"))
+        .with_code("out-of-memory")
+        .with_label("no memory for these")
+        .with_help("make fewer objects, or run rayrepl where it may use more memory")
 }
