@@ -19,6 +19,7 @@ mod atomic;
 mod checks;
 mod error;
 mod formats;
+mod frame_names;
 mod frames;
 mod gif;
 mod still;

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::atomic::{folder_of, link_target, probe_folder};
 use super::error::{OutputError, io_error};
 use super::formats::{Content, ImageFormat};
-use super::frames::frame_names;
+use super::frame_names::frame_names;
 use super::video;
 use crate::playback::{AnimationOptions, Loops};
 
