@@ -2,9 +2,13 @@
 //! is armed while a job runs, and whose flag evaluation and renders poll.
 //! The front-end raises it (the terminal's Ctrl-C handler,
 //! `crate::terminal::ctrl_c`); at any other time the front-end does what
-//! it would do anyway.
+//! it would do anyway. And work that looks at no flag runs on a thread
+//! that a cancelled wait abandons ([`off_thread`]).
 
 use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Duration;
 
 use crate::interruption::Signal;
 
@@ -86,5 +90,65 @@ impl Drop for ArmedSwitch {
         if self.switch.armed.fetch_sub(1, Ordering::SeqCst) == 1 {
             self.switch.cancel.store(false, Ordering::SeqCst);
         }
+    }
+}
+
+/// How often a wait for work on another thread looks at its cancel flag.
+const LOOK: Duration = Duration::from_millis(5);
+
+/// Why work handed to [`off_thread`] gave no answer.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) enum Stopped {
+    /// The cancel flag was raised first.
+    Cancelled,
+    /// The work's thread ended without an answer (it panicked).
+    Failed,
+}
+
+/// Runs `work` on a thread named `name` and waits for its answer, unless
+/// `cancel` is raised first: then the thread is abandoned, and ends when
+/// its work does (or with the process). For work that looks at no flag (a
+/// read that blocks: `open` of a FIFO no one writes), and for work whose
+/// cleanup is long: what it builds and drops (a large syntax tree) is
+/// freed on its thread, not while the session waits. Where no thread can
+/// be made (wasm32), `work` runs here.
+pub(crate) fn off_thread<T: Send + 'static>(
+    name: &str,
+    cancel: &AtomicBool,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> Result<T, Stopped> {
+    let work = Arc::new(Mutex::new(Some(work)));
+    let take = |work: &Mutex<Option<_>>| work.lock().unwrap_or_else(PoisonError::into_inner).take();
+    let (sent, received) = mpsc::channel();
+    let on_thread = Arc::clone(&work);
+    let spawned = std::thread::Builder::new().name(name.to_string()).spawn(move || {
+        if let Some(work) = take(&on_thread) {
+            let _ = sent.send(work());
+        }
+    });
+    if spawned.is_err() {
+        return take(&work).map(|work| work()).ok_or(Stopped::Failed);
+    }
+    loop {
+        match received.recv_timeout(LOOK) {
+            Ok(answer) => return Ok(answer),
+            Err(_) if cancel.load(Ordering::SeqCst) => return Err(Stopped::Cancelled),
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => return Err(Stopped::Failed),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn work_off_the_thread_answers_or_is_abandoned_when_cancelled() {
+        assert_eq!(off_thread("sum", &AtomicBool::new(false), || 6 * 7), Ok(42));
+        let never = off_thread("wait", &AtomicBool::new(true), || std::thread::sleep(Duration::from_secs(600)));
+        assert_eq!(never, Err(Stopped::Cancelled));
+        let panicked = off_thread("panic", &AtomicBool::new(false), || -> u8 { panic!("on purpose") });
+        assert_eq!(panicked, Err(Stopped::Failed));
     }
 }

@@ -4,14 +4,12 @@
 //! and `:undo` takes a reload back.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::Duration;
+use std::sync::atomic::AtomicBool;
 
 use crate::lang::source::text_of;
 use crate::output;
 
-use super::cancel::cancel_flag;
+use super::cancel::{Stopped, cancel_flag, off_thread};
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::{FrontEnd, Waited};
 use super::report::{self, counted};
@@ -122,35 +120,20 @@ fn reload_text(session: &mut Session, path: &Path, text: &str, front: &mut dyn F
     Ok(Flow::Continue)
 }
 
-/// How often a read looks at its cancel flag.
-const LOOK: Duration = Duration::from_millis(5);
-
 /// The text of the file at `path`, unless `cancel` is raised first. The
 /// file is read on a thread of its own, which a cancelled read abandons:
 /// `open` of a FIFO that no one writes waits forever, a large file takes a
-/// while, and neither looks at a flag (the thread ends with the process,
-/// or when its read does).
+/// while, and neither looks at a flag.
 pub(crate) fn read(path: &Path, cancel: &'static AtomicBool) -> Result<String, CommandError> {
     let failed = |reason: String| CommandError::Failed(format!("cannot read {}: {reason}", path.display()));
-    let (sent, received) = mpsc::channel();
     let file = path.to_owned();
-    let reader = std::thread::Builder::new().name("read".to_string()).spawn(move || {
-        let _ = sent.send(std::fs::read(file));
-    });
-    let read = match reader {
-        Ok(_) => loop {
-            match received.recv_timeout(LOOK) {
-                Ok(read) => break read,
-                Err(_) if cancel.load(Ordering::SeqCst) => {
-                    let what = format!("reading {} was cancelled; the session is as it was", path.display());
-                    return Err(CommandError::Cancelled(what));
-                }
-                Err(RecvTimeoutError::Timeout) => {}
-                Err(RecvTimeoutError::Disconnected) => break Err(std::io::Error::other("the reading thread stopped")),
-            }
-        },
-        // No thread (a platform without them): read here.
-        Err(_) => std::fs::read(path),
+    let read = match off_thread("read", cancel, move || std::fs::read(file)) {
+        Ok(read) => read,
+        Err(Stopped::Cancelled) => {
+            let what = format!("reading {} was cancelled; the session is as it was", path.display());
+            return Err(CommandError::Cancelled(what));
+        }
+        Err(Stopped::Failed) => Err(std::io::Error::other("the reading thread stopped")),
     };
     let bytes = read.map_err(|e| failed(output::io_reason(&e)))?;
     text_of(bytes).map_err(failed)

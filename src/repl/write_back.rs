@@ -13,6 +13,7 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::path::Path;
 use std::rc::Rc;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::lang::ast::{AmbientDef, CameraDef, Instr, Item, LightDef, ProcDef};
@@ -23,7 +24,7 @@ use crate::output::{self, OutputError};
 use crate::render::Screen;
 use crate::settings::RenderSettings;
 
-use super::cancel::cancel_flag;
+use super::cancel::{Stopped, cancel_flag, off_thread};
 use super::excerpt::{item_text, location, raw};
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::FrontEnd;
@@ -54,11 +55,12 @@ pub(crate) fn write(shell: &mut Shell, arguments: &[String], front: &mut dyn Fro
     let parts = Parts::of(session.inputs());
     parts.check(session.sources()).map_err(|inexact| CommandError::Failed(inexact.to_string()))?;
     let command = batch_command(path, session.settings(), session.limits());
-    let text = parts.file_text(session, &command, cancel).ok_or_else(cancelled)?;
+    let text = Arc::new(parts.file_text(session, &command, cancel).ok_or_else(cancelled)?);
     match gives_the_scene(&text, session, cancel) {
+        Err(Stopped::Cancelled) => return Err(cancelled()),
         _ if cancel.load(Ordering::SeqCst) => return Err(cancelled()),
-        true => {}
-        false => {
+        Ok(true) => {}
+        Ok(false) | Err(Stopped::Failed) => {
             let bug = "the file would not give the session's scene (a bug of rayrepl: please report it)";
             return Err(CommandError::Failed(format!("{bug}; nothing was written")));
         }
@@ -329,11 +331,17 @@ fn batch_command(path: &Path, settings: &RenderSettings, limits: Limits) -> Stri
 
 /// Whether `text`, read as a file and evaluated as a batch render would,
 /// gives the session's scene: the last guard against writing a wrong file.
-/// Once `cancel` is raised it stops, with an answer that means nothing.
-fn gives_the_scene(text: &str, session: &Session, cancel: &'static AtomicBool) -> bool {
-    let mut sources = SourceMap::new();
-    let id = sources.add("<written>", text, 0);
-    let Ok(program) = parse_file_interruptible(id, text, Some(cancel)) else { return false };
-    let mut interpreter = Interpreter::new(session.settings().time, session.limits()).interruptible(cancel);
-    interpreter.run(&program).is_ok() && interpreter.scene() == session.scene()
+/// It is read and evaluated on a thread of its own, which Ctrl-C abandons
+/// (freeing what it built takes a while for a large session, and is done
+/// there); once `cancel` is raised the answer means nothing.
+fn gives_the_scene(text: &Arc<String>, session: &Session, cancel: &'static AtomicBool) -> Result<bool, Stopped> {
+    let (text, time, limits) = (Arc::clone(text), session.settings().time, session.limits());
+    let scene = off_thread("check", cancel, move || {
+        let mut sources = SourceMap::new();
+        let id = sources.add("<written>", text.as_str(), 0);
+        let program = parse_file_interruptible(id, &text, Some(cancel)).ok()?;
+        let mut interpreter = Interpreter::new(time, limits).interruptible(cancel);
+        interpreter.run(&program).is_ok().then(|| interpreter.into_scene())
+    })?;
+    Ok(scene.is_some_and(|scene| scene == *session.scene()))
 }
