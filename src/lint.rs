@@ -356,12 +356,15 @@ impl Subject<'_> {
             let written = color * 255.0;
             let scaled = (written * 255.0).round();
             diagnostics.push(
-                Diagnostic::warning(put, "this object's colour is at most 1, but the others go up to 255: it is nearly black")
-                    .with_label(format!("this object's colour is {}", colour_as_written(written)))
-                    .with_help(format!(
-                        "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
-                        colour_as_written(scaled)
-                    )),
+                Diagnostic::warning(
+                    put,
+                    "this object's colour is at most 1, but the others go up to 255: it is nearly black",
+                )
+                .with_label(format!("this object's colour is {}", colour_as_written(written)))
+                .with_help(format!(
+                    "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
+                    colour_as_written(scaled)
+                )),
             );
             if puts.len() == MAX_DARK_COLOURS {
                 break;

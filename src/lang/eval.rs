@@ -38,7 +38,10 @@ use env::{Env, NameMap};
 use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
 
-pub use origins::{Call, CameraOrigin, DegreesOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans, Turned};
+pub use origins::{
+    Call, CameraOrigin, DegreesOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans,
+    Turned,
+};
 pub use print::{PRINT_LIMIT, PrintLine, PrintLog};
 
 use super::ast::{Item, ProcDef, Program};

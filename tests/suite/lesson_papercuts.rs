@@ -60,10 +60,9 @@ fn angles_in_degrees_are_warned_about_in_lights_planes_and_rotations() {
     let wall = format!("{SCENE}put plane rotation -90, 0, 0 shift -5 kd 1 ks 0 phong 1 color 200, 200, 200 end\n");
     assert!(check_stderr(&wall).contains("warning: the plane's rotation -90 looks like degrees"));
     // Once per place, however often a procedure runs it.
-    let repeated = format!(
-        "{SCENE}proc spin(n)\n  put rotate box center n, 0, 0 length 1, 1, 1 kd 1 ks 0 phong 1 color 0, 0, 255 end by 0, 90, 0 end\n\
-         end\nspin(1)\nspin(2)\n"
-    );
+    let spin = "proc spin(n)\n  put rotate box center n, 0, 0 length 1, 1, 1 kd 1 ks 0 phong 1 color 0, 0, 255 end by 0, 90, 0 end\n\
+                end\n";
+    let repeated = format!("{}spin(1)\nspin(2)\n", SCENE.replacen("put sphere", &format!("{spin}put sphere"), 1));
     assert_eq!(check_stderr(&repeated).matches("warning:").count(), 1);
 }
 
