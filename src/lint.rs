@@ -1,7 +1,7 @@
 //! Warnings about an evaluated scene: the mistakes that make a valid program
 //! render a black or wrong picture, such as a camera that looks away,
-//! colours written from 0 to 1, an angle written in degrees, an object never put, the camera inside an
-//! object, nothing in view, or no light at all.
+//! colours written from 0 to 1, an angle written in degrees, an object never
+//! put, the camera inside an object, nothing in view, or no light at all.
 //!
 //! [`check_scene`] reads the scene, where its parts come from
 //! ([`Origins`]) and how it is about to be rendered ([`Picture`]), and
@@ -317,17 +317,16 @@ impl Subject<'_> {
         }
         let (index, primitive) = self.primitives().find(|(_, p)| p.material.color.max_element() > 0.0)?;
         let written = primitive.material.color * 255.0;
-        let as_written = colour_as_written;
         let scaled = (written * 255.0).round();
         Some(
             Diagnostic::warning(
                 self.put_of(index)?,
                 "every colour in the scene is at most 1: the picture is nearly black",
             )
-            .with_label(format!("this object's colour is {}", as_written(written)))
+            .with_label(format!("this object's colour is {}", colour_as_written(written)))
             .with_help(format!(
                 "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
-                as_written(scaled)
+                colour_as_written(scaled)
             )),
         )
     }
