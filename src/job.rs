@@ -571,6 +571,8 @@ mod tests {
         }
         let every = allowed(&Cli::parse_from(["rayrepl", "--allow", "all", "a.ray"]));
         assert!(Check::ALL.iter().all(|check| every.contains(*check)));
-        assert!(Cli::try_parse_from(["rayrepl", "--allow", "degrees", "a.ray"]).is_err());
+        let degrees = allowed(&Cli::parse_from(["rayrepl", "--allow", "degrees", "a.ray"]));
+        assert!(degrees.contains(Check::Degrees) && !degrees.contains(Check::Colours));
+        assert!(Cli::try_parse_from(["rayrepl", "--allow", "degree", "a.ray"]).is_err());
     }
 }

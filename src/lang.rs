@@ -2,6 +2,7 @@
 //! evaluation into a [`crate::scene::Scene`].
 
 pub mod ast;
+pub mod degrees;
 pub mod diagnostic;
 pub mod eval;
 pub(crate) mod fast_hash;

@@ -1,7 +1,7 @@
 //! Warnings about an evaluated scene: the mistakes that make a valid program
 //! render a black or wrong picture, such as a camera that looks away,
-//! colours written from 0 to 1, an object never put, the camera inside an
-//! object, nothing in view, or no light at all.
+//! colours written from 0 to 1, an angle written in degrees, an object never
+//! put, the camera inside an object, nothing in view, or no light at all.
 //!
 //! [`check_scene`] reads the scene, where its parts come from
 //! ([`Origins`]) and how it is about to be rendered ([`Picture`]), and
@@ -13,7 +13,8 @@
 
 use glam::DVec3;
 
-use crate::lang::eval::Origins;
+use crate::lang::degrees::in_radians_help;
+use crate::lang::eval::{Origins, Turned};
 use crate::lang::number::format_number;
 use crate::lang::{Diagnostic, Span};
 use crate::render::{PrimaryRays, Screen};
@@ -30,6 +31,10 @@ pub enum Check {
     OutOfView,
     /// Every colour component at most 1 (of 255).
     Colours,
+    /// One object's colour at most 1 (of 255) among brighter ones.
+    DarkColour,
+    /// An angle of a turn that looks like degrees.
+    Degrees,
     /// No ambient light and no light that shines.
     NoLight,
     /// A light of intensity 0 or less.
@@ -40,11 +45,13 @@ pub enum Check {
 
 impl Check {
     /// Every check, in the order its warnings are given.
-    pub const ALL: [Check; 7] = [
+    pub const ALL: [Check; 9] = [
         Check::CameraDistance,
         Check::CameraInside,
         Check::OutOfView,
         Check::Colours,
+        Check::DarkColour,
+        Check::Degrees,
         Check::NoLight,
         Check::ZeroLight,
         Check::UnusedObject,
@@ -57,6 +64,8 @@ impl Check {
             Check::CameraInside => "camera-inside",
             Check::OutOfView => "out-of-view",
             Check::Colours => "colours",
+            Check::DarkColour => "dark-colour",
+            Check::Degrees => "degrees",
             Check::NoLight => "no-light",
             Check::ZeroLight => "zero-light",
             Check::UnusedObject => "unused-object",
@@ -70,6 +79,8 @@ impl Check {
             Check::CameraInside => "the camera inside a sphere or a box",
             Check::OutOfView => "no object in the camera's field of view",
             Check::Colours => "every colour at most 1 (colours go from 0 to 255)",
+            Check::DarkColour => "an object's colour at most 1 among objects with colours up to 255",
+            Check::Degrees => "an angle of a light, a plane or a `rotate` that looks like degrees",
             Check::NoLight => "no light and an ambient light of 0",
             Check::ZeroLight => "a light of intensity 0 or less",
             Check::UnusedObject => "an `object` defined and never put",
@@ -149,6 +160,8 @@ pub fn check_scene(scene: &Scene, origins: &Origins, picture: &Picture, allowed:
             Check::CameraInside => subject.camera_inside().into_iter().collect(),
             Check::OutOfView => subject.out_of_view().into_iter().collect(),
             Check::Colours => subject.colours().into_iter().collect(),
+            Check::DarkColour => subject.dark_colours(),
+            Check::Degrees => subject.degrees(),
             Check::NoLight => subject.no_light().into_iter().collect(),
             Check::ZeroLight => subject.zero_lights(),
             Check::UnusedObject => subject.unused_objects(),
@@ -304,19 +317,79 @@ impl Subject<'_> {
         }
         let (index, primitive) = self.primitives().find(|(_, p)| p.material.color.max_element() > 0.0)?;
         let written = primitive.material.color * 255.0;
-        let as_written = |c: DVec3| format!("{}, {}, {}", format_number(c.x), format_number(c.y), format_number(c.z));
         let scaled = (written * 255.0).round();
         Some(
             Diagnostic::warning(
                 self.put_of(index)?,
                 "every colour in the scene is at most 1: the picture is nearly black",
             )
-            .with_label(format!("this object's colour is {}", as_written(written)))
+            .with_label(format!("this object's colour is {}", colour_as_written(written)))
             .with_help(format!(
                 "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
-                as_written(scaled)
+                colour_as_written(scaled)
             )),
         )
+    }
+
+    /// Each object whose colour components are all at most 1 (of 255), and
+    /// not all 0, in a scene where some colour is above 1: that one colour
+    /// written from 0 to 1 (the case of every colour is [`Subject::colours`]).
+    /// One warning per `put`.
+    fn dark_colours(&self) -> Vec<Diagnostic> {
+        let darkest = 1.0 / 255.0;
+        if self.scene_moves() || !self.primitives().any(|(_, p)| p.material.color.max_element() > darkest) {
+            return Vec::new();
+        }
+        let mut puts: Vec<Span> = Vec::new();
+        let mut diagnostics = Vec::new();
+        for (index, primitive) in self.primitives() {
+            let color = primitive.material.color;
+            if color.max_element() > darkest || color.max_element() <= 0.0 {
+                continue;
+            }
+            let Some(put) = self.put_of(index) else { continue };
+            if puts.contains(&put) {
+                continue;
+            }
+            puts.push(put);
+            let written = color * 255.0;
+            let scaled = (written * 255.0).round();
+            diagnostics.push(
+                Diagnostic::warning(
+                    put,
+                    "this object's colour is at most 1, but the others go up to 255: it is nearly black",
+                )
+                .with_label(format!("this object's colour is {}", colour_as_written(written)))
+                .with_help(format!(
+                    "colours go from 0 to 255, not from 0 to 1: for this one, write `color {}`",
+                    colour_as_written(scaled)
+                )),
+            );
+            if puts.len() == MAX_DARK_COLOURS {
+                break;
+            }
+        }
+        diagnostics
+    }
+
+    /// Each angle of a turn (a light's or a plane's `rotation`, `rotate ...
+    /// by`) that looks like degrees: valid, but most likely not the turn meant.
+    fn degrees(&self) -> Vec<Diagnostic> {
+        let degrees = self.origins.degrees.iter();
+        degrees
+            .map(|origin| {
+                let a = format_number(origin.angle);
+                let what = match origin.turned {
+                    Turned::Light => "the light's angle",
+                    Turned::Plane => "the plane's rotation",
+                    Turned::Object => "the rotation",
+                };
+                let turns = format_number((origin.angle.abs() / std::f64::consts::TAU * 10.0).round() / 10.0);
+                Diagnostic::warning(origin.span, format!("{what} {a} looks like degrees, but angles are in radians"))
+                    .with_label(format!("read as {a} radians, about {turns} turns"))
+                    .with_help(in_radians_help(origin.angle, ""))
+            })
+            .collect()
     }
 
     /// No light that shines and an ambient light of 0: every pixel is black.
@@ -373,6 +446,14 @@ impl Subject<'_> {
             })
             .collect()
     }
+}
+
+/// How many objects [`Subject::dark_colours`] names at most.
+const MAX_DARK_COLOURS: usize = 8;
+
+/// A colour as a program writes it: `0.8, 0.2, 0.1`.
+fn colour_as_written(c: DVec3) -> String {
+    format!("{}, {}, {}", format_number(c.x), format_number(c.y), format_number(c.z))
 }
 
 /// Whether the surface of `other` may pass inside `container` (a sphere or

@@ -38,7 +38,10 @@ use env::{Env, NameMap};
 use errors::{EvalResult, summarise_chain};
 use value::{Kind, Value};
 
-pub use origins::{Call, CameraOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans};
+pub use origins::{
+    Call, CameraOrigin, DegreesOrigin, LightOrigin, ObjectDefinition, ObjectDefinitions, Origins, PutCalls, PutSpans,
+    Turned,
+};
 pub use print::{PRINT_LIMIT, PrintLine, PrintLog};
 
 use super::ast::{Item, ProcDef, Program};
@@ -157,6 +160,7 @@ struct Snapshot {
     camera_origin: Option<CameraOrigin>,
     ambient_origin: Option<Span>,
     branched_on_time: bool,
+    degrees: usize,
 }
 
 impl Interpreter {
@@ -343,7 +347,7 @@ impl Interpreter {
                 self.origins.ambient = Some(def.intensity.span);
             }
             Item::Light(def) => {
-                let (angles, rotation_tainted) = self.eval_triple(&def.rotation)?;
+                let (angles, rotation_tainted) = self.eval_angles(&def.rotation, Turned::Light)?;
                 let intensity = self.eval_expr(&def.intensity)?;
                 let direction = rotated_up(&self.rotation(angles));
                 self.scene.lights.push(Light { direction, intensity: intensity.value });
@@ -388,6 +392,7 @@ impl Interpreter {
             camera_origin: self.origins.camera,
             ambient_origin: self.origins.ambient,
             branched_on_time: self.origins.branched_on_time,
+            degrees: self.origins.degrees.len(),
         }
     }
 
@@ -413,6 +418,7 @@ impl Interpreter {
         self.origins.truncate_primitives(snapshot.primitives, snapshot.timed_primitives);
         self.origins.objects.rollback();
         self.origins.branched_on_time = snapshot.branched_on_time;
+        self.origins.degrees.truncate(snapshot.degrees);
         for warning in self.warnings.drain(snapshot.warnings..) {
             self.warned.remove(&warning.span);
         }

@@ -3,7 +3,7 @@
 use std::fmt;
 
 /// A number the way a learner writes it: `3`, `0.75`, `-1.570796` (six
-/// decimals at most, trailing zeros dropped; tiny and huge numbers in the
+/// decimals at most, trailing zeros dropped; `0` for -0; tiny and huge numbers in the
 /// shortest form that reads back, with an exponent: `1e-9`, `1.5e300`).
 pub fn format_number(value: f64) -> String {
     Number(value).to_string()
@@ -17,9 +17,9 @@ impl fmt::Display for Number {
         let Number(value) = *self;
         if value == value.trunc() && value.abs() < 1e15 {
             // Exact as an integer, which formats faster than the float; `-0`
-            // keeps its sign, as `{:.0}` writes it.
-            let integer = value as i64;
-            return if integer == 0 && value.is_sign_negative() { f.write_str("-0") } else { write!(f, "{integer}") };
+            // (from `0 * -1`) is the same number as 0 to a learner, and is
+            // written `0`.
+            return write!(f, "{}", value as i64);
         }
         if value.abs() >= 1e15 {
             // Not a long run of digits: `1e300`, not 301 of them.
@@ -43,11 +43,21 @@ mod tests {
         assert_eq!(format_number(std::f64::consts::PI), "3.141593");
         assert_eq!(format_number(1e-9), "1e-9");
         assert_eq!(format_number(0.0), "0");
-        assert_eq!(format_number(-0.0), format!("{:.0}", -0.0));
+        assert_eq!(format_number(-0.0), "0", "no sign on zero");
         assert_eq!(format_number(-123_456_789_012_345.0), "-123456789012345");
         assert_eq!(format_number(1e300), "1e300");
         assert_eq!(format_number(-1.5e20), "-1.5e20");
         assert_eq!(format_number(1e15 + 0.5), "1.0000000000000005e15");
         assert_eq!(format_number(-1e-300), "-1e-300");
+    }
+
+    #[test]
+    fn huge_and_tiny_numbers_take_the_shortest_form_that_reads_back() {
+        for value in [1e308, f64::MAX, -1.7976931348623157e308, 1e-308, 5e-324, 1.2345678901234567e100] {
+            let text = format_number(value);
+            assert!(text.contains('e') && text.len() <= 24, "{text}");
+            assert_eq!(text.parse::<f64>(), Ok(value), "{text} reads back");
+        }
+        assert_eq!(format_number(1e308), "1e308");
     }
 }

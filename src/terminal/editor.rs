@@ -49,14 +49,17 @@ enum Slot {
     Number,
     /// A new name: after `let`, `object` or `proc`; nothing to complete.
     NewName,
-    /// The start of an item, or anything else.
+    /// The start of an item: at the start of an entry, after `then` or
+    /// `else`. Only what starts one (`put`, `light`, a call...).
+    Start,
+    /// Anything else.
     Any,
 }
 
 /// The slot of the word being typed after `before`.
 fn slot(before: &str) -> Slot {
     let before = before.trim_end();
-    let Some(last) = before.chars().next_back() else { return Slot::Any };
+    let Some(last) = before.chars().next_back() else { return Slot::Start };
     if !is_word_char(last) {
         let head = &before[..before.len() - last.len_utf8()];
         let defines_object = last == '=' && head.split_whitespace().rev().nth(1) == Some("object");
@@ -70,7 +73,8 @@ fn slot(before: &str) -> Slot {
     match (word, words::lookup(word).and_then(words::Word::role)) {
         ("let" | "object" | "proc", _) => Slot::NewName,
         ("put", _) | (_, Some(Role::Transformation)) => Slot::Object,
-        ("then" | "else" | "end", _) => Slot::Any,
+        ("then" | "else", _) => Slot::Start,
+        ("end", _) => Slot::Any,
         ("if" | "print", _) | (_, Some(Role::Part | Role::Texture)) => Slot::Number,
         _ => Slot::Any,
     }
@@ -117,11 +121,18 @@ impl RayHelper {
     }
 
     /// Completes the word before `pos` with what may come there: after
-    /// `put` only objects, after `color` only numbers, and so on.
+    /// `put` only objects, after `color` only numbers, and so on. With
+    /// nothing typed yet, it lists them where they are few enough to read
+    /// (an object or a number), and nothing elsewhere.
     fn complete_word(&self, line: &str, pos: usize) -> (usize, Vec<Pair>) {
         let start = word_start(&line[..pos]);
         let typed = &line[start..pos];
-        if typed.is_empty() {
+        let slot = match slot(&line[..start]) {
+            // A line after the first may be anywhere inside a construct.
+            Slot::Start if line[..start].trim().is_empty() && !self.pending.is_empty() => Slot::Any,
+            slot => slot,
+        };
+        if typed.is_empty() && !matches!(slot, Slot::Object | Slot::Number) {
             return (pos, Vec::new());
         }
         let vocabulary = &self.vocabulary;
@@ -133,8 +144,12 @@ impl RayHelper {
             replacement: format!("{name}("),
         });
         let language = words::language();
-        let candidates: Vec<Pair> = match slot(&line[..start]) {
+        let candidates: Vec<Pair> = match slot {
             Slot::NewName => Vec::new(),
+            Slot::Start => {
+                let starts = language.filter(|word| matches!(word.role(), Some(Role::Definition | Role::Instruction)));
+                starts.map(keyword_candidate).chain(procedures).collect()
+            }
             Slot::Object => {
                 let shapes = language.filter(|word| matches!(word.role(), Some(Role::Shape | Role::Transformation)));
                 shapes.map(keyword_candidate).chain(objects).collect()
@@ -299,7 +314,7 @@ mod tests {
             objects: vec!["saucer".to_string()],
             procedures: vec![("spiral".to_string(), vec!["n".to_string(), "r".to_string()])],
         });
-        let found = complete(&helper, "sp").1;
+        let found = complete(&helper, "end sp").1;
         assert_eq!(found, ["sphere", "spin", "spiral(n, r)"].map(String::from));
         let found = complete(&helper, "let a = s").1;
         assert_eq!(found, ["sin(x)", "spin", "sqrt(x)"].map(String::from), "a number: no object, no keyword");
@@ -309,6 +324,42 @@ mod tests {
         assert!(complete(&helper, "let s").1.is_empty(), "a new name");
         assert_eq!(complete(&helper, "let t = ti").1, vec!["time".to_string()]);
         assert_eq!(complete(&helper, "spir").1, vec!["spiral(n, r)".to_string()]);
+    }
+
+    #[test]
+    fn tab_after_put_lists_shapes_transformations_and_objects() {
+        let mut helper = RayHelper::new(false);
+        helper.set_names(&Vocabulary {
+            variables: vec!["ball".to_string(), "r".to_string()],
+            objects: vec!["ball".to_string()],
+            procedures: Vec::new(),
+        });
+        let (start, found) = complete(&helper, "put ");
+        assert_eq!(start, 4);
+        for expected in ["sphere", "plane", "box", "translate", "rotate", "scale", "group", "ball"] {
+            assert!(found.iter().any(|f| f == expected), "{expected} in {found:?}");
+        }
+        assert!(!found.iter().any(|f| f == "r" || f == "put"), "{found:?}");
+        let numbers = complete(&helper, "put sphere center 1, ").1;
+        assert!(numbers.iter().any(|f| f == "r") && numbers.iter().any(|f| f == "sin(x)"), "{numbers:?}");
+        assert!(complete(&helper, "").1.is_empty(), "no list of everything on an empty line");
+    }
+
+    #[test]
+    fn the_start_of_an_instruction_offers_only_what_starts_one() {
+        let mut helper = RayHelper::new(false);
+        helper.set_names(&Vocabulary {
+            variables: vec!["grey".to_string()],
+            objects: Vec::new(),
+            procedures: vec![("grid".to_string(), vec!["n".to_string()])],
+        });
+        assert_eq!(complete(&helper, "gr").1, ["grid(n)"].map(String::from), "`group` cannot start one");
+        assert_eq!(complete(&helper, "  pu").1, ["put"].map(String::from));
+        assert_eq!(complete(&helper, "li").1, ["light"].map(String::from));
+        assert_eq!(complete(&helper, "if 1 < 2 then gr").1, ["grid(n)"].map(String::from));
+        assert_eq!(complete(&helper, "put gr").1, ["group"].map(String::from));
+        helper.set_pending("put rotate");
+        assert!(complete(&helper, "gr").1.contains(&"group".to_string()), "inside an open construct");
     }
 
     #[test]

@@ -19,6 +19,7 @@ mod hostile_files;
 mod hostile_runs;
 mod hostile_scenes;
 mod language_limits;
+mod lesson_papercuts;
 mod lessons;
 mod memory_limits;
 mod parse;

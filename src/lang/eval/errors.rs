@@ -2,6 +2,7 @@
 
 use std::rc::Rc;
 
+use crate::lang::degrees::{field_of_view_looks_like_degrees, in_radians_help};
 use crate::lang::diagnostic::{Diagnostic, Note, shown_name};
 use crate::lang::number::format_number;
 use crate::lang::source::Span;
@@ -39,20 +40,17 @@ pub(crate) fn check_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
     if angle > 0.0 && angle < std::f64::consts::PI { Ok(()) } else { bad_camera_angle(angle, span) }
 }
 
-/// The error of [`check_camera_angle`]: a round number from pi to 180 was
-/// most likely meant in degrees.
+/// The error of [`check_camera_angle`]: a number from pi to 180 was most
+/// likely meant in degrees.
 #[cold]
 #[inline(never)]
 fn bad_camera_angle(angle: f64, span: Span) -> EvalResult<()> {
     let a = format_number(angle);
-    let diagnostic = if (std::f64::consts::PI..180.0).contains(&angle) {
+    let diagnostic = if field_of_view_looks_like_degrees(angle) {
         Diagnostic::error(span, format!("the camera angle {a} looks like degrees, but angles are in radians"))
             .with_code("angle-in-degrees")
             .with_label(format!("read as {a} radians, more than half a turn"))
-            .with_help(format!(
-                "for {a} degrees, write `angle {a} * pi / 180` (that is {} radians)",
-                format_number(angle.to_radians())
-            ))
+            .with_help(in_radians_help(angle, "angle "))
     } else {
         Diagnostic::error(span, format!("the camera angle must be between 0 and pi, but it is {a}"))
             .with_code("angle-out-of-range")

@@ -9,9 +9,11 @@ use glam::{DMat3, DVec3};
 
 use super::Interpreter;
 use super::errors::{EvalResult, fail, wrong_kind};
+use super::origins::Turned;
 use super::stack::grow;
 use super::value::{Kind, Num};
 use crate::lang::ast::{Expr, Obj, ObjKind, Texture, Triple};
+use crate::lang::degrees::turn_looks_like_degrees;
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::number::Number;
 use crate::lang::source::Span;
@@ -33,7 +35,7 @@ impl Interpreter {
                 Ok(c | r.tainted | m)
             }
             ObjKind::Plane { rotation, shift, texture } => {
-                let (angles, a) = self.eval_triple(rotation)?;
+                let (angles, a) = self.eval_angles(rotation, Turned::Plane)?;
                 let d = self.eval_expr(shift)?;
                 let (material, m) = self.eval_texture(texture)?;
                 self.make_room(1, obj.span, out)?;
@@ -69,7 +71,7 @@ impl Interpreter {
             }
             ObjKind::Rotate(inner, by) => {
                 let inner_tainted = self.emit_obj(inner, out)?;
-                let (angles, t) = self.eval_triple(by)?;
+                let (angles, t) = self.eval_angles(by, Turned::Object)?;
                 let r = self.rotation(angles);
                 transform(&mut out[start..], obj.span, |p| p.rotate(&r))?;
                 Ok(inner_tainted | t)
@@ -161,6 +163,23 @@ impl Interpreter {
         let [a, b, c] = &triple.parts;
         let (x, y, z) = (self.eval_expr(a)?, self.eval_expr(b)?, self.eval_expr(c)?);
         Ok((DVec3::new(x.value, y.value, z.value), x.tainted | y.tainted | z.tainted))
+    }
+
+    /// [`Interpreter::eval_triple`] for the angles of a turn, noting in the
+    /// origins those that look like degrees (unless they depend on `time`:
+    /// other frames may differ).
+    pub(crate) fn eval_angles(&mut self, triple: &Triple, turned: Turned) -> EvalResult<(DVec3, bool)> {
+        let mut angles = [0.0; 3];
+        let mut tainted = false;
+        for (angle, part) in angles.iter_mut().zip(&triple.parts) {
+            let n = self.eval_expr(part)?;
+            if turn_looks_like_degrees(n.value) && !n.tainted {
+                self.origins.record_degrees(part.span, n.value, turned);
+            }
+            *angle = n.value;
+            tainted |= n.tainted;
+        }
+        Ok((DVec3::from_array(angles), tainted))
     }
 
     /// Evaluates a texture into a material: colour / 255, coefficients clamped

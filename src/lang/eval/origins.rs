@@ -5,7 +5,7 @@
 //! the same evaluation, for the warnings about the scene (`crate::lint`):
 //! the camera, the ambient light and each light by their expressions, each
 //! primitive by the `put` that made it, each `object` definition by its name
-//! and whether it was ever used. When asked (to explain a pixel), it also
+//! and whether it was ever used, the angles of turns that look like degrees. When asked (to explain a pixel), it also
 //! records the procedure calls that led to each `put` ([`PutCalls`]).
 
 use std::collections::HashMap;
@@ -31,6 +31,9 @@ pub struct Origins {
     pub timed_primitives: PutSpans,
     /// Every `object` instruction that ran.
     pub objects: ObjectDefinitions,
+    /// The angles of turns that look like degrees, each place once (the
+    /// first [`DEGREES_KEPT`]), in the order they ran; none that depend on `time`.
+    pub degrees: Vec<DegreesOrigin>,
     /// Whether an `if` chose its branch by `time` (directly or through a
     /// procedure's argument): at another time other objects may be put.
     pub branched_on_time: bool,
@@ -40,6 +43,15 @@ pub struct Origins {
 }
 
 impl Origins {
+    /// Records that `angle`, written at `span`, turns `turned` and looks like
+    /// degrees, unless that place is already recorded or enough are.
+    #[cold]
+    pub(crate) fn record_degrees(&mut self, span: Span, angle: f64, turned: Turned) {
+        if self.degrees.len() < DEGREES_KEPT && self.degrees.iter().all(|d| d.span != span) {
+            self.degrees.push(DegreesOrigin { span, angle, turned });
+        }
+    }
+
     /// Records that the primitives `range`, appended last to the static
     /// (or, with `timed`, the timed) primitives, come from the `put` at `span`.
     #[inline]
@@ -168,6 +180,33 @@ pub struct CameraOrigin {
     pub distance: Span,
     /// The `angle` expression.
     pub angle: Span,
+}
+
+/// How many places of angles that look like degrees [`Origins`] keeps: a
+/// warning about each is enough to see the mistake.
+pub const DEGREES_KEPT: usize = 16;
+
+/// An angle of a turn that looks like degrees
+/// ([`crate::lang::degrees::turn_looks_like_degrees`]), where it was written.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DegreesOrigin {
+    /// The angle's expression.
+    pub span: Span,
+    /// Its value.
+    pub angle: f64,
+    /// What it turns.
+    pub turned: Turned,
+}
+
+/// What an angle turns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Turned {
+    /// A `light`'s `vector` (or `rotation`).
+    Light,
+    /// A `plane`'s `rotation`.
+    Plane,
+    /// `rotate ... by`.
+    Object,
 }
 
 /// The expressions of a `light` item.
