@@ -143,10 +143,11 @@ pub enum EntryState {
     /// No continuation can make it valid: report the error now, at the line
     /// that went wrong, instead of after the closing `end`.
     Broken,
-    /// Broken by the first token of its last line, a line that can start an
-    /// entry of its own (`put sphere ...` after a sphere left without its
-    /// `end`): the error is reported with that line, as [`Broken`] is, then
-    /// the line is read again as the first line of the next entry.
+    /// Broken by the first token of its last line where an `end` was
+    /// wanted, that line being one that can start an entry of its own (`put
+    /// sphere ...` after a sphere left without its `end`): the error is
+    /// reported with that line, as [`Broken`] is, then the line is read
+    /// again as the first line of the next entry.
     ///
     /// [`Broken`]: EntryState::Broken
     BrokenBeforeLastLine,
@@ -162,7 +163,11 @@ pub fn entry_state(text: &str) -> EntryState {
     let refused = match grammar::ItemsParser::new().parse(&Sources::One(source), Lexer::new(source, text)) {
         Ok(_) => return EntryState::Complete,
         Err(ParseError::UnrecognizedEof { .. }) => return EntryState::Unfinished,
-        Err(ParseError::UnrecognizedToken { token: (start, ..), .. } | ParseError::ExtraToken { token: (start, ..) }) => {
+        // Only a forgotten `end` is cut off: where `end` was wanted, the
+        // construct before could have been over (a `then` forgotten is not).
+        Err(ParseError::UnrecognizedToken { token: (start, ..), expected })
+            if expected.iter().any(|name| name == "\"end\"") =>
+        {
             start
         }
         Err(_) => return EntryState::Broken,
@@ -379,7 +384,9 @@ mod tests {
         let sphere = "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0";
         assert_eq!(entry_state(&format!("{sphere}\n{sphere} end")), EntryState::BrokenBeforeLastLine);
         assert_eq!(entry_state(&format!("{sphere}\n  {sphere}")), EntryState::BrokenBeforeLastLine);
-        assert_eq!(entry_state("let x = 1 +\nprint 7"), EntryState::BrokenBeforeLastLine);
+        // Not a forgotten `end`, but a forgotten `then`, or an operand.
+        assert_eq!(entry_state("if 1 < 2\n  put ball"), EntryState::Broken);
+        assert_eq!(entry_state("let x = 1 +\nprint 7"), EntryState::Broken);
         // The line cannot start an entry either: the error is in it.
         assert_eq!(entry_state("put sphere center 0, 0, 0\nraduis 1"), EntryState::Broken);
         assert_eq!(entry_state("proc p()\nend end"), EntryState::Broken);

@@ -82,6 +82,7 @@ fn the_session_cuts_the_entry_where_the_script_does() {
     let lines = format!("{UNCLOSED}\n{SPHERE}\nprint 7\n");
     let run = script(&lines, true);
     let (out, err) = typed(&lines);
+    assert!(out.starts_with("put 1 sphere (1 object in the scene)\n"), "{out}");
     // The second sphere is put in both (the session then warns that its
     // inputs are not written to a file).
     assert!(out.starts_with(&run.out), "{out}");
