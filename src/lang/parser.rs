@@ -195,6 +195,11 @@ pub fn is_incomplete(text: &str) -> bool {
     Entry::read(text.to_string()).is_incomplete()
 }
 
+/// The longest entry whose every line is parsed again to see whether it
+/// is broken ([`Entry::state`]): a longer one would cost time quadratic in
+/// its length (a procedure of 20,000 lines, minutes).
+pub const MOST_CHECKED_BYTES: usize = 64 << 10;
+
 /// One entry of the session whose tokens were read to see whether it is
 /// finished ([`is_incomplete`]), and kept for the parser: a script's input
 /// is lexed once, and a line added to it is lexed alone.
@@ -243,15 +248,20 @@ impl Entry {
     /// Where the entry stands, its last line having just been added, as
     /// [`entry_state`] says. An entry of one line that its tokens close
     /// is not parsed here: finished or broken, it is submitted either way.
+    /// Nor is one longer than [`MOST_CHECKED_BYTES`]: it waits for its
+    /// tokens to close what they open, as they say.
     pub fn state(&self) -> EntryState {
-        if self.text.contains('\n') {
+        let checked = self.text.len() <= MOST_CHECKED_BYTES && self.text.contains('\n');
+        if checked {
             entry_state(&self.text)
         } else if self.tokens.is_none() {
             EntryState::Broken
-        } else if self.is_incomplete() {
+        } else if !self.is_incomplete() {
+            EntryState::Complete
+        } else if self.text.len() <= MOST_CHECKED_BYTES {
             entry_state(&self.text)
         } else {
-            EntryState::Complete
+            EntryState::Unfinished
         }
     }
 
