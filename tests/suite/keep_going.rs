@@ -93,10 +93,7 @@ fn the_session_cuts_the_entry_where_the_script_does() {
 
 #[test]
 fn an_unclosed_proc_ends_at_an_item_a_proc_cannot_hold() {
-    let run = script(
-        &format!("proc p()\n  {SPHERE}\nproc q()\n  print 7\nend\nq()\nprint 8\n{SPHERE}\n"),
-        true,
-    );
+    let run = script(&format!("proc p()\n  {SPHERE}\nproc q()\n  print 7\nend\nq()\nprint 8\n{SPHERE}\n"), true);
     assert_eq!(run.code, 1);
     assert!(run.err.contains(" --> <stdin>:3:1\n"), "{}", run.err);
     assert!(run.err.contains("this `proc p` is not closed"), "{}", run.err);
@@ -107,12 +104,8 @@ fn an_unclosed_proc_ends_at_an_item_a_proc_cannot_hold() {
 
 #[test]
 fn an_unclosed_if_ends_at_an_item_an_if_cannot_hold() {
-    let run = script(
-        &format!(
-            "if 1 < 2 then\n  {SPHERE}\nlight vector 0, 0, 0 intensity 1 end\nprint 7\nprint 8\n"
-        ),
-        true,
-    );
+    let run =
+        script(&format!("if 1 < 2 then\n  {SPHERE}\nlight vector 0, 0, 0 intensity 1 end\nprint 7\nprint 8\n"), true);
     assert!(run.err.contains(" --> <stdin>:3:1\n"), "{}", run.err);
     assert!(run.err.contains("this `if` is not closed"), "{}", run.err);
     assert!(run.out.contains("1 light added"), "{}", run.out);
