@@ -133,7 +133,7 @@ pub(crate) fn push(mut instrs: Vec<Instr>, kind: InstrKind, span: Span) -> Vec<I
     instrs
 }
 
-/// What a typed entry of the session is, so far.
+/// What an entry of the session or of a script is, so far.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EntryState {
     /// It parses: submit it.
@@ -143,17 +143,41 @@ pub enum EntryState {
     /// No continuation can make it valid: report the error now, at the line
     /// that went wrong, instead of after the closing `end`.
     Broken,
+    /// Broken by the first token of its last line where an `end` was
+    /// wanted, that line being one that can start an entry of its own (`put
+    /// sphere ...` after a sphere left without its `end`): the error is
+    /// reported with that line, as [`Broken`] is, then the line is read
+    /// again as the first line of the next entry.
+    ///
+    /// [`Broken`]: EntryState::Broken
+    BrokenBeforeLastLine,
 }
 
-/// Where the session's entry `text` stands. The grammar is LR(1), so it
-/// stops at the first token that no valid input can have there: an error
-/// at the end of the text means only that more is needed.
+/// Where the entry `text` stands, its last line having just been added;
+/// the interactive session and scripts cut their entries by it. The
+/// grammar is LR(1), so it stops at the first token that no valid input
+/// can have there: an error at the end of the text means only that more is
+/// needed.
 pub fn entry_state(text: &str) -> EntryState {
     let source = SourceId::default();
-    match grammar::ItemsParser::new().parse(&Sources::One(source), Lexer::new(source, text)) {
-        Ok(_) => EntryState::Complete,
-        Err(ParseError::UnrecognizedEof { .. }) => EntryState::Unfinished,
-        Err(_) => EntryState::Broken,
+    let refused = match grammar::ItemsParser::new().parse(&Sources::One(source), Lexer::new(source, text)) {
+        Ok(_) => return EntryState::Complete,
+        Err(ParseError::UnrecognizedEof { .. }) => return EntryState::Unfinished,
+        // Only a forgotten `end` is cut off: where `end` was wanted, the
+        // construct before could have been over (a `then` forgotten is not).
+        Err(ParseError::UnrecognizedToken { token: (start, ..), expected })
+            if expected.iter().any(|name| name == "\"end\"") =>
+        {
+            start
+        }
+        Err(_) => return EntryState::Broken,
+    };
+    let Some(last_line) = text.rfind('\n').map(|newline| newline + 1) else { return EntryState::Broken };
+    let starts_last_line = refused >= last_line && text[last_line..refused].trim().is_empty();
+    if starts_last_line && entry_state(&text[last_line..]) != EntryState::Broken {
+        EntryState::BrokenBeforeLastLine
+    } else {
+        EntryState::Broken
     }
 }
 
@@ -170,6 +194,11 @@ pub fn entry_state(text: &str) -> EntryState {
 pub fn is_incomplete(text: &str) -> bool {
     Entry::read(text.to_string()).is_incomplete()
 }
+
+/// The longest entry whose every line is parsed again to see whether it
+/// is broken ([`Entry::state`]): a longer one would cost time quadratic in
+/// its length (a procedure of 20,000 lines, minutes).
+pub const MOST_CHECKED_BYTES: usize = 64 << 10;
 
 /// One entry of the session whose tokens were read to see whether it is
 /// finished ([`is_incomplete`]), and kept for the parser: a script's input
@@ -214,6 +243,26 @@ impl Entry {
     pub fn is_incomplete(&self) -> bool {
         let last = self.tokens.as_ref().and_then(|tokens| tokens.last()).map(|(_, token, _)| token);
         self.tokens.is_some() && (self.constructs > 0 || self.parens > 0 || last.is_some_and(needs_more))
+    }
+
+    /// Where the entry stands, its last line having just been added, as
+    /// [`entry_state`] says. An entry of one line that its tokens close
+    /// is not parsed here: finished or broken, it is submitted either way.
+    /// Nor is one longer than [`MOST_CHECKED_BYTES`]: it waits for its
+    /// tokens to close what they open, as they say.
+    pub fn state(&self) -> EntryState {
+        let checked = self.text.len() <= MOST_CHECKED_BYTES && self.text.contains('\n');
+        if checked {
+            entry_state(&self.text)
+        } else if self.tokens.is_none() {
+            EntryState::Broken
+        } else if !self.is_incomplete() {
+            EntryState::Complete
+        } else if self.text.len() <= MOST_CHECKED_BYTES {
+            entry_state(&self.text)
+        } else {
+            EntryState::Unfinished
+        }
     }
 
     /// Reads the tokens from byte `start` (where a line starts) on, unless
@@ -338,6 +387,21 @@ mod tests {
         assert_eq!(entry_state("let x = 1 $"), EntryState::Broken);
         assert_eq!(entry_state("end"), EntryState::Broken);
         assert_eq!(entry_state(""), EntryState::Complete);
+    }
+
+    #[test]
+    fn a_last_line_that_can_start_an_entry_is_cut_off_a_broken_one() {
+        let sphere = "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0";
+        assert_eq!(entry_state(&format!("{sphere}\n{sphere} end")), EntryState::BrokenBeforeLastLine);
+        assert_eq!(entry_state(&format!("{sphere}\n  {sphere}")), EntryState::BrokenBeforeLastLine);
+        // Not a forgotten `end`, but a forgotten `then`, or an operand.
+        assert_eq!(entry_state("if 1 < 2\n  put ball"), EntryState::Broken);
+        assert_eq!(entry_state("let x = 1 +\nprint 7"), EntryState::Broken);
+        // The line cannot start an entry either: the error is in it.
+        assert_eq!(entry_state("put sphere center 0, 0, 0\nraduis 1"), EntryState::Broken);
+        assert_eq!(entry_state("proc p()\nend end"), EntryState::Broken);
+        // The error is in the middle of the line.
+        assert_eq!(entry_state("let x = (1 +\n2 let y = 3"), EntryState::Broken);
     }
 
     /// `parse_entries` of `texts` (ids 3, 4, ...) printed, and the same for

@@ -10,7 +10,7 @@ use std::io::BufRead;
 use anstream::stream::RawStream;
 
 use crate::lang::ast::Program;
-use crate::lang::{Diagnostic, Entry, SourceId, parse_entries};
+use crate::lang::{Diagnostic, Entry, EntryState, SourceId, parse_entries};
 
 use super::cancel::{ArmedSwitch, CancelSwitch};
 use super::commands::{self, Flow, is_command};
@@ -125,6 +125,20 @@ impl ReadAhead {
         self.entries.push(entry);
         self.first_lines.push(first_line);
     }
+
+    /// Reads `entry` (starting at line `first_line`, in `state`) ahead if
+    /// it is finished, or broken so that no line can mend it (its error is
+    /// then reported at once, and the script goes on after it with
+    /// `--keep-going`); gives it back if it waits for more lines.
+    fn place(&mut self, entry: Entry, state: EntryState, first_line: usize) -> Option<Entry> {
+        if state == EntryState::Unfinished {
+            return Some(entry);
+        }
+        if !entry.text().trim().is_empty() {
+            self.push(entry, first_line);
+        }
+        None
+    }
 }
 
 /// Whether the script goes on.
@@ -196,11 +210,18 @@ impl Script<'_, '_> {
             if self.stopped_by_ctrl_c(armed, number) {
                 return;
             }
-            if entry.is_incomplete() {
-                pending = Some(entry);
-            } else if !entry.text().trim().is_empty() {
-                ready.push(entry, first_line);
-            }
+            pending = match entry.state() {
+                EntryState::BrokenBeforeLastLine => {
+                    // Reported with the line that broke it, which then
+                    // starts the next entry, as in the interactive session.
+                    ready.push(entry, first_line);
+                    first_line = number;
+                    let next = Entry::read(line.to_string());
+                    let state = next.state();
+                    ready.place(next, state, first_line)
+                }
+                state => ready.place(entry, state, first_line),
+            };
             // Run what is finished before a read that may wait for the writer.
             let waits = !next_ready || ready.entries.len() >= MOST_READ_AHEAD;
             if waits && self.run_ready(&mut ready) == Step::Stop {

@@ -307,11 +307,20 @@ impl<L: LineSource> Repl<L> {
                         EntryState::Unfinished => {}
                         EntryState::Complete => {
                             let input = std::mem::take(&mut pending);
-                            self.submit(&input, front);
+                            self.submit(&input, &input, front);
+                        }
+                        EntryState::BrokenBeforeLastLine => {
+                            let input = std::mem::take(&mut pending);
+                            let (broken, last) = input.rsplit_once('\n').unwrap_or((&input, ""));
+                            // Reported with the line that broke it, which then
+                            // starts the next entry, as in a script; the entry
+                            // without it is in the history, to fix.
+                            self.submit(broken, &input, front);
+                            self.queued.push_front(EnteredLine { text: last.to_string(), typed });
                         }
                         EntryState::Broken => {
                             let input = std::mem::take(&mut pending);
-                            self.submit(&input, front);
+                            self.submit(&input, &input, front);
                             if input.contains('\n') && typed {
                                 front.note("the entry is back in the editor: fix it, or Ctrl-C to drop it");
                                 to_fix = input;
@@ -370,11 +379,13 @@ impl<L: LineSource> Repl<L> {
         format!("[{}] {PROMPT}", self.inputs + 1)
     }
 
-    fn submit(&mut self, input: &str, front: &mut dyn FrontEnd) {
+    /// Runs `input` as the next input, kept in the history as `entry` (the
+    /// lines of `input` that belong to it).
+    fn submit(&mut self, entry: &str, input: &str, front: &mut dyn FrontEnd) {
         if input.trim().is_empty() {
             return;
         }
-        self.lines.remember(input);
+        self.lines.remember(entry);
         self.inputs += 1;
         let name = format!("<input {}>", self.inputs);
         let armed = front.cancel().map(|switch| switch.arm());

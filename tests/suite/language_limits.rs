@@ -172,8 +172,9 @@ fn a_megabyte_long_name_is_shortened_in_every_message() {
 
 #[test]
 fn an_input_that_never_ends_stops_the_script_before_it_fills_the_memory() {
-    // Every line leaves the input unfinished: it would grow forever.
-    let script = "let a = 1 +\n".repeat((64 << 20) / 12 + 10);
+    // Every line leaves the input unfinished: it would grow forever. (A
+    // line `let a = 1 +` again would break it: `+ let` cannot go on.)
+    let script = format!("let a = 1 +\n{}", "1 +\n".repeat((64 << 20) / 4 + 10));
     let (status, stderr) = run(&[], &script);
     assert_eq!(status, Some(1), "{}", start(&stderr));
     let message = "error: the input starting at line 1 of the script is longer than 64 MiB, the most an input may be";

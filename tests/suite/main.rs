@@ -18,6 +18,7 @@ mod golden;
 mod hostile_files;
 mod hostile_runs;
 mod hostile_scenes;
+mod keep_going;
 mod language_limits;
 mod lesson_papercuts;
 mod lessons;
