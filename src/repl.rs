@@ -42,7 +42,7 @@ pub(crate) mod syntax;
 pub(crate) mod write_back;
 
 pub use cancel::CancelSwitch;
-pub(crate) use cancel::cancel_flag;
+pub(crate) use cancel::{LOOK, cancel_flag};
 pub(crate) use console::Console;
 pub use options::SessionOptions;
 pub(crate) use options::new_session;

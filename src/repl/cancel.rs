@@ -93,8 +93,10 @@ impl Drop for ArmedSwitch {
     }
 }
 
-/// How often a wait for work on another thread looks at its cancel flag.
-const LOOK: Duration = Duration::from_millis(5);
+/// How often a wait that cannot be woken looks at its flag: for work on
+/// another thread here, and in the terminal's signal listener and plain
+/// prompt.
+pub(crate) const LOOK: Duration = Duration::from_millis(5);
 
 /// Why work handed to [`off_thread`] gave no answer.
 #[derive(Debug, PartialEq, Eq)]

@@ -25,7 +25,7 @@ use std::time::Duration;
 use crate::clock::Stopwatch;
 use crate::interruption::{Signal, write_in_progress};
 use crate::output::{INTERRUPTED_EXIT_CODE, discarding_unfinished, exit_discarding_unfinished};
-use crate::repl::CancelSwitch;
+use crate::repl::{CancelSwitch, LOOK};
 
 /// The switch, once the listener is installed; `None` inside if installing failed.
 static SWITCH: OnceLock<Option<CancelSwitch>> = OnceLock::new();
@@ -33,10 +33,6 @@ static SWITCH: OnceLock<Option<CancelSwitch>> = OnceLock::new();
 /// How long a marked write may stay blocked after a signal before the
 /// process ends (a terminal write returns well within it).
 const STUCK: Duration = Duration::from_millis(50);
-
-/// How often the listener looks at a blocked write, and a plain prompt at
-/// its flag.
-pub(crate) const LOOK: Duration = Duration::from_millis(5);
 
 /// How long the listener waits for its last message before ending the
 /// process (standard error may be the stream that blocks).

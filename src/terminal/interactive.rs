@@ -224,7 +224,7 @@ impl LineSource for PlainTerminal {
         let started = Stopwatch::start();
         let waiting = ctrl_c::at_plain_prompt();
         loop {
-            match self.lines.recv_timeout(ctrl_c::LOOK) {
+            match self.lines.recv_timeout(crate::repl::LOOK) {
                 Ok(Ok(mut text)) => {
                     let end = text.trim_end_matches(['\n', '\r']).len();
                     text.truncate(end);
