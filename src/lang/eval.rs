@@ -145,6 +145,22 @@ pub struct Interpreter {
     last_rotation: (DVec3, DMat3),
     /// A reusable buffer for building `object` values.
     scratch: Vec<Primitive>,
+    /// Where the primitives go as they are made, if not into the scene.
+    stream: Option<Stream>,
+}
+
+/// Where [`Interpreter::streaming`] sends the primitives it makes.
+struct Stream {
+    /// How many primitives of a kind (static, timed) are sent at once.
+    batch: usize,
+    /// Takes each batch, with whether it holds timed primitives.
+    sink: Box<dyn FnMut(bool, Vec<Primitive>)>,
+}
+
+impl std::fmt::Debug for Stream {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Stream").field("batch", &self.batch).finish_non_exhaustive()
+    }
 }
 
 /// What a failed run restores.
@@ -197,6 +213,7 @@ impl Interpreter {
             last_proc: None,
             last_rotation: (DVec3::ZERO, DMat3::IDENTITY),
             scratch: Vec::new(),
+            stream: None,
         }
     }
 
@@ -207,6 +224,17 @@ impl Interpreter {
     /// set, so they only hold the timed primitives.
     pub fn skip_static(mut self, skip: bool) -> Interpreter {
         self.skip_static = skip;
+        self
+    }
+
+    /// Sends the primitives `put` makes to `sink`, `batch` at a time, in the
+    /// order they are made (static and timed ones apart: the second
+    /// argument says which), instead of keeping them: the scene then holds
+    /// only those made since the last batch, and an evaluation to compare
+    /// with a scene (`:write`'s check) needs no second copy of it. Only for
+    /// one run: a failed run cannot take back what was sent.
+    pub fn streaming(mut self, batch: usize, sink: impl FnMut(bool, Vec<Primitive>) + 'static) -> Interpreter {
+        self.stream = Some(Stream { batch: batch.max(1), sink: Box::new(sink) });
         self
     }
 
@@ -449,5 +477,32 @@ mod tests {
         let ignores = sources.add("<test>", "let a = 1", 0);
         let program = parse_items(ignores, "let a = 1").expect("parses");
         Interpreter::new(f64::INFINITY, Limits::DEFAULT).run(&program).expect("`time` is not read");
+    }
+
+    #[test]
+    fn a_streaming_run_sends_every_primitive_in_order_and_keeps_only_the_last_batch() {
+        let text = "proc f(n) if n > 0 then put sphere center n, 0, 0 radius 1 kd 0.5 ks 0.5 phong 10 \
+                    color 1, 2, 3 end f(n - 1) end end\n\
+                    f(10)\nif time > 0 then put sphere center time, 1, 0 radius 1 kd 0.5 ks 0.5 phong 10 \
+                    color 1, 2, 3 end end";
+        let mut sources = SourceMap::new();
+        let program = parse_items(sources.add("<test>", text, 0), text).expect("parses");
+        let mut whole = Interpreter::new(1.0, Limits::DEFAULT);
+        whole.run(&program).expect("runs");
+        let whole = whole.into_scene();
+        let sent = Rc::new(std::cell::RefCell::new((Vec::new(), Vec::new())));
+        let into = Rc::clone(&sent);
+        let mut streaming = Interpreter::new(1.0, Limits::DEFAULT).streaming(3, move |timed, batch| {
+            assert_eq!(batch.len(), if timed { 1 } else { 3 });
+            let mut sent = into.borrow_mut();
+            if timed { &mut sent.1 } else { &mut sent.0 }.extend(batch);
+        });
+        streaming.run(&program).expect("runs");
+        let rest = streaming.into_scene();
+        assert_eq!(rest.primitives.len(), 1, "10 primitives, 3 batches of 3 sent");
+        let (mut primitives, mut timed) = sent.take();
+        primitives.extend(rest.primitives);
+        timed.extend(rest.timed_primitives);
+        assert_eq!((primitives, timed), (whole.primitives, whole.timed_primitives));
     }
 }

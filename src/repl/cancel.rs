@@ -119,22 +119,97 @@ pub(crate) fn off_thread<T: Send + 'static>(
     cancel: &AtomicBool,
     work: impl FnOnce() -> T + Send + 'static,
 ) -> Result<T, Stopped> {
+    off_thread_streaming(name, cancel, |_: &Parts<(), T>| work(), |()| {})
+}
+
+/// How many parts work on another thread may have sent and the waiting
+/// thread not yet taken: past that its [`Parts::send`] waits.
+const PARTS_AHEAD: usize = 2;
+
+/// What work on another thread sends to the thread that waits for it.
+enum Sent<P, T> {
+    /// A part of what it makes, handed over as soon as it is made.
+    Part(P),
+    /// Its answer, the last thing it sends.
+    Answer(T),
+}
+
+/// How work given to [`off_thread_streaming`] hands over its parts.
+pub(crate) struct Parts<P, T> {
+    sent: Sender<Sent<P, T>>,
+}
+
+/// A channel bounded to [`PARTS_AHEAD`] parts where the work has a thread
+/// of its own; unbounded where it runs on the waiting thread (wasm32),
+/// which takes its parts once it is done.
+enum Sender<M> {
+    Bounded(mpsc::SyncSender<M>),
+    Unbounded(mpsc::Sender<M>),
+}
+
+impl<P, T> Parts<P, T> {
+    /// Hands `part` to the waiting thread, waiting while it has
+    /// [`PARTS_AHEAD`] parts not yet taken; `false` once the wait is over
+    /// (Ctrl-C): nothing more needs to be made.
+    pub(crate) fn send(&self, part: P) -> bool {
+        self.send_message(Sent::Part(part))
+    }
+
+    fn send_message(&self, message: Sent<P, T>) -> bool {
+        match &self.sent {
+            Sender::Bounded(sent) => sent.send(message).is_ok(),
+            Sender::Unbounded(sent) => sent.send(message).is_ok(),
+        }
+    }
+}
+
+impl<P, T> Clone for Parts<P, T> {
+    fn clone(&self) -> Self {
+        let sent = match &self.sent {
+            Sender::Bounded(sent) => Sender::Bounded(sent.clone()),
+            Sender::Unbounded(sent) => Sender::Unbounded(sent.clone()),
+        };
+        Parts { sent }
+    }
+}
+
+/// [`off_thread`] for work that makes its result in parts: each part it
+/// sends (with [`Parts::send`]) is given to `take` here as it comes, at
+/// most [`PARTS_AHEAD`] waiting, so what the two threads hold at once stays
+/// bounded whatever the size of the whole.
+pub(crate) fn off_thread_streaming<P: Send + 'static, T: Send + 'static>(
+    name: &str,
+    cancel: &AtomicBool,
+    work: impl FnOnce(&Parts<P, T>) -> T + Send + 'static,
+    mut take: impl FnMut(P),
+) -> Result<T, Stopped> {
+    let (sent, received) = mpsc::sync_channel(PARTS_AHEAD);
+    let parts = Parts { sent: Sender::Bounded(sent) };
     let work = Arc::new(Mutex::new(Some(work)));
-    let take = |work: &Mutex<Option<_>>| work.lock().unwrap_or_else(PoisonError::into_inner).take();
-    let (sent, received) = mpsc::channel();
+    let take_work = |work: &Mutex<Option<_>>| work.lock().unwrap_or_else(PoisonError::into_inner).take();
     let on_thread = Arc::clone(&work);
     let spawned = std::thread::Builder::new().name(name.to_string()).spawn(move || {
-        if let Some(work) = take(&on_thread) {
-            let _ = sent.send(work());
+        if let Some(work) = take_work(&on_thread) {
+            let answer = work(&parts);
+            parts.send_message(Sent::Answer(answer));
         }
     });
     if spawned.is_err() {
-        return take(&work).map(|work| work()).ok_or(Stopped::Failed);
+        let work = take_work(&work).ok_or(Stopped::Failed)?;
+        let (sent, received) = mpsc::channel();
+        let answer = work(&Parts { sent: Sender::Unbounded(sent) });
+        for message in received.try_iter() {
+            if let Sent::Part(part) = message {
+                take(part);
+            }
+        }
+        return Ok(answer);
     }
     loop {
         match received.recv_timeout(LOOK) {
-            Ok(answer) => return Ok(answer),
-            Err(_) if cancel.load(Ordering::SeqCst) => return Err(Stopped::Cancelled),
+            _ if cancel.load(Ordering::SeqCst) => return Err(Stopped::Cancelled),
+            Ok(Sent::Part(part)) => take(part),
+            Ok(Sent::Answer(answer)) => return Ok(answer),
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => return Err(Stopped::Failed),
         }

@@ -22,9 +22,10 @@ use crate::lang::walk::{bound_name, called_name, same_level, variables};
 use crate::lang::{Interpreter, Limits, SourceMap, Span, parse_file_interruptible};
 use crate::output::{self, OutputError};
 use crate::render::Screen;
+use crate::scene::{Primitive, Scene};
 use crate::settings::RenderSettings;
 
-use super::cancel::{Stopped, cancel_flag, off_thread};
+use super::cancel::{Stopped, cancel_flag, off_thread_streaming};
 use super::excerpt::{item_text, location, raw};
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::FrontEnd;
@@ -329,19 +330,111 @@ fn batch_command(path: &Path, settings: &RenderSettings, limits: Limits) -> Stri
     command
 }
 
+/// How many primitives of a kind the check of [`gives_the_scene`] gets from
+/// its evaluation at once (some MB).
+const CHECK_BATCH: usize = 1 << 15;
+
 /// Whether `text`, read as a file and evaluated as a batch render would,
 /// gives the session's scene: the last guard against writing a wrong file.
 /// It is read and evaluated on a thread of its own, which Ctrl-C abandons
 /// (freeing what it built takes a while for a large session, and is done
-/// there); once `cancel` is raised the answer means nothing.
+/// there); once `cancel` is raised the answer means nothing. The
+/// primitives are compared as they are made, a batch at a time, and not
+/// kept: the check holds the file's syntax tree, not a second scene.
 fn gives_the_scene(text: &Arc<String>, session: &Session, cancel: &'static AtomicBool) -> Result<bool, Stopped> {
     let (text, time, limits) = (Arc::clone(text), session.settings().time, session.limits());
-    let scene = off_thread("check", cancel, move || {
+    let expected = session.scene();
+    let mut compared = Compared::default();
+    let rest = off_thread_streaming(
+        "check",
+        cancel,
+        move |parts| {
+            let mut sources = SourceMap::new();
+            let id = sources.add("<written>", text.as_str(), 0);
+            let program = parse_file_interruptible(id, &text, Some(cancel)).ok()?;
+            let parts = parts.clone();
+            let mut interpreter =
+                Interpreter::new(time, limits).interruptible(cancel).streaming(CHECK_BATCH, move |timed, batch| {
+                    parts.send((timed, batch));
+                });
+            interpreter.run(&program).is_ok().then(|| interpreter.into_scene())
+        },
+        |(timed, batch)| compared.batch(expected, timed, &batch),
+    )?;
+    Ok(rest.is_some_and(|rest| compared.ends_as(expected, rest)))
+}
+
+/// How far the primitives made by `:write`'s check agree with the
+/// session's scene.
+#[derive(Debug, Default)]
+struct Compared {
+    /// How many static primitives, and timed ones, were compared.
+    primitives: usize,
+    timed: usize,
+    /// Whether one differed (or there were more than the scene's).
+    differs: bool,
+}
+
+impl Compared {
+    /// Compares `batch`, the next primitives made (`timed` or static).
+    fn batch(&mut self, expected: &Scene, timed: bool, batch: &[Primitive]) {
+        let (list, at) = if timed {
+            (&expected.timed_primitives, &mut self.timed)
+        } else {
+            (&expected.primitives, &mut self.primitives)
+        };
+        self.differs |= list.get(*at..*at + batch.len()) != Some(batch);
+        *at += batch.len();
+    }
+
+    /// Whether `rest`, the scene left at the end of the evaluation (the
+    /// primitives not yet compared, and the rest of a scene), ends as
+    /// `expected` does.
+    fn ends_as(mut self, expected: &Scene, rest: Scene) -> bool {
+        let Scene { camera, ambient, lights, primitives, timed_primitives, time_use } = rest;
+        self.batch(expected, false, &primitives);
+        self.batch(expected, true, &timed_primitives);
+        !self.differs
+            && self.primitives == expected.primitives.len()
+            && self.timed == expected.timed_primitives.len()
+            && camera == expected.camera
+            && ambient == expected.ambient
+            && lights == expected.lights
+            && time_use == expected.time_use
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::parse_items;
+
+    fn scene_of(text: &str) -> Scene {
         let mut sources = SourceMap::new();
-        let id = sources.add("<written>", text.as_str(), 0);
-        let program = parse_file_interruptible(id, &text, Some(cancel)).ok()?;
-        let mut interpreter = Interpreter::new(time, limits).interruptible(cancel);
-        interpreter.run(&program).is_ok().then(|| interpreter.into_scene())
-    })?;
-    Ok(scene.is_some_and(|scene| scene == *session.scene()))
+        let program = parse_items(sources.add("<test>", text, 0), text).expect("parses");
+        let mut interpreter = Interpreter::new(0.0, Limits::DEFAULT);
+        interpreter.run(&program).expect("runs");
+        interpreter.into_scene()
+    }
+
+    #[test]
+    fn the_check_compares_the_primitives_batch_by_batch_and_what_is_left() {
+        let ball = |x: u32| format!("put sphere center {x}, 0, 0 radius 1 kd 0.5 ks 0.5 phong 10 color 1, 2, 3 end\n");
+        let expected = scene_of(&(1..=5).map(ball).collect::<String>());
+        let (first, rest) = expected.primitives.split_at(3);
+        let compare = |batches: &[&[Primitive]], rest: &[Primitive]| {
+            let mut compared = Compared::default();
+            for batch in batches {
+                compared.batch(&expected, false, batch);
+            }
+            compared.ends_as(&expected, Scene { primitives: rest.to_vec(), ..expected.clone() })
+        };
+        assert!(compare(&[first], rest), "the same primitives in two parts");
+        assert!(compare(&[&expected.primitives], &[]), "all in one batch");
+        assert!(!compare(&[rest], first), "the same primitives in another order");
+        assert!(!compare(&[first], &rest[1..]), "one missing");
+        assert!(!compare(&[first, first], rest), "more than the scene's");
+        let other = scene_of(&ball(9));
+        assert!(!compare(&[&other.primitives, &first[1..]], rest), "one different");
+    }
 }

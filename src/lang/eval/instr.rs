@@ -156,6 +156,13 @@ impl Interpreter {
     /// those that depend on `time` to `scene.timed_primitives`; their origins
     /// record `span`.
     fn exec_put(&mut self, obj: &Obj, span: Span) -> EvalResult<()> {
+        let result = self.put_primitives(obj, span);
+        self.stream_primitives();
+        result
+    }
+
+    /// [`Self::exec_put`] but for the streaming of what it made.
+    fn put_primitives(&mut self, obj: &Obj, span: Span) -> EvalResult<()> {
         let timed_start = self.scene.timed_primitives.len();
         if self.context_tainted {
             let mut timed = mem::take(&mut self.scene.timed_primitives);
@@ -178,6 +185,17 @@ impl Interpreter {
         }
         self.scene.primitives = primitives;
         result.map(|_| ())
+    }
+
+    /// Sends the primitives made so far to the stream once a batch is full
+    /// ([`Interpreter::streaming`]).
+    fn stream_primitives(&mut self) {
+        let Some(stream) = &mut self.stream else { return };
+        for (timed, made) in [(false, &mut self.scene.primitives), (true, &mut self.scene.timed_primitives)] {
+            if made.len() >= stream.batch {
+                (stream.sink)(timed, mem::take(made));
+            }
+        }
     }
 
     /// A procedure call: checks, binds the arguments, runs the body.
