@@ -3,6 +3,8 @@
 //! a file (`--watch`), an explanation, a POV-Ray export or a session. Maps
 //! failures to exit codes.
 
+mod compare;
+
 use std::cell::RefCell;
 use std::io::{self, Read, StdoutLock, Write};
 use std::path::{Path, PathBuf};
@@ -77,6 +79,7 @@ fn dispatch(task: Task) -> ExitCode {
     let switch = ctrl_c::install();
     match task {
         Task::Session(options) => run_session(&options),
+        Task::Compare(job) => compare::grade_all(&job),
         Task::Script(options) => run_script_on_stdin(&options, switch),
         Task::Watch { scene, render, output, no_preview } => {
             exit_code(watch(&scene, &render, output.as_deref(), no_preview), DiagnosticFormat::Rendered)

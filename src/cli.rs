@@ -6,10 +6,12 @@ use std::ops::RangeInclusive;
 use std::path::PathBuf;
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
-use clap::{Parser, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::compare::Tolerances;
+use crate::lang::Limits;
 use crate::lint::{Allowed, Check};
-use crate::playback::{self, Loops};
+use crate::playback::{self, Loops, Timeline};
 use crate::render::Screen;
 use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, WIDTH};
 
@@ -19,8 +21,12 @@ use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, W
 /// and a terminal, starts the interactive session; with no file and a piped
 /// standard input, runs the script it carries.
 #[derive(Debug, Clone, Parser)]
-#[command(name = "rayrepl", version, after_help = AFTER_HELP)]
+#[command(name = "rayrepl", version, after_help = AFTER_HELP, args_conflicts_with_subcommands = true)]
 pub struct Cli {
+    /// A command other than rendering: `compare`.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+
     /// The scene to render or check; `-` reads it from standard input.
     pub scene: Option<PathBuf>,
 
@@ -40,25 +46,13 @@ pub struct Cli {
     #[arg(short, long)]
     pub quiet: bool,
 
-    /// Image width in pixels, 1 to 65535 (also `-hsize`); at most 8192×8192 pixels in all.
-    #[arg(long, default_value_t = DEFAULTS.width, value_parser = |text: &str| WIDTH.parse(text))]
-    pub width: u32,
-
-    /// Image height in pixels, 1 to 65535 (also `-vsize`).
-    #[arg(long, default_value_t = DEFAULTS.height, value_parser = |text: &str| HEIGHT.parse(text))]
-    pub height: u32,
-
-    /// Number of reflections followed (SPEC 6), 0 to 1000.
-    #[arg(long, default_value_t = DEFAULTS.depth, value_parser = |text: &str| DEPTH.parse(text))]
-    pub depth: u32,
+    /// The size and quality of the pictures.
+    #[command(flatten)]
+    pub picture: PictureFlags,
 
     /// The value of `time` for a single image [default: 0].
     #[arg(long, allow_negative_numbers = true, value_parser = settings::parse_time)]
     pub time: Option<f64>,
-
-    /// Samples per pixel, 1 to 4096 (deterministic stratified anti-aliasing; 1 = pixel centres).
-    #[arg(long, default_value_t = DEFAULTS.samples, value_parser = |text: &str| SAMPLES.parse(text))]
-    pub samples: u32,
 
     /// With --samples N: render every pixel at its centre first, then give N samples only to pixels on edges (where
     /// the surfaces or lights seen change and the colour jumps by more than 2 levels), on sharp highlights, or on
@@ -90,13 +84,9 @@ pub struct Cli {
     #[arg(long, value_name = "A..B", value_parser = parse_frames)]
     pub frames: Option<RangeInclusive<u32>>,
 
-    /// With --anim, the time of frame 1 [default: 1].
-    #[arg(long, value_name = "A", allow_negative_numbers = true, value_parser = |text: &str| playback::parse_time_number(text))]
-    pub time_start: Option<f64>,
-
-    /// With --anim, how much the time grows from a frame to the next: frame k has time = A + (k - 1) * S [default: 1].
-    #[arg(long, value_name = "S", allow_negative_numbers = true, value_parser = |text: &str| playback::parse_time_number(text))]
-    pub time_step: Option<f64>,
+    /// The times of the frames.
+    #[command(flatten)]
+    pub timeline: TimelineFlags,
 
     /// With --anim, frames a second of a GIF, APNG or video, 0.01 to 100 [default: 25].
     #[arg(long, value_name = "F", value_parser = |text: &str| playback::parse_fps(text))]
@@ -114,13 +104,9 @@ pub struct Cli {
     #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats", "explain", "threads", "screen"])]
     pub export_pov: Option<PathBuf>,
 
-    /// Deepest chain of procedure calls allowed.
-    #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_call_depth, value_name = "N")]
-    pub max_calls: usize,
-
-    /// Most primitives a scene may create.
-    #[arg(long, default_value_t = crate::lang::Limits::DEFAULT.max_primitives, value_name = "N")]
-    pub max_primitives: usize,
+    /// The evaluator's limits.
+    #[command(flatten)]
+    pub limits: LimitFlags,
 
     /// Render again each time the scene file is saved, until Ctrl-C: shown in the terminal, and written to -o FILE
     /// if given. A version with an error is reported and the last good picture stays.
@@ -148,6 +134,184 @@ pub struct Cli {
     /// Turn off warnings about the scene, by name, comma separated (`all`: every one).
     #[arg(long, value_name = "CHECKS", value_delimiter = ',', value_parser = allow_parser())]
     pub allow: Vec<Allowed>,
+}
+
+/// The commands of `rayrepl COMMAND ...`.
+#[derive(Debug, Clone, Subcommand)]
+pub enum Command {
+    /// Grade submissions: compare each one's scene and pictures with a reference's.
+    ///
+    /// The objects are paired one to one whatever order or construction made them, and each difference is said
+    /// in words with the submission's line; then the camera, the lights and the ambient light; then the pictures,
+    /// rendered alike, pixel by pixel. A submission that does not run is a row with its diagnostic. Exit status 0
+    /// when all match, 1 when one differs or does not run, 2 for a usage error (a reference that cannot be read
+    /// or does not run too).
+    #[command(after_help = COMPARE_AFTER_HELP)]
+    Compare(CompareArgs),
+}
+
+/// `rayrepl compare REFERENCE SUBMISSION...`.
+#[derive(Debug, Clone, Args)]
+pub struct CompareArgs {
+    /// The reference scene.
+    pub reference: PathBuf,
+
+    /// The submissions: scene files, or folders (their `.ray` files, sorted by name, one row each).
+    #[arg(required = true, value_name = "SUBMISSION")]
+    pub submissions: Vec<PathBuf>,
+
+    /// The size and quality of the pictures.
+    #[command(flatten)]
+    pub picture: PictureFlags,
+
+    /// The value of `time` of the scenes compared [default: 0].
+    #[arg(long, allow_negative_numbers = true, value_parser = settings::parse_time)]
+    pub time: Option<f64>,
+
+    /// Compare the N frames of an animation (1 to 1000000), frame k at `time = k` (see --time-start, --time-step).
+    #[arg(long, value_name = "N", value_parser = |text: &str| FRAMES.parse(text))]
+    pub anim: Option<u32>,
+
+    /// The times of the frames.
+    #[command(flatten)]
+    pub timeline: TimelineFlags,
+
+    /// Lengths (positions, sizes, the camera's distance) agree within this share of the reference scene's size.
+    #[arg(long, value_name = "SHARE", default_value_t = Tolerances::DEFAULT.length, value_parser = parse_tolerance)]
+    pub length_tolerance: f64,
+
+    /// Colour components agree within this many levels of 255.
+    #[arg(long, value_name = "LEVELS", default_value_t = Tolerances::DEFAULT.colour, value_parser = parse_tolerance)]
+    pub colour_tolerance: f64,
+
+    /// Other numbers (kd, ks, phong, intensities, directions, the camera's angle) agree within this, times the
+    /// reference's value when it is above 1.
+    #[arg(long, value_name = "E", default_value_t = Tolerances::DEFAULT.coefficient, value_parser = parse_tolerance)]
+    pub coefficient_tolerance: f64,
+
+    /// A pixel is off when one of its channels differs by more than this many levels (0 to 255).
+    #[arg(long, value_name = "LEVELS", default_value_t = Tolerances::DEFAULT.pixel)]
+    pub pixel_tolerance: u8,
+
+    /// The pictures differ when more than this percentage of their pixels are off (0 to 100).
+    #[arg(long, value_name = "PERCENT", default_value_t = Tolerances::DEFAULT.off_pixels * 100.0, value_parser = parse_percentage)]
+    pub off_pixels: f64,
+
+    /// Write a picture of the differences of each submission into this folder (made if missing):
+    /// NAME.png, or NAME0001.png... for each frame of an animation.
+    #[arg(long, value_name = "DIR")]
+    pub diff: Option<PathBuf>,
+
+    /// Print each submission's grade as one JSON object, one per line, instead of words.
+    #[arg(long)]
+    pub json: bool,
+
+    /// Write the grades as CSV, one row per submission, to FILE (`-`: to standard output instead of words).
+    #[arg(long, value_name = "FILE", conflicts_with = "json")]
+    pub csv: Option<PathBuf>,
+
+    /// The evaluator's limits.
+    #[command(flatten)]
+    pub limits: LimitFlags,
+
+    /// Worker threads, 1 to 1024 (default: one per core).
+    #[arg(long, value_parser = |text: &str| THREADS.parse(text))]
+    pub threads: Option<u32>,
+}
+
+const COMPARE_AFTER_HELP: &str = "\
+Examples:
+  rayrepl compare reference.ray student.ray            one submission, in words
+  rayrepl compare reference.ray submissions/ --csv grades.csv
+                                                       a folder: one row each, and a CSV file
+  rayrepl compare reference.ray a.ray b.ray --json     one JSON object per submission
+  rayrepl compare reference.ray a.ray --anim 24 --diff diffs/
+                                                       24 frames, a picture of the differences of each";
+
+/// Parses a tolerance: a finite number, 0 or more.
+fn parse_tolerance(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(value) if value.is_finite() && value >= 0.0 => Ok(value),
+        _ => Err(format!("`{text}` is not a tolerance: give a number, 0 or more")),
+    }
+}
+
+/// Parses a percentage, 0 to 100, into a share, 0 to 1.
+fn parse_percentage(text: &str) -> Result<f64, String> {
+    match parse_tolerance(text) {
+        Ok(percent) if percent <= 100.0 => Ok(percent / 100.0),
+        _ => Err(format!("`{text}` is not a percentage: give a number from 0 to 100")),
+    }
+}
+
+/// The size and quality of the pictures, for rendering and for `compare`.
+#[derive(Debug, Clone, Args)]
+pub struct PictureFlags {
+    /// Image width in pixels, 1 to 65535 (also `-hsize`); at most 8192×8192 pixels in all.
+    #[arg(long, default_value_t = DEFAULTS.width, value_parser = |text: &str| WIDTH.parse(text))]
+    pub width: u32,
+
+    /// Image height in pixels, 1 to 65535 (also `-vsize`).
+    #[arg(long, default_value_t = DEFAULTS.height, value_parser = |text: &str| HEIGHT.parse(text))]
+    pub height: u32,
+
+    /// Number of reflections followed (SPEC 6), 0 to 1000.
+    #[arg(long, default_value_t = DEFAULTS.depth, value_parser = |text: &str| DEPTH.parse(text))]
+    pub depth: u32,
+
+    /// Samples per pixel, 1 to 4096 (deterministic stratified anti-aliasing; 1 = pixel centres).
+    #[arg(long, default_value_t = DEFAULTS.samples, value_parser = |text: &str| SAMPLES.parse(text))]
+    pub samples: u32,
+}
+
+/// The times of an animation's frames after the first.
+#[derive(Debug, Clone, Args)]
+pub struct TimelineFlags {
+    /// With --anim, the time of frame 1 [default: 1].
+    #[arg(long, value_name = "A", allow_negative_numbers = true, value_parser = |text: &str| playback::parse_time_number(text))]
+    pub time_start: Option<f64>,
+
+    /// With --anim, how much the time grows from a frame to the next: frame k has time = A + (k - 1) * S [default: 1].
+    #[arg(long, value_name = "S", allow_negative_numbers = true, value_parser = |text: &str| playback::parse_time_number(text))]
+    pub time_step: Option<f64>,
+}
+
+impl TimelineFlags {
+    /// The timeline these flags give, the defaults where not given.
+    pub fn timeline(&self) -> Timeline {
+        Timeline {
+            start: self.time_start.unwrap_or(Timeline::DEFAULT.start),
+            step: self.time_step.unwrap_or(Timeline::DEFAULT.step),
+        }
+    }
+
+    /// The flag given, if any: they are for an animation only.
+    pub fn given(&self) -> Option<&'static str> {
+        match (self.time_start, self.time_step) {
+            (Some(_), _) => Some("--time-start"),
+            (None, Some(_)) => Some("--time-step"),
+            (None, None) => None,
+        }
+    }
+}
+
+/// The evaluator's limits.
+#[derive(Debug, Clone, Args)]
+pub struct LimitFlags {
+    /// Deepest chain of procedure calls allowed.
+    #[arg(long, default_value_t = Limits::DEFAULT.max_call_depth, value_name = "N")]
+    pub max_calls: usize,
+
+    /// Most primitives a scene may create.
+    #[arg(long, default_value_t = Limits::DEFAULT.max_primitives, value_name = "N")]
+    pub max_primitives: usize,
+}
+
+impl LimitFlags {
+    /// The limits these flags give.
+    pub fn limits(&self) -> Limits {
+        Limits { max_call_depth: self.max_calls, max_primitives: self.max_primitives, ..Limits::DEFAULT }
+    }
 }
 
 /// The flags that only matter when an image is rendered, which `--check` does not do.
@@ -208,6 +372,7 @@ Examples:
                                                        the scene for POV-Ray 3.7
   rayrepl scenarios/solar.ray --explain 400,300        why that pixel has its colour
   rayrepl scene.ray --watch -o scene.png               render again at every save
+  rayrepl compare reference.ray submissions/          grade submissions against a reference
   rayrepl                                              the interactive session
   cat script.ray | rayrepl                             run a script
 
@@ -276,7 +441,8 @@ mod tests {
     fn legacy_spellings_are_translated() {
         let args = ["rayrepl", "-hsize", "320", "-vsize", "200", "-depth", "2", "-anim", "3"];
         let cli = Cli::parse_from(translate_legacy_args(args.map(OsString::from)));
-        assert_eq!((cli.width, cli.height, cli.depth, cli.anim), (320, 200, 2, Some(3)));
+        let picture = &cli.picture;
+        assert_eq!((picture.width, picture.height, picture.depth, cli.anim), (320, 200, 2, Some(3)));
     }
 
     #[test]

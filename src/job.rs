@@ -8,11 +8,15 @@ use std::io::IsTerminal;
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-use crate::cli::Cli;
+mod compare;
+
+pub use compare::{GradingJob, Report};
+
+use crate::cli::{Cli, Command};
 use crate::lang::Limits;
 use crate::lint::{Allowed, Picture};
 use crate::output::{self, Content, ImageFormat, OutputError};
-use crate::playback::{AnimationOptions, Playback, Timeline};
+use crate::playback::{AnimationOptions, Playback};
 use crate::render::RenderOptions;
 use crate::repl::SessionOptions;
 use crate::settings::{DEFAULTS, RenderSettings};
@@ -46,6 +50,8 @@ pub enum Task {
     /// `--export-pov`: the scene at its time as a POV-Ray scene for
     /// `depth` reflections, saying what was written unless `quiet`.
     PovExport { scene: SceneFile, depth: u32, output: Destination, quiet: bool },
+    /// `rayrepl compare`: grade submissions against a reference.
+    Compare(GradingJob),
     /// No scene file, or `-i`, with standard input a terminal: the
     /// interactive session.
     Session(SessionOptions),
@@ -167,6 +173,10 @@ impl Job {
 
     /// [`Job::from_cli`], with standard input and output terminals or not.
     fn resolve(cli: &Cli, stdin_is_terminal: bool, stdout_is_terminal: bool) -> Result<Job, JobError> {
+        if let Some(Command::Compare(args)) = &cli.command {
+            let threads = args.threads.unwrap_or(0) as usize;
+            return Ok(Job { threads, task: Task::Compare(compare::grading_job(args)?) });
+        }
         if let Some(misuse) = misuse(cli) {
             return Err(JobError::Misuse(misuse));
         }
@@ -193,7 +203,7 @@ fn file_task(cli: &Cli, path: &Path, stdout_is_terminal: bool) -> Result<Task, J
         Task::Watch { scene, render, output, no_preview: cli.no_preview }
     } else if let Some(pov) = &cli.export_pov {
         not_the_scene(pov, path)?;
-        Task::PovExport { scene, depth: cli.depth, output: Destination::of(pov), quiet: cli.quiet }
+        Task::PovExport { scene, depth: cli.picture.depth, output: Destination::of(pov), quiet: cli.quiet }
     } else if cli.check {
         Task::Check(scene)
     } else if let Some(pixel) = cli.explain {
@@ -208,10 +218,10 @@ fn file_task(cli: &Cli, path: &Path, stdout_is_terminal: bool) -> Result<Task, J
 /// The render settings the command line asks for.
 fn settings(cli: &Cli) -> RenderSettings {
     RenderSettings {
-        width: cli.width,
-        height: cli.height,
-        depth: cli.depth,
-        samples: cli.samples,
+        width: cli.picture.width,
+        height: cli.picture.height,
+        depth: cli.picture.depth,
+        samples: cli.picture.samples,
         adaptive: cli.adaptive,
         time: cli.time.unwrap_or(DEFAULTS.time),
         screen: cli.screen.screen(),
@@ -223,7 +233,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
     if cli.reference {
         return RenderOptions {
             screen: cli.screen.screen(),
-            ..RenderOptions::reference(cli.width, cli.height, cli.depth)
+            ..RenderOptions::reference(cli.picture.width, cli.picture.height, cli.picture.depth)
         };
     }
     settings(cli).render_options()
@@ -231,7 +241,7 @@ fn render_options(cli: &Cli) -> RenderOptions {
 
 /// The evaluator's limits (`--max-calls`, `--max-primitives`).
 fn limits(cli: &Cli) -> Limits {
-    Limits { max_call_depth: cli.max_calls, max_primitives: cli.max_primitives, ..Limits::DEFAULT }
+    cli.limits.limits()
 }
 
 /// The checks of the scene turned off (`--allow`).
@@ -241,8 +251,12 @@ fn allowed(cli: &Cli) -> Allowed {
 
 /// The scene file at `path`, with how it is evaluated and checked.
 fn scene_file(cli: &Cli, path: &Path) -> SceneFile {
-    let picture =
-        Picture { width: cli.width, height: cli.height, screen: cli.screen.screen(), animation: cli.anim.is_some() };
+    let picture = Picture {
+        width: cli.picture.width,
+        height: cli.picture.height,
+        screen: cli.screen.screen(),
+        animation: cli.anim.is_some(),
+    };
     let diagnostics = if cli.check && cli.json { DiagnosticFormat::JsonLines } else { DiagnosticFormat::Rendered };
     let (time, limits, allowed) = (settings(cli).time, limits(cli), allowed(cli));
     SceneFile { path: path.to_owned(), time, limits, allowed, picture, diagnostics }
@@ -309,10 +323,7 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
         return Err(JobError::Output("`-o -` writes a single image; give a file name for an animation".into()));
     }
     not_the_scene(&output, scene)?;
-    let timeline = Timeline {
-        start: cli.time_start.unwrap_or(Timeline::DEFAULT.start),
-        step: cli.time_step.unwrap_or(Timeline::DEFAULT.step),
-    };
+    let timeline = cli.timeline.timeline();
     let options = AnimationOptions { timeline, playback: Playback { fps: cli.fps, loops: cli.loops }, apng: cli.apng };
     let format = output::check_animation_output(&output, &options)?;
     if format.holds_every_frame() && cli.frames.is_some() {
@@ -349,8 +360,7 @@ fn misuse(cli: &Cli) -> Option<String> {
     }
     let animation_flags = [
         (cli.frames.is_some(), "--frames"),
-        (cli.time_start.is_some(), "--time-start"),
-        (cli.time_step.is_some(), "--time-step"),
+        (cli.timeline.given().is_some(), cli.timeline.given().unwrap_or_default()),
         (cli.fps.is_some(), "--fps"),
         (cli.loops.is_some(), "--loop"),
         (cli.apng, "--apng"),
@@ -375,17 +385,13 @@ fn misuse(cli: &Cli) -> Option<String> {
         return Some(format!("{flag} does nothing in a session ({why}){instead}"));
     }
     if let Some(flag) = animation_flag.filter(|_| cli.anim.is_none()) {
-        return Some(format!("{flag} is for an animation: give --anim N too"));
+        return Some(for_an_animation(flag));
     }
-    if cli.adaptive && cli.samples <= 1 {
+    if cli.adaptive && cli.picture.samples <= 1 {
         return Some("--adaptive gives more samples to some pixels: give --samples N too, with N > 1".into());
     }
     if cli.time.is_some() && cli.anim.is_some() {
-        return Some(
-            "--time sets the time of one image; frame k of an animation has time = k, \
-             or A + (k - 1) * S with --time-start A --time-step S"
-                .into(),
-        );
+        return Some(time_with_an_animation());
     }
     if cli.watch && cli.scene.as_deref() == Some(Path::new("-")) {
         return Some("--watch follows a file as it is saved: give its name, not `-`".into());
@@ -402,17 +408,29 @@ fn misuse(cli: &Cli) -> Option<String> {
         return Some("--keep-going is for a script on standard input (`rayrepl --keep-going < script`)".into());
     }
     if let Some((x, y)) = cli.explain
-        && (x >= cli.width || y >= cli.height)
+        && (x >= cli.picture.width || y >= cli.picture.height)
     {
         return Some(format!(
             "--explain {x},{y} is outside the {}x{} image: x goes from 0 to {}, y from 0 to {}",
-            cli.width,
-            cli.height,
-            cli.width - 1,
-            cli.height - 1
+            cli.picture.width,
+            cli.picture.height,
+            cli.picture.width - 1,
+            cli.picture.height - 1
         ));
     }
     settings(cli).validate().err().map(|error| error.to_string())
+}
+
+/// Why `flag` needs `--anim`.
+fn for_an_animation(flag: &str) -> String {
+    format!("{flag} is for an animation: give --anim N too")
+}
+
+/// Why `--time` does not go with `--anim`.
+fn time_with_an_animation() -> String {
+    "--time sets the time of one image; frame k of an animation has time = k, \
+     or A + (k - 1) * S with --time-start A --time-step S"
+        .into()
 }
 
 #[cfg(test)]
@@ -421,6 +439,7 @@ mod tests {
 
     use super::*;
     use crate::lint::Check;
+    use crate::playback::Timeline;
     use crate::render::Screen;
 
     /// The job of `args` after `rayrepl`, with standard output not a terminal.

@@ -17,6 +17,7 @@ pub mod app;
 #[cfg(feature = "terminal")]
 pub mod cli;
 pub mod clock;
+pub mod compare;
 mod data_dir;
 pub mod explain;
 pub mod failure;

@@ -31,6 +31,7 @@ pub use error::OutputError;
 pub(crate) use error::io_reason;
 pub use formats::Content;
 pub(crate) use formats::ImageFormat;
+pub(crate) use frame_names::frame_path;
 pub(crate) use frames::{FrameSink, describe_files};
 pub use still::write_image;
 pub(crate) use still::{write_image_cancellable, write_ppm, write_text};
