@@ -28,7 +28,9 @@ pub fn assign<T>(
     let all_reference: Vec<usize> = (0..reference.len()).collect();
     let all_submission: Vec<usize> = (0..submission.len()).collect();
     if reference.len().max(submission.len()) <= EXACT_LIMIT {
-        return assign_exactly(&all_reference, &all_submission, |r, s| cost(&reference[r], &submission[s]));
+        let mut pairs = assign_exactly(&all_reference, &all_submission, |r, s| cost(&reference[r], &submission[s]));
+        pairs.sort_unstable();
+        return pairs;
     }
     let mut keyed_reference: Vec<(Vec<i64>, usize)> = all_reference.iter().map(|&r| (key(&reference[r]), r)).collect();
     let mut keyed_submission: Vec<(Vec<i64>, usize)> =

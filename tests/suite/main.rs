@@ -9,6 +9,7 @@ mod animation_files;
 mod cases;
 mod cli;
 mod closed_streams;
+mod compare;
 mod deep;
 mod diagnostics;
 mod eval;
