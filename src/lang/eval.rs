@@ -348,10 +348,10 @@ impl Interpreter {
         }
     }
 
-    /// How many primitives a global object variable holds, if `name` holds an object.
-    pub fn global_object_size(&self, name: &str) -> Option<usize> {
+    /// The primitives of a global object variable, if `name` holds an object.
+    pub fn global_object(&self, name: &str) -> Option<&[Primitive]> {
         match &self.env.globals.get(name)?.kind {
-            Kind::Object(primitives) => Some(primitives.len()),
+            Kind::Object(primitives) => Some(primitives),
             Kind::Number(_) => None,
         }
     }

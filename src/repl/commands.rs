@@ -58,9 +58,21 @@ pub(crate) const COMMANDS: &[Command] = &[
             group: Group::Learning,
             text: help_page!("commands/lesson"),
         },
-        usage: ":lesson [NUMBER|stop]",
-        files: Files::None,
+        usage: ":lesson [NUMBER|FILE|stop]",
+        files: Files::Reads,
         run: lessons::lesson,
+    },
+    Command {
+        topic: Topic {
+            name: ":goal",
+            aliases: &[],
+            summary: "show the goal of the lesson's step, or write it to a file",
+            group: Group::Learning,
+            text: help_page!("commands/goal"),
+        },
+        usage: ":goal [FILE.png]",
+        files: Files::WritesPictures,
+        run: lessons::goal,
     },
     Command {
         topic: Topic {

@@ -135,7 +135,7 @@ impl FrontEnd for Console<'_> {
             Output::Explanation(explanation) => self.say_line(explanation.text),
             Output::LessonStep(step) => self.say_line(step.to_text()),
             Output::LessonVerdict(verdict) => self.say_line(verdict.to_text()),
-            Output::Picture(_) | Output::Frames { .. } | Output::AnimationFile(_) => {}
+            Output::Picture(_) | Output::LessonPictures(_) | Output::Frames { .. } | Output::AnimationFile(_) => {}
         }
         Ok(())
     }

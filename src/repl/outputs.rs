@@ -49,6 +49,8 @@ pub enum Output {
     Explanation(Box<PixelExplanation>),
     /// What a step of a lesson asks (`:lesson`).
     LessonStep(LessonStep),
+    /// A lesson's goal (left) and the learner's picture (right), side by side.
+    LessonPictures(RgbImage),
     /// Whether the learner's scene does what the step asks.
     LessonVerdict(LessonVerdict),
 }
@@ -116,8 +118,12 @@ pub enum LessonVerdict {
     },
     /// Not yet.
     NotYet {
-        /// What the scene still lacks.
+        /// What the scene still lacks: what in it comes closest to the
+        /// goal, and how it differs.
         missing: String,
+        /// Whether the learner's last input made what comes closest, so
+        /// that taking it back may help (not after a right part of the step).
+        undo: bool,
         /// The step's hint, in one paragraph.
         hint: String,
         /// A program that does it, after a few wrong tries.
@@ -148,9 +154,9 @@ impl LessonVerdict {
             LessonVerdict::Done { number, already: true } => {
                 format!("✓ step {number} done: your scene already does it")
             }
-            LessonVerdict::NotYet { missing, hint, example } => {
-                let mut text =
-                    format!("not yet: {missing} (`:undo` takes your last input back)\n{}", wrap(hint, "hint: "));
+            LessonVerdict::NotYet { missing, undo, hint, example } => {
+                let undo = if *undo { " (`:undo` takes your last input back)" } else { "" };
+                let mut text = format!("{}\n{}", wrap(&format!("{missing}{undo}"), "not yet: "), wrap(hint, "hint: "));
                 if let Some(example) = example {
                     text.push_str(&format!("\nfor example:\n{}", indent(example)));
                 }
@@ -205,6 +211,14 @@ pub trait FrontEnd {
     /// here, or `None` when this front-end shows no pictures.
     fn picture_size(&self, _shape: Size) -> Option<Size> {
         None
+    }
+
+    /// The size to render a lesson's goal and the learner's picture at,
+    /// side by side and together shaped like `shape`; `None` when this
+    /// front-end shows no pictures. Lessons may show them larger than a
+    /// preview, to show a highlight and a shadow.
+    fn lesson_picture_size(&self, shape: Size) -> Option<Size> {
+        self.picture_size(shape)
     }
 
     /// How large pictures are shown (`:preview`), where that can be chosen.

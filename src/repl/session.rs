@@ -12,7 +12,7 @@ use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items, parse_items_interruptible};
 use crate::lint::{Allowed, Picture, check_scene};
-use crate::scene::{Counts, Scene};
+use crate::scene::{Counts, Primitive, Scene};
 
 use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
@@ -520,12 +520,17 @@ impl Session {
     /// What the global object `name` is (`sphere`, `group of 2 objects`,
     /// or its count of primitives), if it is one.
     pub(crate) fn describe_object(&self, name: &str) -> Option<String> {
-        let primitives = self.interpreter.global_object_size(name)?;
+        let primitives = self.global_object(name)?.len();
         Some(match self.descriptions.get(name) {
             Some(description) => description.to_string(),
             None if primitives == 1 => "1 primitive".to_string(),
             None => format!("{primitives} primitives"),
         })
+    }
+
+    /// The primitives of the global object `name`, if it is one.
+    pub(crate) fn global_object(&self, name: &str) -> Option<&[Primitive]> {
+        self.interpreter.global_object(name)
     }
 
     /// The procedures and their parameters, by name.

@@ -45,6 +45,10 @@ impl FrontEnd for TerminalFrontEnd<'_> {
                     None => preview.show(&image).map(drop),
                 }
             }
+            Output::LessonPictures(image) => {
+                let Some(preview) = self.shown() else { return Ok(()) };
+                preview.show_lesson(&image).map(drop)
+            }
             Output::Frames { frames, fps } => {
                 let (Some(preview), Some(first)) = (self.shown(), frames.first()) else { return Ok(()) };
                 let size = Size { width: first.width(), height: first.height() };
@@ -60,6 +64,10 @@ impl FrontEnd for TerminalFrontEnd<'_> {
 
     fn picture_size(&self, shape: Size) -> Option<Size> {
         self.shown().map(|preview| preview.render_size(shape))
+    }
+
+    fn lesson_picture_size(&self, shape: Size) -> Option<Size> {
+        self.shown().map(|preview| preview.lesson_render_size(shape))
     }
 
     fn preview_size(&mut self) -> Option<&mut PreviewSize> {

@@ -12,6 +12,10 @@ use crate::repl::{PreviewSize, Size};
 const ROWS_KEPT_FREE: u32 = 2;
 /// The fewest rows a small preview takes, on a small terminal.
 const SMALL_MIN_ROWS: u32 = 8;
+/// Rows a lesson's pictures leave free at `small` for the lines shown with
+/// them: the task (up to four lines), the verdict and its hint (three), and
+/// the prompt.
+const LESSON_TEXT_ROWS: u32 = 8;
 /// Pixels rendered per terminal column when the terminal shows real images:
 /// a cell is about 8 pixels wide and 16 high.
 const PIXELS_PER_CELL_WITH_GRAPHICS: u32 = 8;
@@ -59,10 +63,14 @@ impl Preview {
     /// The cells (columns, rows) a preview may take: the terminal's, less
     /// the lines under it, or a part of them for a small preview.
     fn cells(&self) -> Size {
+        self.cells_of(self.size)
+    }
+
+    fn cells_of(&self, size: PreviewSize) -> Size {
         let (columns, rows) = viuer::terminal_size();
         let all =
             Size { width: u32::from(columns).max(1), height: u32::from(rows).saturating_sub(ROWS_KEPT_FREE).max(1) };
-        match self.size {
+        match size {
             PreviewSize::Small => Size {
                 width: (all.width / 2).max(SMALL_MIN_ROWS * 2).min(all.width),
                 height: (all.height / 3).max(SMALL_MIN_ROWS).min(all.height),
@@ -71,10 +79,35 @@ impl Preview {
         }
     }
 
+    /// The cells a lesson's goal and the learner's picture take together:
+    /// at `small`, the terminal's width and its height less the lines of
+    /// the task and the verdict, so that both pictures are large enough to
+    /// show a highlight and a shadow and the task stays on screen (at 80x24,
+    /// two pictures of 4:3 are each about 37x28 pixels, against 27x22 in a
+    /// small preview); at `fit`, the whole terminal.
+    fn lesson_cells(&self) -> Size {
+        let all = self.cells_of(PreviewSize::Fit);
+        match self.size {
+            PreviewSize::Small => Size {
+                width: all.width,
+                height: all.height.saturating_sub(LESSON_TEXT_ROWS).max(SMALL_MIN_ROWS).min(all.height),
+            },
+            PreviewSize::Fit | PreviewSize::Off => all,
+        }
+    }
+
     /// The image size worth rendering for a preview of an image shaped like
     /// `shape`: as large as the terminal shows it, never larger than `shape`.
     pub(crate) fn render_size(&self, shape: Size) -> Size {
-        let cells = self.cells();
+        self.render_size_in(shape, self.cells())
+    }
+
+    /// [`Preview::render_size`] for a lesson's pair of pictures.
+    pub(crate) fn lesson_render_size(&self, shape: Size) -> Size {
+        self.render_size_in(shape, self.lesson_cells())
+    }
+
+    fn render_size_in(&self, shape: Size, cells: Size) -> Size {
         let scale = match self.method() {
             Method::Graphics => PIXELS_PER_CELL_WITH_GRAPHICS,
             Method::HalfBlocks => 1,
@@ -89,8 +122,16 @@ impl Preview {
     /// than one cell per pixel across (a small render stays small); returns
     /// the rows it took.
     pub(crate) fn show(&self, image: &RgbImage) -> Result<u32, String> {
+        self.show_in(image, self.cells())
+    }
+
+    /// [`Preview::show`] for a lesson's pair of pictures.
+    pub(crate) fn show_lesson(&self, image: &RgbImage) -> Result<u32, String> {
+        self.show_in(image, self.lesson_cells())
+    }
+
+    fn show_in(&self, image: &RgbImage, most: Size) -> Result<u32, String> {
         let shape = Size { width: image.width(), height: image.height() };
-        let most = self.cells();
         let bounds = Size { width: most.width.min(shape.width), height: most.height.min(shape.height.div_ceil(2)) };
         let cells = fit_in_cells(shape, bounds);
         let config = viuer::Config {

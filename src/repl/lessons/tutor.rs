@@ -1,10 +1,24 @@
 //! Where a learner is in the lessons.
 
+use std::sync::Arc;
+
+use super::file::Lesson;
+
 /// The lesson being followed in a session, if any.
 #[derive(Debug, Default)]
 pub(crate) struct Tutor {
-    /// The lesson and step (from 0) being worked on.
-    pub place: Option<(usize, usize)>,
-    /// Wrong tries of the current step.
+    pub following: Option<Following>,
+}
+
+/// A lesson being followed, and where the learner is in it.
+#[derive(Debug, Clone)]
+pub(crate) struct Following {
+    pub lesson: Arc<Lesson>,
+    /// Its number among the built-in lessons (from 1), whose progress is
+    /// kept between sessions; `None` for a lesson read from a file.
+    pub number: Option<usize>,
+    /// The step worked on, from 0.
+    pub step: usize,
+    /// Wrong tries of that step.
     pub wrong_tries: u32,
 }
