@@ -117,6 +117,10 @@ pub struct Cli {
     #[arg(long)]
     pub no_preview: bool,
 
+    /// Session (or script on stdin): start with a lesson, built in (its number) or written in a file.
+    #[arg(long, value_name = "N|FILE")]
+    pub lesson: Option<String>,
+
     /// Script on stdin: go on after an error (exit status 1 at the end).
     #[arg(long)]
     pub keep_going: bool,

@@ -268,6 +268,7 @@ fn session_options(cli: &Cli) -> SessionOptions {
         no_preview: cli.no_preview,
         keep_going: cli.keep_going,
         initial_file: cli.scene.clone(),
+        lesson: cli.lesson.clone(),
         settings: settings(cli),
         limits: limits(cli),
         allowed: allowed(cli),
@@ -402,6 +403,11 @@ fn misuse(cli: &Cli) -> Option<String> {
     if cli.no_preview && !cli.watch {
         return Some(
             "--no-preview is for the interactive session (`rayrepl` or `rayrepl -i scene.ray`) and --watch".into(),
+        );
+    }
+    if cli.lesson.is_some() && scene_path(cli).is_some() {
+        return Some(
+            "--lesson is for the session (`rayrepl --lesson 1`, or `rayrepl -i scene.ray --lesson FILE`)".into(),
         );
     }
     if cli.keep_going {

@@ -23,7 +23,7 @@ pub(crate) mod file_commands;
 pub(crate) mod help;
 pub(crate) mod inputs;
 pub(crate) mod inspect;
-mod lessons;
+pub(crate) mod lessons;
 mod options;
 mod outcome;
 mod outputs;

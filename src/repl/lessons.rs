@@ -88,6 +88,13 @@ pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], front: &mut dyn Fr
     Ok(Flow::Continue)
 }
 
+/// Starts the lesson `--lesson` names (a number or a file), reporting any
+/// failure on the front; `Err(())` if it failed.
+pub(crate) fn start_reporting(shell: &mut Shell, lesson_or_file: &str, front: &mut dyn FrontEnd) -> Result<(), ()> {
+    let started = lesson(shell, &[lesson_or_file.to_string()], front);
+    started.map(drop).map_err(|error| error.report(&shell.session, front))
+}
+
 /// Reads and proves the lesson in the file at `path`; its mistakes point
 /// into the file, which the session's sources then hold.
 fn read_lesson_file(shell: &mut Shell, path: &Path, front: &mut dyn FrontEnd) -> Result<Lesson, CommandError> {
@@ -306,11 +313,15 @@ pub(crate) fn goal(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     match arguments {
         [] => {
             let Some(size) = front.picture_size(full) else {
-                return Err(CommandError::Failed("pictures are not shown here: `:goal FILE.png` writes it".to_string()));
+                return Err(CommandError::Failed(
+                    "pictures are not shown here: `:goal FILE.png` writes it".to_string(),
+                ));
             };
             let image = goal_picture(&shell.session, &following, size).map_err(CommandError::Failed)?;
             front.say(format!("the goal of step {}:", following.step + 1));
-            front.present(Output::Picture(Picture { image, marked: None, saved_to: None })).map_err(CommandError::Failed)?;
+            front
+                .present(Output::Picture(Picture { image, marked: None, saved_to: None }))
+                .map_err(CommandError::Failed)?;
         }
         [file] => {
             let path = PathBuf::from(file);

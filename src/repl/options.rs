@@ -19,6 +19,8 @@ pub struct SessionOptions {
     pub keep_going: bool,
     /// A file to load before the first input (`-i scene.ray`).
     pub initial_file: Option<PathBuf>,
+    /// The lesson to start after it (`--lesson N` or `--lesson FILE`).
+    pub lesson: Option<String>,
     /// Size, depth, samples, time and screen convention to start with.
     pub settings: RenderSettings,
     /// Limits on procedure calls and primitives (`--max-calls`, `--max-primitives`).

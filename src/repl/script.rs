@@ -17,6 +17,7 @@ use super::commands::{self, Flow, is_command};
 use super::console::Console;
 use super::file_commands::load_reporting;
 use super::inputs::report_input;
+use super::lessons;
 use super::options::{SessionOptions, new_session};
 use super::session::Session;
 use super::shell::Shell;
@@ -98,6 +99,12 @@ fn run_in(shell: &mut Shell, console: &mut Console, input: impl BufRead, options
     if let Some(path) = &options.initial_file {
         let loaded = load_reporting(script.shell, path, script.console);
         if script.after(loaded.is_ok()) == Step::Stop {
+            return Ended::Status(1);
+        }
+    }
+    if let Some(lesson) = &options.lesson {
+        let started = lessons::start_reporting(script.shell, lesson, script.console);
+        if script.after(started.is_ok()) == Step::Stop {
             return Ended::Status(1);
         }
     }

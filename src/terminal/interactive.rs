@@ -20,6 +20,7 @@ use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 use crate::repl::commands::{self, Flow, is_command};
 use crate::repl::file_commands::load_reporting;
 use crate::repl::inputs::handle_input;
+use crate::repl::lessons;
 use crate::repl::report::counted;
 use crate::repl::syntax::continuation_prompt;
 use crate::repl::{Console, FrontEnd, Session, SessionOptions, Shell, new_session, write_back};
@@ -121,6 +122,9 @@ fn run_entries(lines: impl LineSource, front: &mut dyn FrontEnd, options: &Sessi
     let mut shell = Shell::new(new_session(&SessionOptions { limits, ..options.clone() }, front.cancel()));
     if let Some(path) = &options.initial_file {
         let _ = load_reporting(&mut shell, path, front);
+    }
+    if let Some(lesson) = &options.lesson {
+        let _ = lessons::start_reporting(&mut shell, lesson, front);
     }
     Repl { lines, shell, inputs: 0, queued: VecDeque::new() }.run(front)
 }

@@ -764,7 +764,7 @@ fn observe(i: &Interpreter) -> String {
     let names: Vec<String> = i
         .global_names()
         .iter()
-        .map(|n| format!("{n}={:?}/{:?}", i.global_number(n), i.global_object_size(n)))
+        .map(|n| format!("{n}={:?}/{:?}", i.global_number(n), i.global_object(n).map(<[_]>::len)))
         .collect();
     // The places in the program of every part of the scene (camera,
     // ambient, lights, puts, objects): source positions too must come back
@@ -838,7 +838,7 @@ fn a_failed_input_gives_back_the_primitives_its_objects_held() {
     run_session_input(&mut i, &mut sources, "object o = sphere center 0, 0, 0 radius 1 $T end").unwrap();
     let failing = "object o = group o o o end let x = 1 / 0";
     assert_eq!(run_session_input(&mut i, &mut sources, failing).unwrap_err().message, "division by zero");
-    assert_eq!(i.global_object_size("o"), Some(1));
+    assert_eq!(i.global_object("o").map(<[_]>::len), Some(1));
     // 1 held by `o` and 2 in `p`: within the limit only if the failed `o` of 3 is forgotten.
     run_session_input(&mut i, &mut sources, "object p = group o o end").unwrap();
     let two_more = "object q = group o o end";

@@ -153,7 +153,7 @@ fn a_wrong_answer_gets_the_hint_then_the_example() {
     answer(&mut session, RIGHT_ANSWERS[2][0], "✓ step 1 done");
     // Shiny, but a broad highlight: not what step 2 asks.
     let broad = "put sphere center 0, 0, 0 radius 1 kd 0.6 ks 0.4 phong 5 color 40, 90, 220 end";
-    answer(&mut session, broad, "not yet: no sphere has ks of 0.3 or more and phong of 30 or more");
+    answer(&mut session, broad, "has phong 5 (the goal: at least 30)");
     session.expect("hint: ks is how shiny the surface is").expect("the hint");
     session.expect("ray> ").expect("a prompt");
     // Something else entirely, then the example comes too.
@@ -172,10 +172,15 @@ fn a_wrong_answer_gets_the_hint_then_the_example() {
 /// the examples of the lessons.
 const OTHER_ANSWERS: &[(&str, &str)] = &[
     (":lesson 5", "step 1 of 3"),
-    // A box turned about y then about z, not just about z.
+    // A cube turned about y then about z: not a long box turned an eighth of a turn.
     (
         "put rotate rotate box center 1, 0, 0 length 1, 1, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0.3, 0 end \
          by 0, 0, 1 end",
+        "not yet: your box, put at line",
+    ),
+    // The long side along y, turned the other way: the same box.
+    (
+        "put rotate box center 1, 0, 0 length 1, 3, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0, -pi/4 end",
         "✓ step 1 done",
     ),
     // The ball written where it belongs at once, through a name.
@@ -220,7 +225,7 @@ fn a_step_the_scene_already_does_is_passed_at_once() {
     converse(&[
         (":lesson 2", "step 1 of 3"),
         // A light from the left first: wrong for step 1, but what step 3 asks.
-        ("light vector 0, 0, 0.9 intensity 0.4 end", "not yet: no light comes from the right"),
+        ("light vector 0, 0, 0.9 intensity 0.4 end", "not yet: your light at line"),
         (RIGHT_ANSWERS[1][0], "✓ step 1 done"),
         ("ambient 0.1", "✓ step 2 done"),
         ("", "✓ step 3 done: your scene already does it"),
@@ -288,5 +293,155 @@ fn an_endless_progress_file_is_read_only_so_far() {
         .timeout(std::time::Duration::from_secs(60))
         .output()
         .expect("rayrepl runs");
-    assert!(String::from_utf8_lossy(&output.stdout).starts_with("lessons (`:lesson N` starts one):"));
+    assert!(String::from_utf8_lossy(&output.stdout).starts_with("lessons (`:lesson N` starts one"));
+}
+
+/// What a piped script prints (standard output, then standard error), and
+/// its exit status, with lesson progress kept in a new folder; `arguments`
+/// go on the command line.
+fn piped(script: &str, arguments: &[&str]) -> (String, i32) {
+    let home = tempfile::tempdir().expect("temporary directory");
+    let output = assert_cmd::Command::cargo_bin("rayrepl")
+        .expect("the binary is built")
+        .env("RAYREPL_LESSONS", home.path().join("lessons"))
+        .env("NO_COLOR", "1")
+        .args(arguments)
+        .write_stdin(script)
+        .timeout(Duration::from_secs(60))
+        .output()
+        .expect("rayrepl runs");
+    let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+    (unwrapped(&text), output.status.code().unwrap_or(-1))
+}
+
+/// `text` with the lines that the lessons wrap joined again: a line
+/// indented by five spaces or more continues the one before (an example is
+/// indented by four).
+fn unwrapped(text: &str) -> String {
+    let mut joined = String::new();
+    for line in text.lines() {
+        match line.strip_prefix("     ") {
+            Some(rest) if !joined.is_empty() => {
+                joined.pop();
+                joined.push(' ');
+                joined.push_str(rest.trim_start());
+            }
+            _ => joined.push_str(line),
+        }
+        joined.push('\n');
+    }
+    joined
+}
+
+/// Wrong answers the lessons' files do not hold, each given as a piped
+/// script after the right answers to the steps before it: each gets "not
+/// yet" and words about the learner's own scene.
+#[test]
+fn unseen_wrong_answers_get_not_yet_with_words_about_them() {
+    let cases: &[(&str, &str, &str)] = &[
+        // An orange ball of radius 2 asked, a red one of radius 1 given.
+        (
+            ":lesson 1\ncamera distance 10 angle 0.8 end",
+            "put sphere center 0, 0, 0 radius 1 kd 0.8 ks 0.2 phong 20 color 255, 0, 0 end",
+            "has radius 1 (the goal: 2)",
+        ),
+        // A light in degrees, which leaves the ball unlit.
+        (
+            ":lesson 1\ncamera distance 10 angle 0.8 end\nput sphere center 0, 0, 0 radius 2 kd 0.8 ks 0.2 phong 20 color 255, 120, 40 end",
+            "light vector 45, 0, -45 intensity 0.8 end",
+            "the angle 45 at line 4 looks like degrees",
+        ),
+        // A second light as bright as the first, for "weaker".
+        (
+            ":lesson 2\nlight vector 0, 0, -0.9 intensity 0.8 end\nambient 0.05",
+            "light vector 0, 0, 0.9 intensity 0.8 end",
+            "not weaker",
+        ),
+        // An eighth of a turn in degrees.
+        (
+            ":lesson 5",
+            "put rotate box center 0, 0, 0 length 3, 1, 1 kd 0.7 ks 0.2 phong 10 color 40, 160, 90 end by 0, 0, 45 end",
+            "the angle 45 at line 2 looks like degrees",
+        ),
+        // The wrong order of transformations.
+        (
+            ":lesson 5\nput rotate box center 0, 0, 0 length 3, 1, 1 kd 0.7 ks 0.2 phong 10 color 40, 160, 90 end by 0, 0, pi/4 end",
+            "put scale translate sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by -3, 0.5, 0 end by 1.5 end",
+            "center -4.5, 0.75, 0",
+        ),
+        // A capital for `r`, then a wrong value.
+        (":lesson 6", "let R = 0.7", "you named it `R`"),
+        (":lesson 6", "let r = 0.07", "your `r` is 0.07"),
+    ];
+    let mut cases = cases.to_vec();
+    // A tower floating above the floor.
+    let lesson_8 = format!(":lesson 8\n{}", RIGHT_ANSWERS[7][..3].join("\n"));
+    cases.push((&lesson_8, "tower(5, 0.8, 0.5)", "on the floor"));
+    for (before, wrong, words) in cases {
+        let (shown, _) = piped(&format!("{before}\n{wrong}\n"), &[]);
+        assert!(shown.contains("not yet: ") && shown.contains(words), "after `{wrong}`, no \"{words}\":\n{shown}");
+    }
+}
+
+/// After an input that is a right part of the step, "not yet" does not
+/// offer to take it back; after a wrong one, it does.
+#[test]
+fn undo_is_offered_only_after_a_wrong_input() {
+    let (shown, _) = piped(
+        ":lesson 7\nproc post(x) put box center x, 0, 0 length 0.4, 2, 0.4 kd 1 ks 0 phong 1 color 9, 9, 9 end end\npost(-2)\n",
+        &[],
+    );
+    assert!(shown.contains("your scene has 1 of the 3 boxes") && !shown.contains(":undo` takes"), "{shown}");
+    let (shown, _) =
+        piped(":lesson 3\nput sphere center -2, 0, 0 radius 1 kd 0.9 ks 0.5 phong 1 color 220, 30, 30 end\n", &[]);
+    assert!(shown.contains("has ks 0.5 (the goal: 0) (`:undo` takes your last input back)"), "{shown}");
+}
+
+/// A teacher's lesson, in a file: started with `--lesson FILE`, checked as
+/// the built-in ones are, to its end.
+#[test]
+fn a_lesson_from_a_teachers_file_runs_to_its_end() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let file = folder.path().join("red.md");
+    std::fs::write(
+        &file,
+        "# a red ball\n\n```ray setup\ncamera distance 10 angle 0.8 end\n```\n\n## the ball\n\n\
+         Put a red ball of radius 1 at the origin.\n\n```ray example\n\
+         put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end\n```\n\n\
+         Hint: red is about 255, 0, 0.\n\nCheck: a sphere, radius 1, center 0 0 0, color 255 0 0 within 40\n\n\
+         ```ray fails\nput sphere center 0, 0, 0 radius 2 kd 1 ks 0 phong 1 color 255, 0, 0 end\n```\nSays: radius 2\n",
+    )
+    .expect("the lesson is written");
+    let script = "put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 0, 0, 255 end\n:undo\n\
+                  put scale sphere center 0, 0, 0 radius 0.5 kd 1 ks 0 phong 1 color 250, 10, 10 end by 2 end\n";
+    let (shown, status) = piped(script, &["--lesson", file.to_str().expect("a UTF-8 path")]);
+    assert!(shown.contains("lesson: a red ball"), "{shown}");
+    assert!(shown.contains("has color 0, 0, 255 (the goal: 255, 0, 0 within 40)"), "{shown}");
+    assert!(shown.contains("✓ step 1 done") && shown.contains("✓ lesson done: a red ball"), "{shown}");
+    assert_eq!(status, 0, "{shown}");
+}
+
+/// A lesson file with a mistake gets a diagnostic with its file, line and
+/// column, the line and a caret; so does one whose answers contradict its
+/// checks.
+#[test]
+fn a_malformed_lesson_file_gets_a_diagnostic_with_its_line() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let file = folder.path().join("bad.md");
+    std::fs::write(&file, "# a ball\n\n## the ball\n\nPut a ball.\n\n```ray example\nput sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end\n```\n\nCheck: a sphere, colour 9 9 9\n").expect("written");
+    let (shown, status) = piped(&format!(":lesson {}\n", file.display()), &[]);
+    assert!(shown.contains("`colour` is not a property a check knows"), "{shown}");
+    assert!(
+        shown.contains("bad.md:11:7") && shown.contains("Check: a sphere, colour 9 9 9") && shown.contains('^'),
+        "{shown}"
+    );
+    assert_eq!(status, 1);
+    let contradicting = "# a ball\n\n## the ball\n\nPut a ball.\n\n```ray example\nput sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end\n```\n\nCheck: a sphere, radius 2\n";
+    std::fs::write(&file, contradicting).expect("written");
+    let (shown, _) = piped(&format!(":lesson {}\n", file.display()), &[]);
+    assert!(
+        shown.contains("step 1 refuses its own example: your sphere, put at line 1, has radius 1 (the goal: 2)"),
+        "{shown}"
+    );
+    assert!(shown.contains("bad.md:7:1"), "{shown}");
 }

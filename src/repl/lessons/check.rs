@@ -11,6 +11,7 @@ use glam::DVec3;
 
 use crate::compare::{Side, Tolerances, differences};
 use crate::lang::Span;
+use crate::lang::degrees::in_radians_help;
 use crate::lang::number::format_number;
 use crate::scene::{Camera, Light, Primitive, Shape};
 
@@ -267,10 +268,6 @@ impl ShapeKind {
         [ShapeKind::Sphere, ShapeKind::Box, ShapeKind::Plane].into_iter().find_map(|kind| {
             (word == kind.name()).then_some((kind, false)).or((word == kind.plural()).then_some((kind, true)))
         })
-    }
-
-    fn counted(self, count: usize) -> String {
-        format!("{count} {}", if count == 1 { self.name() } else { self.plural() })
     }
 }
 
@@ -553,9 +550,11 @@ fn parse_parts(count: &str, kind: &str, first: &str, rest: &[&str]) -> Result<Ch
 
 fn parse_directions(text: &str) -> Result<Vec<Direction>, String> {
     let side = |word: &str| {
-        DIRECTIONS.iter().find(|(name, _)| *name == word).map(|(_, d)| *d).ok_or_else(|| {
-            format!("`{word}` is not a side: above, below, right, left, front or back")
-        })
+        DIRECTIONS
+            .iter()
+            .find(|(name, _)| *name == word)
+            .map(|(_, d)| *d)
+            .ok_or_else(|| format!("`{word}` is not a side: above, below, right, left, front or back"))
     };
     text.split_whitespace().filter(|w| *w != "and").map(side).collect()
 }
@@ -665,6 +664,24 @@ pub(crate) fn holds(check: &Check, learner: &Session, goal: Option<&Session>) ->
     }
 }
 
+/// `Ok` unless an angle of the learner's program looks like degrees (a
+/// lesson never asks for a turn of 45 radians): the check that comes
+/// before every step's own, since such a turn may still pass them by chance.
+pub(crate) fn no_degrees(learner: &Session) -> Result<(), Shortfall> {
+    let Some(origin) = learner.origins().degrees.first() else {
+        return Ok(());
+    };
+    let angle = format_number(origin.angle);
+    Err(Shortfall {
+        text: format!(
+            "the angle {angle} at {} looks like degrees, but angles are in radians: {}",
+            line_words(learner, origin.span),
+            in_radians_help(origin.angle, "")
+        ),
+        made_at: Some(origin.span),
+    })
+}
+
 /// A session's scene as the grader compares it.
 fn side(session: &Session) -> Side<'_> {
     Side { scene: session.scene(), origins: session.origins() }
@@ -673,8 +690,7 @@ fn side(session: &Session) -> Side<'_> {
 /// What the conditions that `part` misses say: "radius 1 (the goal: 2) and
 /// ...", or `None` if it meets them all.
 fn misses(conditions: &[Condition], part: Part) -> Option<String> {
-    let missed: Vec<String> =
-        conditions.iter().filter(|c| c.miss(part) != Some(0.0)).map(|c| c.words(part)).collect();
+    let missed: Vec<String> = conditions.iter().filter(|c| c.miss(part) != Some(0.0)).map(|c| c.words(part)).collect();
     (!missed.is_empty()).then(|| missed.join(" and "))
 }
 
@@ -738,17 +754,16 @@ fn lights_hold(wanted: &LightsWanted, learner: &Session) -> Result<(), Shortfall
         let (missed, by) = distance(&wanted.conditions, Part::Light(light));
         (sides + weaker + missed, by)
     };
-    let closest = lights().filter(|(light, _)| !meets(light)).min_by(|a, b| score(a.0).partial_cmp(&score(b.0)).expect("no NaN"));
+    let closest =
+        lights().filter(|(light, _)| !meets(light)).min_by(|a, b| score(a.0).partial_cmp(&score(b.0)).expect("no NaN"));
     let Some((light, origin)) = closest else {
         return Err(Shortfall::new(format!("your scene has {good} such lights; the goal: {}", wanted.count)));
     };
     let mut said = vec![format!("points towards {}", numbers_in_words(&light.direction.to_array()))];
-    let sides: Vec<&str> = DIRECTIONS
-        .iter()
-        .filter(|(_, side)| side.holds(light.direction))
-        .map(|(name, _)| *name)
-        .collect();
-    let from_words = if sides.is_empty() { "from nowhere in particular".to_string() } else { format!("from {}", sides.join(" ")) };
+    let sides: Vec<&str> =
+        DIRECTIONS.iter().filter(|(_, side)| side.holds(light.direction)).map(|(name, _)| *name).collect();
+    let from_words =
+        if sides.is_empty() { "from nowhere in particular".to_string() } else { format!("from {}", sides.join(" ")) };
     if !comes_from(&wanted.from, light) {
         said.push(format!("so it comes {from_words}; the goal: from {}", sides_words(&wanted.from)));
     }
@@ -762,7 +777,11 @@ fn lights_hold(wanted: &LightsWanted, learner: &Session) -> Result<(), Shortfall
     if let Some(missed) = misses(&wanted.conditions, Part::Light(light)) {
         said.push(format!("has {missed}"));
     }
-    let short = if good > 0 { format!("{good} of the {} lights the goal asks are there; ", wanted.count) } else { String::new() };
+    let short = if good > 0 {
+        format!("{good} of the {} lights the goal asks are there; ", wanted.count)
+    } else {
+        String::new()
+    };
     Err(Shortfall {
         text: format!("{short}your light at {} {}", line_words(learner, origin.item), said.join(", and ")),
         made_at: (good == 0).then_some(origin.item),
@@ -938,9 +957,7 @@ impl Arrangement {
         let (ea, eb) = (extents(&last.shape), extents(&next.shape));
         match self {
             Arrangement::SideBySide => close(a.y, b.y) && close(a.z, b.z) && b.x - a.x >= ea.x + eb.x - 1e-6,
-            Arrangement::Stacked => {
-                close(a.x, b.x) && close(a.z, b.z) && b.y > a.y && b.y - eb.y <= a.y + ea.y + 1e-6
-            }
+            Arrangement::Stacked => close(a.x, b.x) && close(a.z, b.z) && b.y > a.y && b.y - eb.y <= a.y + ea.y + 1e-6,
             Arrangement::Shrinking => eb.max_element() < ea.max_element() && !close(eb.max_element(), ea.max_element()),
             Arrangement::Rising => b.y > a.y && !close(a.y, b.y),
             Arrangement::OnTheFloor => true,
@@ -977,7 +994,11 @@ fn object_holds(name: &str, kind: ShapeKind, conditions: &[Condition], learner: 
         }));
     };
     let [primitive] = primitives else {
-        return Err(Shortfall::new(format!("your `{name}` is made of {} parts; the goal: one {}", primitives.len(), kind.name())));
+        return Err(Shortfall::new(format!(
+            "your `{name}` is made of {} parts; the goal: one {}",
+            primitives.len(),
+            kind.name()
+        )));
     };
     if ShapeKind::of(&primitive.shape) != kind {
         let is = ShapeKind::of(&primitive.shape).name();
@@ -1000,10 +1021,9 @@ fn procedure_holds(name: &str, parameters: usize, learner: &Session) -> Result<(
     };
     match params.len() == parameters {
         true => Ok(()),
-        false => Err(Shortfall::new(format!(
-            "your `{name}` takes {} parameters; the goal: {parameters}",
-            params.len()
-        ))),
+        false => {
+            Err(Shortfall::new(format!("your `{name}` takes {} parameters; the goal: {parameters}", params.len())))
+        }
     }
 }
 
@@ -1029,7 +1049,10 @@ mod tests {
         let read = parse("a sphere, radius 2, color 255 120 40 within 60, ks at least 0.3").expect("reads");
         let Check::Shapes(wanted) = read else { panic!("{read:?}") };
         assert_eq!(wanted.kind, ShapeKind::Sphere);
-        assert_eq!(wanted.conditions[1].comparison, Comparison { relation: Relation::Equal, goal: vec![255.0, 120.0, 40.0], within: 60.0 });
+        assert_eq!(
+            wanted.conditions[1].comparison,
+            Comparison { relation: Relation::Equal, goal: vec![255.0, 120.0, 40.0], within: 60.0 }
+        );
         assert_eq!(wanted.conditions[2].comparison.relation, Relation::AtLeast);
         assert_eq!(parse("procedure tower(n, r, y)"), Ok(Check::Procedure { name: "tower".into(), parameters: 3 }));
         assert_eq!(parse_number("-pi/4"), Ok(-std::f64::consts::FRAC_PI_4));
@@ -1085,7 +1108,9 @@ mod tests {
     #[test]
     fn a_turned_box_is_read_by_its_longest_side() {
         let turned = |angle: &str| {
-            format!("put rotate box center 0, 0, 0 length 3, 1, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0, {angle} end")
+            format!(
+                "put rotate box center 0, 0, 0 length 3, 1, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0, {angle} end"
+            )
         };
         let wanted = "a box, axis 0.70710678 0.70710678 0 within 0.001";
         assert_eq!(check(wanted, &turned("pi/4")), Ok(()));

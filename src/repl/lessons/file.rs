@@ -13,7 +13,7 @@ use crate::lang::{Diagnostic, Limits, SourceId, Span};
 
 use super::super::rendering::RenderSettings;
 use super::super::session::Session;
-use super::check::{Check, Shortfall, holds, parse};
+use super::check::{Check, Shortfall, holds, no_degrees, parse};
 
 /// A lesson: a title, the scene it starts from, its steps.
 #[derive(Debug)]
@@ -60,6 +60,7 @@ impl Step {
     /// `Ok` when the `learner`'s scene does everything the step asks;
     /// `goal` builds the step's goal scene, for a check that compares with it.
     pub(crate) fn holds(&self, learner: &Session, goal: &dyn Fn() -> Option<Session>) -> Result<(), Shortfall> {
+        no_degrees(learner)?;
         let goal = self.checks.contains(&Check::MatchesGoal).then(goal).flatten();
         self.checks.iter().try_for_each(|check| holds(check, learner, goal.as_ref()))
     }
