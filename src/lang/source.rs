@@ -92,11 +92,6 @@ impl SourceMap {
         SourceId((self.files.len() - 1) as u32)
     }
 
-    /// The id of the text added last, if any.
-    pub fn newest(&self) -> Option<SourceId> {
-        self.files.len().checked_sub(1).map(|last| SourceId(last as u32))
-    }
-
     /// The text with this id.
     pub fn get(&self, id: SourceId) -> &SourceFile {
         &self.files[id.0 as usize]

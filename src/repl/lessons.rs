@@ -123,7 +123,7 @@ pub(crate) fn check_input(shell: &mut Shell, front: &mut dyn FrontEnd) {
             }
             let wrong_tries = following.wrong_tries + 1;
             let show_example = wrong_tries >= TRIES_BEFORE_EXAMPLE && !step.example_up_front;
-            let newest = shell.session.sources().newest();
+            let newest = shell.session.last_input_source();
             let verdict = LessonVerdict::NotYet {
                 missing: shortfall.text,
                 undo: shortfall.made_at.is_some_and(|span: Span| Some(span.source) == newest),

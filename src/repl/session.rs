@@ -528,6 +528,12 @@ impl Session {
         })
     }
 
+    /// The text the last accepted input was read from (none for an empty
+    /// input), to tell what that input made.
+    pub(crate) fn last_input_source(&self) -> Option<SourceId> {
+        Some(self.inputs().last()?.program.items.first()?.span().source)
+    }
+
     /// The primitives of the global object `name`, if it is one.
     pub(crate) fn global_object(&self, name: &str) -> Option<&[Primitive]> {
         self.interpreter.global_object(name)

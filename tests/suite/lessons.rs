@@ -392,8 +392,10 @@ fn undo_is_offered_only_after_a_wrong_input() {
         &[],
     );
     assert!(shown.contains("your scene has 1 of the 3 boxes") && !shown.contains(":undo` takes"), "{shown}");
-    let (shown, _) =
-        piped(":lesson 3\nput sphere center -2, 0, 0 radius 1 kd 0.9 ks 0.5 phong 1 color 220, 30, 30 end\n", &[]);
+    let (shown, _) = piped(
+        ":lesson 3\nput sphere center -2, 0, 0 radius 1 kd 0.9 ks 0.5 phong 1 color 220, 30, 30 end\nlet z = 1\n",
+        &[],
+    );
     assert!(shown.contains("has ks 0.5 (the goal: 0) (`:undo` takes your last input back)"), "{shown}");
 }
 

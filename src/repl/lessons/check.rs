@@ -759,13 +759,16 @@ fn lights_hold(wanted: &LightsWanted, learner: &Session) -> Result<(), Shortfall
     let Some((light, origin)) = closest else {
         return Err(Shortfall::new(format!("your scene has {good} such lights; the goal: {}", wanted.count)));
     };
-    let mut said = vec![format!("points towards {}", numbers_in_words(&light.direction.to_array()))];
-    let sides: Vec<&str> =
-        DIRECTIONS.iter().filter(|(_, side)| side.holds(light.direction)).map(|(name, _)| *name).collect();
-    let from_words =
-        if sides.is_empty() { "from nowhere in particular".to_string() } else { format!("from {}", sides.join(" ")) };
+    let mut said = Vec::new();
     if !comes_from(&wanted.from, light) {
-        said.push(format!("so it comes {from_words}; the goal: from {}", sides_words(&wanted.from)));
+        let sides: Vec<Direction> =
+            DIRECTIONS.iter().map(|(_, side)| *side).filter(|side| side.holds(light.direction)).collect();
+        said.push(format!(
+            "points towards {}, so it comes from {}; the goal: from {}",
+            numbers_in_words(&light.direction.to_array()),
+            if sides.is_empty() { "no side in particular".to_string() } else { sides_words(&sides) },
+            sides_words(&wanted.from)
+        ));
     }
     if let Some(brighter) = brighter.filter(|&brighter| light.intensity >= brighter) {
         said.push(format!(
@@ -783,7 +786,7 @@ fn lights_hold(wanted: &LightsWanted, learner: &Session) -> Result<(), Shortfall
         String::new()
     };
     Err(Shortfall {
-        text: format!("{short}your light at {} {}", line_words(learner, origin.item), said.join(", and ")),
+        text: format!("{short}your light at {} {}", line_words(learner, origin.item), said.join("; and it ")),
         made_at: (good == 0).then_some(origin.item),
     })
 }
@@ -1084,7 +1087,12 @@ mod tests {
     fn lights_come_from_their_sides() {
         let right = "light vector 0, 0, -0.9 intensity 0.8 end";
         assert_eq!(check("a light from right above", right), Ok(()));
-        assert!(check("a light from left", right).unwrap_err().text.contains("from above right"));
+        assert!(
+            check("a light from left", right)
+                .unwrap_err()
+                .text
+                .contains("so it comes from above and right; the goal: from left")
+        );
         let both = format!("{right}\nlight vector 0, 0, 0.9 intensity 0.8 end");
         let shortfall = check("a light from left, weaker than the light from right", &both).unwrap_err();
         assert!(shortfall.text.contains("not weaker"), "{}", shortfall.text);
@@ -1103,6 +1111,18 @@ mod tests {
         assert_eq!(check("3 spheres, stacked, shrinking", &tower), Ok(()));
         let floating = [ball(0.0, 0.0, 1.0), ball(0.0, 3.0, 0.8), ball(0.0, 5.0, 0.6)].concat();
         assert!(check("3 spheres, stacked", &floating).is_err());
+    }
+
+    #[test]
+    fn a_scene_matches_the_goal_however_it_is_built() {
+        let goal = session("put sphere center 1, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end");
+        let same =
+            session("put translate sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 1, 0, 0 end");
+        assert_eq!(holds(&Check::MatchesGoal, &same, Some(&goal)), Ok(()));
+        let other = session("put sphere center 1, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 90 end");
+        let shortfall = holds(&Check::MatchesGoal, &other, Some(&goal)).unwrap_err();
+        assert!(shortfall.text.contains("colour 9, 9, 90; the goal's has 9, 9, 9"), "{}", shortfall.text);
+        assert_eq!(parse("the scene matches the goal"), Ok(Check::MatchesGoal));
     }
 
     #[test]
