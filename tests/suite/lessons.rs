@@ -176,7 +176,7 @@ const OTHER_ANSWERS: &[(&str, &str)] = &[
     (
         "put rotate rotate box center 1, 0, 0 length 1, 1, 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 0, 0.3, 0 end \
          by 0, 0, 1 end",
-        "not yet: your box, put at line",
+        "not yet: your box, put in input [2],",
     ),
     // The long side along y, turned the other way: the same box.
     (
@@ -225,7 +225,7 @@ fn a_step_the_scene_already_does_is_passed_at_once() {
     converse(&[
         (":lesson 2", "step 1 of 3"),
         // A light from the left first: wrong for step 1, but what step 3 asks.
-        ("light vector 0, 0, 0.9 intensity 0.4 end", "not yet: your light at line"),
+        ("light vector 0, 0, 0.9 intensity 0.4 end", "not yet: your light in input [2]"),
         (RIGHT_ANSWERS[1][0], "✓ step 1 done"),
         ("ambient 0.1", "✓ step 2 done"),
         ("", "✓ step 3 done: your scene already does it"),

@@ -674,8 +674,8 @@ pub(crate) fn no_degrees(learner: &Session) -> Result<(), Shortfall> {
     let angle = format_number(origin.angle);
     Err(Shortfall {
         text: format!(
-            "the angle {angle} at {} looks like degrees, but angles are in radians: {}",
-            line_words(learner, origin.span),
+            "the angle {angle} {} looks like degrees, but angles are in radians: {}",
+            place_words(learner, origin.span),
             in_radians_help(origin.angle, "")
         ),
         made_at: Some(origin.span),
@@ -701,9 +701,18 @@ fn distance(conditions: &[Condition], part: Part) -> (usize, f64) {
     (gaps.iter().filter(|&&gap| gap > 0.0).count(), gaps.iter().sum())
 }
 
-/// "line 3" of the input `span` is in.
-fn line_words(learner: &Session, span: Span) -> String {
-    format!("line {}", learner.sources().get(span.source).line_col(span.start as usize).0)
+/// Where `span` is, as the learner reads it: "at line 3" of a file or a
+/// script; "in input [2]" (its line too, if it has several) of an input
+/// typed in the session, which the prompt numbers.
+fn place_words(learner: &Session, span: Span) -> String {
+    let file = learner.sources().get(span.source);
+    let (line, _) = file.line_col(span.start as usize);
+    let typed = file.name.strip_prefix("<input ").and_then(|rest| rest.strip_suffix('>'));
+    match typed {
+        Some(number) if file.text.trim_end().contains('\n') => format!("at line {line} of input [{number}]"),
+        Some(number) => format!("in input [{number}]"),
+        None => format!("at line {line}"),
+    }
 }
 
 fn camera_holds(conditions: &[Condition], learner: &Session) -> Result<(), Shortfall> {
@@ -715,7 +724,7 @@ fn camera_holds(conditions: &[Condition], learner: &Session) -> Result<(), Short
     match misses(conditions, Part::Camera(&camera)) {
         None => Ok(()),
         Some(missed) => Err(Shortfall {
-            text: format!("your camera, at {}, has {missed}", line_words(learner, made_at)),
+            text: format!("your camera, {}, has {missed}", place_words(learner, made_at)),
             made_at: Some(made_at),
         }),
     }
@@ -786,7 +795,7 @@ fn lights_hold(wanted: &LightsWanted, learner: &Session) -> Result<(), Shortfall
         String::new()
     };
     Err(Shortfall {
-        text: format!("{short}your light at {} {}", line_words(learner, origin.item), said.join("; and it ")),
+        text: format!("{short}your light {} {}", place_words(learner, origin.item), said.join("; and it ")),
         made_at: (good == 0).then_some(origin.item),
     })
 }
@@ -846,7 +855,7 @@ fn shapes_hold(wanted: &ShapesWanted, learner: &Session) -> Result<(), Shortfall
         if wanted.moving && !timed {
             said.push("does not depend on `time`".to_string());
         }
-        let at = made_at.map(|span| format!(", put at {},", line_words(learner, span))).unwrap_or_default();
+        let at = made_at.map(|span| format!(", put {},", place_words(learner, span))).unwrap_or_default();
         return Err(Shortfall { text: format!("your {}{at} {}", kind.name(), said.join(", and ")), made_at });
     }
     // Those that meet the conditions, by the `put` that made them if they must share one.
