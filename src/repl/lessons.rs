@@ -368,6 +368,22 @@ mod tests {
         }
     }
 
+    /// docs/lessons.md documents every word of the checks, and its
+    /// complete lesson reads and proves itself.
+    #[test]
+    fn the_lessons_page_documents_the_format_with_a_lesson_that_proves_itself() {
+        let page = std::fs::read_to_string(docs().join("lessons.md")).expect("docs/lessons.md exists");
+        for word in check::vocabulary() {
+            assert!(page.contains(&format!("`{word}")), "docs/lessons.md does not document `{word}`");
+        }
+        let example = page.split("````markdown\n").nth(1).and_then(|rest| rest.split("\n````").next());
+        let example = example.expect("docs/lessons.md has a complete lesson in a ````markdown block");
+        let mut sources = SourceMap::new();
+        let id = sources.add("docs/lessons.md", example, 0);
+        let lesson = Lesson::read(example, id).unwrap_or_else(|d| panic!("{}", d.render(&sources, false)));
+        assert_eq!(lesson.steps.len(), 2);
+    }
+
     /// The picture of what lesson `index` builds, as docs/learning.md shows it.
     fn lesson_picture(index: usize) -> RgbImage {
         let lesson = &BUILT_IN[index];

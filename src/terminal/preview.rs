@@ -83,8 +83,8 @@ impl Preview {
     /// at `small`, the terminal's width and its height less the lines of
     /// the task and the verdict, so that both pictures are large enough to
     /// show a highlight and a shadow and the task stays on screen (at 80x24,
-    /// two pictures of 4:3 are each about 37x28 pixels, against 27x22 in a
-    /// small preview); at `fit`, the whole terminal.
+    /// two pictures of 4:3 are each 35x28 pixels, against 18x15 in a small
+    /// preview); at `fit`, the whole terminal.
     fn lesson_cells(&self) -> Size {
         let all = self.cells_of(PreviewSize::Fit);
         match self.size {
