@@ -374,14 +374,19 @@ impl Arrangement {
     }
 }
 
+/// Why `name` is not among the names `defined`: the one that differs from
+/// it only by capitals, if there is one (`R` for `r`), or `none` and the name.
+fn missing_name<'a>(name: &str, mut defined: impl Iterator<Item = &'a str>, none: &str) -> Shortfall {
+    Shortfall::new(match defined.find(|defined| defined.eq_ignore_ascii_case(name)) {
+        Some(other) => format!("you named it `{other}`; names tell capitals apart: the goal is `{name}`"),
+        None => format!("{none} `{name}` yet"),
+    })
+}
+
 fn number_holds(name: &str, value: Option<&Comparison>, learner: &Session) -> Result<(), Shortfall> {
     let numbers = learner.numbers();
     let Some((_, found)) = numbers.iter().find(|(defined, _)| &**defined == name) else {
-        let near = numbers.iter().find(|(defined, _)| defined.eq_ignore_ascii_case(name));
-        return Err(Shortfall::new(match near {
-            Some((other, _)) => format!("you named it `{other}`; names tell capitals apart: the goal is `{name}`"),
-            None => format!("no number is named `{name}` yet"),
-        }));
+        return Err(missing_name(name, numbers.iter().map(|(defined, _)| &**defined), "no number is named"));
     };
     match value {
         Some(comparison) if comparison.miss(Quantity::X, &[*found]) > 0.0 => Err(Shortfall::new(format!(
@@ -396,11 +401,7 @@ fn number_holds(name: &str, value: Option<&Comparison>, learner: &Session) -> Re
 fn object_holds(name: &str, kind: ShapeKind, conditions: &[Condition], learner: &Session) -> Result<(), Shortfall> {
     let Some(primitives) = learner.global_object(name) else {
         let objects = learner.objects();
-        let near = objects.iter().find(|(defined, _)| defined.eq_ignore_ascii_case(name));
-        return Err(Shortfall::new(match near {
-            Some((other, _)) => format!("you named it `{other}`; names tell capitals apart: the goal is `{name}`"),
-            None => format!("no object is named `{name}` yet"),
-        }));
+        return Err(missing_name(name, objects.iter().map(|(defined, _)| &**defined), "no object is named"));
     };
     let [primitive] = primitives else {
         return Err(Shortfall::new(format!(
@@ -422,11 +423,7 @@ fn object_holds(name: &str, kind: ShapeKind, conditions: &[Condition], learner: 
 fn procedure_holds(name: &str, parameters: usize, learner: &Session) -> Result<(), Shortfall> {
     let procedures = learner.procedures();
     let Some((_, params)) = procedures.iter().find(|(defined, _)| &**defined == name) else {
-        let near = procedures.iter().find(|(defined, _)| defined.eq_ignore_ascii_case(name));
-        return Err(Shortfall::new(match near {
-            Some((other, _)) => format!("you named it `{other}`; names tell capitals apart: the goal is `{name}`"),
-            None => format!("no procedure `{name}` is defined yet"),
-        }));
+        return Err(missing_name(name, procedures.iter().map(|(defined, _)| &**defined), "no procedure is named"));
     };
     match params.len() == parameters {
         true => Ok(()),
