@@ -476,13 +476,14 @@ fn every_entry_point_shares_the_depth_limit() {
 #[test]
 fn flags_that_would_do_nothing_are_refused() {
     let (_dir, path) = scene(SPHERE);
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 8] = [
         (&["--frames", "1..2"], "--frames is for an animation: give --anim N too"),
         (&["--adaptive"], "--adaptive gives more samples to some pixels: give --samples N too"),
         (&["--adaptive", "--samples", "1"], "give --samples N too, with N > 1"),
         (&["--anim", "3", "--time", "2"], "frame k of an animation has time = k"),
         (&["--no-preview"], "--no-preview is for the interactive session"),
         (&["--keep-going"], "--keep-going is for a script on standard input"),
+        (&["--lesson", "1"], "--lesson is for the session"),
         (&["-i", "-o", "x.png"], "-o does nothing in a session (-i starts a session)"),
     ];
     for (flags, message) in cases {

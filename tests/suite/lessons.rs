@@ -447,3 +447,52 @@ fn a_malformed_lesson_file_gets_a_diagnostic_with_its_line() {
     );
     assert!(shown.contains("bad.md:7:1"), "{shown}");
 }
+
+/// `:goal FILE` writes the step's goal with the bytes the batch renderer
+/// writes for the same program at the same size.
+#[test]
+fn the_goal_written_is_the_batch_render_of_the_lessons_program() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let goal = folder.path().join("goal.png");
+    let script = format!(":size 120 90\n:lesson 3\n:goal {}\n", goal.display());
+    let (shown, status) = piped(&script, &[]);
+    assert!(shown.contains("saved the goal of step 1 to") && status == 0, "{shown}");
+    let lesson = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/3-textures.md"))
+        .expect("the lesson file");
+    let block = |kind: &str| {
+        let start = lesson.find(&format!("```ray {kind}\n")).expect("the block") + kind.len() + 7;
+        lesson[start..].split("```").next().expect("its end").to_string()
+    };
+    let program = folder.path().join("goal.ray");
+    std::fs::write(&program, format!("{}{}", block("setup"), block("example shown"))).expect("written");
+    let batch = folder.path().join("batch.png");
+    assert_cmd::Command::cargo_bin("rayrepl")
+        .expect("the binary is built")
+        .args([program.as_os_str(), "-o".as_ref(), batch.as_os_str(), "--width".as_ref(), "120".as_ref()])
+        .args(["--height", "90"])
+        .assert()
+        .success();
+    assert!(std::fs::read(&goal).expect("the goal") == std::fs::read(&batch).expect("the batch render"));
+}
+
+/// With pictures, a lesson shows the goal beside the learner's render, and
+/// the task again under them after a wrong try; `:preview off` hides them.
+#[test]
+fn lesson_pictures_follow_the_preview_setting() {
+    let home = tempfile::tempdir().expect("temporary directory");
+    let mut session = spawn(&home.path().join("lessons"), true);
+    session.expect("ray> ").expect("a first prompt");
+    session.send_line(":lesson 3").expect("typed");
+    session.expect("\x1b[c").expect("the terminal is asked about sixel images");
+    session.send("\x1b[?1;2c").expect("the answer: no sixel");
+    answer(&mut session, "", "goal (left) and yours (right):");
+    session.expect("▄").expect("the pictures are drawn");
+    let shiny = "put sphere center -2, 0, 0 radius 1 kd 0.9 ks 0.5 phong 1 color 220, 30, 30 end";
+    answer(&mut session, shiny, "goal (left) and yours (right):");
+    answer(&mut session, "", "step 1 of 3: A matt red ball");
+    answer(&mut session, "", "not yet: your sphere");
+    answer(&mut session, ":preview off", "ray> ");
+    let shown = output_before_scene(&mut session, "let x = 1");
+    assert!(shown.contains("not yet") && !shown.contains("goal (left)"), "{shown}");
+    assert_eq!(quit(session), 0);
+}
