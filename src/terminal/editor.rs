@@ -4,8 +4,10 @@
 //! rustyline has no continuation prompt, so the session reads an unfinished
 //! input one line at a time, each with a prompt naming what is still open
 //! (`...sphere> `). The validator handles the other case: a buffer that
-//! already holds several lines (recalled from history, or pasted) stays in
-//! the editor, and Enter adds a line, until it is complete.
+//! already holds several lines (recalled from history, or pasted without a
+//! line end at its end, to be edited) stays in the editor, and Enter adds a
+//! line, until it is complete. A paste that ends with a line end is taken
+//! line by line, as typed (`vendor/README.md`).
 
 use std::borrow::Cow;
 

@@ -22,7 +22,7 @@ use crate::repl::file_commands::load_reporting;
 use crate::repl::inputs::handle_input;
 use crate::repl::lessons;
 use crate::repl::report::counted;
-use crate::repl::syntax::continuation_prompt;
+use crate::repl::syntax::{continuation_prompt, open_constructs};
 use crate::repl::{Console, FrontEnd, Session, SessionOptions, Shell, new_session, write_back};
 
 use super::ctrl_c;
@@ -126,7 +126,7 @@ fn run_entries(lines: impl LineSource, front: &mut dyn FrontEnd, options: &Sessi
     if let Some(lesson) = &options.lesson {
         let _ = lessons::start_reporting(&mut shell, lesson, front);
     }
-    Repl { lines, shell, inputs: 0, queued: VecDeque::new() }.run(front)
+    Repl { lines, shell, inputs: 0, queued: VecDeque::new(), several_lines_read: false }.run(front)
 }
 
 /// Where the session's lines come from: the line editor, or lines given in
@@ -268,6 +268,10 @@ struct Repl<L> {
     /// The lines of one read not handled yet: the lines of a paste (or of
     /// an entry recalled from history) are handled one at a time, as typed.
     queued: VecDeque<EnteredLine>,
+    /// Whether the last read gave several lines (a paste, an entry from
+    /// history): if they leave the entry open, a note says what is open
+    /// before the next prompt, since nobody typed those lines one by one.
+    several_lines_read: bool,
 }
 
 impl<L: LineSource> Repl<L> {
@@ -281,7 +285,12 @@ impl<L: LineSource> Repl<L> {
             let fixing = !to_fix.is_empty();
             let read = match self.queued.pop_front() {
                 Some(line) => Ok(line),
-                None => self.read(&prompt, &std::mem::take(&mut to_fix), &pending),
+                None => {
+                    if std::mem::take(&mut self.several_lines_read) && !pending.is_empty() {
+                        front.note(still_open_note(&pending));
+                    }
+                    self.read(&prompt, &std::mem::take(&mut to_fix), &pending)
+                }
             };
             match read {
                 Ok(EnteredLine { text: line, typed }) => {
@@ -363,6 +372,7 @@ impl<L: LineSource> Repl<L> {
             last.typed = typed;
         }
         let first = lines.pop_front();
+        self.several_lines_read = !lines.is_empty();
         self.queued = lines;
         // `split` gives at least one line: the text itself if it has no line end.
         Ok(first.unwrap_or(EnteredLine { text: String::new(), typed }))
@@ -418,6 +428,21 @@ fn leave(pending: &str, unwritten: usize, warned: &mut bool, how: &str, front: &
         counted(pending.lines().count(), "line")
     ));
     false
+}
+
+/// What a paste left open in the `pending` entry, and how to go on.
+fn still_open_note(pending: &str) -> String {
+    let lines = counted(pending.lines().count(), "line");
+    let open = open_constructs(pending);
+    let what = match open.as_slice() {
+        [] => "ends in the middle of an item".to_string(),
+        [one] => format!("leaves `{one}` open, waiting for its `end`"),
+        several => {
+            let names: Vec<String> = several.iter().map(|word| format!("`{word}`")).collect();
+            format!("leaves {} open, each waiting for its `end`", names.join(", "))
+        }
+    };
+    format!("the entry ({lines} so far) {what}: type the rest, or Ctrl-C to drop it")
 }
 
 fn new_editor(color: bool) -> rustyline::Result<Editor<RayHelper, FileHistory>> {

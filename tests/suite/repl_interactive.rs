@@ -451,6 +451,26 @@ fn a_bracketed_paste_runs_its_lines_as_if_typed() {
 }
 
 #[test]
+fn a_paste_that_leaves_an_entry_open_says_what_is_open_and_goes_on_at_its_prompt() {
+    let (mut session, _home) = fresh(false);
+    session.send(bracketed_paste("proc p()\n  put sphere center 0, 0, 0\n")).unwrap();
+    session
+        .expect("note: the entry (2 lines so far) leaves `proc`, `sphere` open, each waiting for its `end`")
+        .unwrap();
+    session.expect("...sphere> ").unwrap();
+    session.send_line("  radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end").unwrap();
+    session.expect("...proc> ").unwrap();
+    session.send_line("end").unwrap();
+    session.expect("[2] ray> ").unwrap();
+    session.send(bracketed_paste("let a = 1 +\n  2 *\n")).unwrap();
+    session.expect("note: the entry (2 lines so far) ends in the middle of an item").unwrap();
+    session.expect("...> ").unwrap();
+    session.send_line("3").unwrap();
+    session.expect("a = 7").unwrap();
+    assert_eq!(leave(session), 0);
+}
+
+#[test]
 fn keys_typed_right_after_ctrl_c_are_kept() {
     let (mut session, _home) = fresh(false);
     session.send("let a = 1").unwrap();

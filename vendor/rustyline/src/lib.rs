@@ -832,7 +832,8 @@ impl<H: Helper, I: History> Editor<H, I> {
             }
 
             // rayrepl's patch: a bracketed paste that ends with a line end
-            // ends with Enter, as the same lines typed would.
+            // is accepted as it is, complete or not, as the same lines each
+            // typed with Enter would be: the application takes its lines.
             let pasted_enter = if let Cmd::Insert(_, text) = &mut cmd
                 && text.ends_with('\n')
             {
@@ -846,11 +847,13 @@ impl<H: Helper, I: History> Editor<H, I> {
             let mut status =
                 command::execute(cmd, &mut s, &input_state, &mut self.kill_ring, &self.config);
             if pasted_enter && matches!(status, Ok(command::Status::Proceed)) {
-                let enter = Cmd::AcceptOrInsertLine {
-                    accept_in_the_middle: true,
-                };
-                status =
-                    command::execute(enter, &mut s, &input_state, &mut self.kill_ring, &self.config);
+                status = command::execute(
+                    Cmd::AcceptLine,
+                    &mut s,
+                    &input_state,
+                    &mut self.kill_ring,
+                    &self.config,
+                );
             }
             match status {
                 Ok(command::Status::Proceed) => continue,
