@@ -23,7 +23,7 @@ use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, W
 #[derive(Debug, Clone, Parser)]
 #[command(name = "rayrepl", version, after_help = AFTER_HELP, args_conflicts_with_subcommands = true)]
 pub struct Cli {
-    /// A command other than rendering: `compare`.
+    /// A command other than rendering: `compare`, `lsp`.
     #[command(subcommand)]
     pub command: Option<Command>,
 
@@ -151,7 +151,13 @@ pub enum Command {
     /// when all match, 1 when one differs or does not run, 2 for a usage error (a reference that cannot be read
     /// or does not run too).
     #[command(after_help = COMPARE_AFTER_HELP)]
-    Compare(CompareArgs),
+    Compare(Box<CompareArgs>),
+    /// Serve the Language Server Protocol on standard input and output, for editors.
+    ///
+    /// Diagnostics while typing, quick fixes, hovers with the help of each word, definitions, references,
+    /// renames and the outline of `.ray` files. An editor starts it; the README says how to set one up.
+    #[cfg(feature = "lsp")]
+    Lsp,
 }
 
 /// `rayrepl compare REFERENCE SUBMISSION...`.

@@ -7,6 +7,7 @@ pub mod diagnostic;
 pub mod eval;
 pub(crate) mod fast_hash;
 pub mod lexer;
+pub mod names;
 pub mod nesting;
 pub mod number;
 pub mod parser;
