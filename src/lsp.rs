@@ -14,6 +14,7 @@
 mod analysis;
 mod features;
 mod text;
+mod typing;
 
 use std::collections::HashMap;
 
@@ -22,8 +23,8 @@ use lsp_types::notification::{
     DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, Notification as _, PublishDiagnostics,
 };
 use lsp_types::request::{
-    CodeActionRequest, DocumentSymbolRequest, GotoDefinition, HoverRequest, PrepareRenameRequest, References, Rename,
-    Request as _,
+    CodeActionRequest, Completion, DocumentSymbolRequest, GotoDefinition, HoverRequest, PrepareRenameRequest,
+    References, Rename, Request as _, SignatureHelpRequest,
 };
 use lsp_types::{
     CodeActionKind, CodeActionProviderCapability, HoverProviderCapability, InitializeResult, OneOf,
@@ -32,6 +33,7 @@ use lsp_types::{
 };
 use serde_json::Value;
 
+use crate::repl::Vocabulary;
 use analysis::Analysis;
 
 /// An open document: its text as the client last sent it, and its
@@ -41,13 +43,36 @@ struct Document {
     text: String,
     version: i32,
     analysis: Analysis,
+    /// The global names of the last version that parsed, for completion
+    /// while the text being typed does not.
+    last_names: Vocabulary,
 }
 
 impl Document {
-    fn new(uri: &Uri, text: String, version: i32) -> Document {
+    fn new(uri: &Uri, text: String, version: i32, last_names: Option<Vocabulary>) -> Document {
         let analysis = Analysis::of(&display_name(uri), &text);
-        Document { text, version, analysis }
+        let last_names = match (&analysis.program, last_names) {
+            (None, Some(names)) => names,
+            _ => typing::vocabulary(&analysis, None),
+        };
+        Document { text, version, analysis, last_names }
     }
+
+    /// The names that may be completed at `position`: with a procedure's
+    /// parameters and locals inside it.
+    fn names_at(&self, position: lsp_types::Position) -> Vocabulary {
+        if self.analysis.program.is_none() {
+            return self.last_names.clone();
+        }
+        let inside = typing::procedure_at(&self.analysis, text::Lines::new(&self.text).offset(position));
+        typing::vocabulary(&self.analysis, inside)
+    }
+}
+
+/// What the client said it can do, as far as the answers depend on it.
+struct Client {
+    /// Completions may be snippets, with placeholders to fill.
+    snippets: bool,
 }
 
 /// Serves the protocol on standard input and output until the client
@@ -62,7 +87,10 @@ pub fn serve_stdio() -> Result<(), String> {
 /// Serves the protocol on `connection`: the handshake, then each message.
 fn serve(connection: &Connection) -> Result<(), String> {
     let failed = |error: lsp_server::ProtocolError| format!("the client broke the protocol: {error}");
-    let (id, _params) = connection.initialize_start().map_err(failed)?;
+    let (id, params) = connection.initialize_start().map_err(failed)?;
+    let params: lsp_types::InitializeParams = serde_json::from_value(params).unwrap_or_default();
+    let completion = params.capabilities.text_document.and_then(|document| document.completion?.completion_item);
+    let client = Client { snippets: completion.and_then(|item| item.snippet_support).unwrap_or(false) };
     let result = InitializeResult {
         capabilities: capabilities(),
         server_info: Some(ServerInfo {
@@ -78,7 +106,7 @@ fn serve(connection: &Connection) -> Result<(), String> {
                 if connection.handle_shutdown(&request).map_err(failed)? {
                     return Ok(());
                 }
-                let response = answer(&documents, request);
+                let response = answer(&documents, &client, request);
                 send(connection, response.into())?;
             }
             Message::Notification(notification) => {
@@ -104,6 +132,14 @@ fn capabilities() -> ServerCapabilities {
             work_done_progress_options: WorkDoneProgressOptions::default(),
         })),
         document_symbol_provider: Some(OneOf::Left(true)),
+        completion_provider: Some(lsp_types::CompletionOptions {
+            trigger_characters: Some(vec![" ".to_string(), "(".to_string(), ",".to_string()]),
+            ..Default::default()
+        }),
+        signature_help_provider: Some(lsp_types::SignatureHelpOptions {
+            trigger_characters: Some(vec!["(".to_string(), ",".to_string()]),
+            ..Default::default()
+        }),
         code_action_provider: Some(CodeActionProviderCapability::Options(lsp_types::CodeActionOptions {
             code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
             ..Default::default()
@@ -122,7 +158,7 @@ fn follow(documents: &mut HashMap<String, Document>, notification: Notification)
             let document = params.text_document;
             documents.insert(
                 document.uri.as_str().to_string(),
-                Document::new(&document.uri, document.text, document.version),
+                Document::new(&document.uri, document.text, document.version, None),
             );
             Some(document.uri)
         }
@@ -134,7 +170,9 @@ fn follow(documents: &mut HashMap<String, Document>, notification: Notification)
             for change in params.content_changes {
                 text::apply(&mut document.text, change);
             }
-            *document = Document::new(&uri, std::mem::take(&mut document.text), params.text_document.version);
+            let text = std::mem::take(&mut document.text);
+            let last_names = std::mem::take(&mut document.last_names);
+            *document = Document::new(&uri, text, params.text_document.version, Some(last_names));
             Some(uri)
         }
         DidCloseTextDocument::METHOD => {
@@ -159,7 +197,7 @@ fn send(connection: &Connection, message: Message) -> Result<(), String> {
 }
 
 /// The answer to `request`, about one of `documents`.
-fn answer(documents: &HashMap<String, Document>, request: Request) -> Response {
+fn answer(documents: &HashMap<String, Document>, client: &Client, request: Request) -> Response {
     let id = request.id.clone();
     let result = match request.method.as_str() {
         HoverRequest::METHOD => handle::<HoverRequest>(documents, request, |doc, params| {
@@ -180,6 +218,14 @@ fn answer(documents: &HashMap<String, Document>, request: Request) -> Response {
         Rename::METHOD => handle::<Rename>(documents, request, |doc, params| {
             let at = &params.text_document_position;
             features::rename(&at.text_document.uri, &doc.text, &doc.analysis, at.position, &params.new_name).map(Some)
+        }),
+        Completion::METHOD => handle::<Completion>(documents, request, |doc, params| {
+            let at = params.text_document_position.position;
+            Ok(Some(typing::complete(&doc.text, at, &doc.names_at(at), client.snippets)))
+        }),
+        SignatureHelpRequest::METHOD => handle::<SignatureHelpRequest>(documents, request, |doc, params| {
+            let at = params.text_document_position_params.position;
+            Ok(typing::signature(&doc.text, at, &doc.names_at(at)))
         }),
         DocumentSymbolRequest::METHOD => {
             handle::<DocumentSymbolRequest>(documents, request, |doc, _| Ok(features::symbols(&doc.analysis)))
@@ -241,6 +287,8 @@ document_params! {
     lsp_types::DocumentSymbolParams => |p| p.text_document.uri;
     lsp_types::CodeActionParams => |p| p.text_document.uri;
     lsp_types::RenameParams => |p| p.text_document_position.text_document.uri;
+    lsp_types::CompletionParams => |p| p.text_document_position.text_document.uri;
+    lsp_types::SignatureHelpParams => |p| p.text_document_position_params.text_document.uri;
 }
 
 fn to_json(value: impl serde::Serialize) -> Value {

@@ -40,6 +40,14 @@ def at(line: int, character: int) -> types.Position:
     return types.Position(line=line, character=character)
 
 
+async def ask(client: LanguageClient, request: str, params, uri: str, position: types.Position, **more):
+    """The answer to the request `textDocument/<request>` at `position` of `uri`."""
+    document = types.TextDocumentIdentifier(uri=uri)
+    return await getattr(client, f"text_document_{request}_async")(
+        params(text_document=document, position=position, **more)
+    )
+
+
 def word(text: str, line: int, name: str, nth: int = 0) -> types.Position:
     """The position of the `nth` `name` on `line` of `text` (all ASCII)."""
     row = text.split("\n")[line]
@@ -91,9 +99,7 @@ async def test_positions_are_utf16_and_changes_are_incremental(client: LanguageC
     )
     await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
     assert list(client.diagnostics[uri]) == []
-    hover = await client.text_document_hover_async(
-        types.HoverParams(text_document=types.TextDocumentIdentifier(uri=uri), position=at(4, 4))
-    )
+    hover = await ask(client, "hover", types.HoverParams, uri, at(4, 4))
     assert "`a = 3`" in hover.contents.value, hover
 
 
@@ -144,17 +150,13 @@ small(6)
 @pytest.mark.asyncio
 async def test_definitions_and_references_follow_the_scopes(client: LanguageClient):
     uri = await open_document(client, "scoping.ray", SCOPES)
-    document = types.TextDocumentIdentifier(uri=uri)
 
     async def definitions(position):
-        found = await client.text_document_definition_async(types.DefinitionParams(text_document=document, position=position))
-        return [location.range.start for location in found]
+        return [location.range.start for location in await ask(client, "definition", types.DefinitionParams, uri, position)]
 
     async def references(position):
         context = types.ReferenceContext(include_declaration=True)
-        found = await client.text_document_references_async(
-            types.ReferenceParams(text_document=document, position=position, context=context)
-        )
+        found = await ask(client, "references", types.ReferenceParams, uri, position, context=context)
         return sorted(location.range.start.line for location in found)
 
     # `size` in `ball` reads the global (line 9), `size` printed in `small` its local (line 5).
@@ -188,11 +190,9 @@ async def test_rename_changes_one_symbol_and_refuses_keywords(client: LanguageCl
 @pytest.mark.asyncio
 async def test_hover_gives_help_pages_signatures_and_values(client: LanguageClient):
     uri = await open_document(client, "hover.ray", SCOPES)
-    document = types.TextDocumentIdentifier(uri=uri)
 
     async def hover(position):
-        found = await client.text_document_hover_async(types.HoverParams(text_document=document, position=position))
-        return found.contents.value
+        return (await ask(client, "hover", types.HoverParams, uri, position)).contents.value
 
     assert "```ray\nsphere center X, Y, Z radius R TEXTURE end" in await hover(word(SCOPES, 3, "sphere"))
     assert "proc ball(x)" in await hover(word(SCOPES, 10, "ball"))
@@ -210,3 +210,58 @@ async def test_the_outline_lists_camera_lights_procedures_and_names(client: Lang
     assert [s.name for s in symbols] == ["camera", "ambient", "light 1", "ball", "small", "size"]
     small = symbols[4]
     assert [c.name for c in small.children] == ["x", "size"]
+
+
+RING = HEAD + """proc ring(n, r)
+  let step = 2 * pi / n
+  put sphere center r, 0, 0 radius 0.2 kd 1 ks 0 phong 1 color 255, 0, 0 end
+end
+object ball = sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 120, 40 end
+"""
+
+
+async def type_at_end(client: LanguageClient, uri: str, text: str, typed: str, version: int) -> types.Position:
+    """Types `typed` at the end of `text` (a document open at `uri`); the position after it."""
+    lines = text.split("\n")
+    end = at(len(lines) - 1, len(lines[-1]))
+    client.text_document_did_change(
+        types.DidChangeTextDocumentParams(
+            text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+            content_changes=[types.TextDocumentContentChangePartial(range=types.Range(start=end, end=end), text=typed)],
+        )
+    )
+    await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+    last = (text + typed).split("\n")
+    return at(len(last) - 1, len(last[-1]))
+
+
+@pytest.mark.asyncio
+async def test_completion_follows_what_may_come_there_while_the_text_does_not_parse(client: LanguageClient):
+    uri = await open_document(client, "ring.ray", RING)
+
+    async def labels(position):
+        return [item.label for item in await ask(client, "completion", types.CompletionParams, uri, position)]
+
+    # Inside `ring`, where a number may come: its parameters and its local.
+    inside = at(4, len("  let step = 2 * pi / "))
+    assert {"n", "r", "step", "pi", "sin(x)"} <= set(await labels(inside))
+    after_put = await type_at_end(client, uri, RING, "put ", 2)
+    assert client.diagnostics[uri], "the text being typed does not parse"
+    offered = await labels(after_put)
+    for expected in ["sphere", "box", "plane", "translate", "rotate", "scale", "group", "ball"]:
+        assert expected in offered, offered
+    assert "put" not in offered and "n" not in offered, "no instruction, no local of `ring`"
+    after_start = await type_at_end(client, uri, RING + "put ", "ball\nri", 3)
+    assert await labels(after_start) == ["ring(n, r)"]
+
+
+@pytest.mark.asyncio
+async def test_signature_help_names_the_parameter_being_typed(client: LanguageClient):
+    uri = await open_document(client, "call.ray", RING)
+    position = await type_at_end(client, uri, RING, "ring(12, ", 2)
+    found = await ask(client, "signature_help", types.SignatureHelpParams, uri, position)
+    [signature] = found.signatures
+    assert signature.label == "proc ring(n, r)"
+    assert found.active_parameter == 1
+    start, end = signature.parameters[1].label
+    assert signature.label[start:end] == "r"
