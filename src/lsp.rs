@@ -3,7 +3,8 @@
 //! learner types, the diagnostics the command line gives (with their
 //! related places, help and code), quick fixes for the help that proposes
 //! an edit, the help pages of the words, what a name is and where it is
-//! bound, its references and renames, and the outline of the file.
+//! bound, its references and renames, completion, signatures, colour
+//! swatches and the outline of the file.
 //!
 //! The protocol is rust-analyzer's `lsp-server` (the framing and the
 //! message loop) with `lsp-types` (the messages). Documents are kept as the
@@ -23,8 +24,8 @@ use lsp_types::notification::{
     DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, Notification as _, PublishDiagnostics,
 };
 use lsp_types::request::{
-    CodeActionRequest, Completion, DocumentSymbolRequest, GotoDefinition, HoverRequest, PrepareRenameRequest,
-    References, Rename, Request as _, SignatureHelpRequest,
+    CodeActionRequest, ColorPresentationRequest, Completion, DocumentColor, DocumentSymbolRequest, GotoDefinition,
+    HoverRequest, PrepareRenameRequest, References, Rename, Request as _, SignatureHelpRequest,
 };
 use lsp_types::{
     CodeActionKind, CodeActionProviderCapability, HoverProviderCapability, InitializeResult, OneOf,
@@ -132,6 +133,7 @@ fn capabilities() -> ServerCapabilities {
             work_done_progress_options: WorkDoneProgressOptions::default(),
         })),
         document_symbol_provider: Some(OneOf::Left(true)),
+        color_provider: Some(lsp_types::ColorProviderCapability::Simple(true)),
         completion_provider: Some(lsp_types::CompletionOptions {
             trigger_characters: Some(vec![" ".to_string(), "(".to_string(), ",".to_string()]),
             ..Default::default()
@@ -227,6 +229,12 @@ fn answer(documents: &HashMap<String, Document>, client: &Client, request: Reque
             let at = params.text_document_position_params.position;
             Ok(typing::signature(&doc.text, at, &doc.names_at(at)))
         }),
+        DocumentColor::METHOD => {
+            handle::<DocumentColor>(documents, request, |doc, _| Ok(features::colours(&doc.analysis)))
+        }
+        ColorPresentationRequest::METHOD => handle::<ColorPresentationRequest>(documents, request, |_, params| {
+            Ok(features::colour_written(params.color))
+        }),
         DocumentSymbolRequest::METHOD => {
             handle::<DocumentSymbolRequest>(documents, request, |doc, _| Ok(features::symbols(&doc.analysis)))
         }
@@ -288,6 +296,8 @@ document_params! {
     lsp_types::CodeActionParams => |p| p.text_document.uri;
     lsp_types::RenameParams => |p| p.text_document_position.text_document.uri;
     lsp_types::CompletionParams => |p| p.text_document_position.text_document.uri;
+    lsp_types::DocumentColorParams => |p| p.text_document.uri;
+    lsp_types::ColorPresentationParams => |p| p.text_document.uri;
     lsp_types::SignatureHelpParams => |p| p.text_document_position_params.text_document.uri;
 }
 

@@ -1,21 +1,23 @@
 //! The answers of the server, from a document's [`Analysis`]: diagnostics,
-//! quick fixes, hovers, definitions, references, renames and the outline.
+//! quick fixes, hovers, definitions, references, renames, the outline and
+//! the colour swatches.
 //! Each turns the language's places (spans) into the protocol's ranges.
 
 use std::collections::HashMap;
 
 use lsp_types::{
-    CodeAction, CodeActionKind, CodeActionOrCommand, DiagnosticRelatedInformation, DiagnosticSeverity, DocumentSymbol,
-    DocumentSymbolResponse, GotoDefinitionResponse, Hover, HoverContents, Location, MarkupContent, MarkupKind,
-    NumberOrString, Position, PrepareRenameResponse, Range, SymbolKind, TextEdit, Uri, WorkspaceEdit,
+    CodeAction, CodeActionKind, CodeActionOrCommand, Color, ColorInformation, ColorPresentation,
+    DiagnosticRelatedInformation, DiagnosticSeverity, DocumentSymbol, DocumentSymbolResponse, GotoDefinitionResponse,
+    Hover, HoverContents, Location, MarkupContent, MarkupKind, NumberOrString, Position, PrepareRenameResponse, Range,
+    SymbolKind, TextEdit, Uri, WorkspaceEdit,
 };
 
 use super::analysis::{Analysis, EVALUATION_BUDGET, Evaluation};
 use super::text::{Lines, range};
-use crate::lang::ast::{InstrKind, Item};
+use crate::lang::ast::{Expr, ExprKind, InstrKind, Item};
 use crate::lang::names::{Binding, Namespace, Occurrence, Scope};
 use crate::lang::number::format_number;
-use crate::lang::walk::same_level;
+use crate::lang::walk::{same_level, textures};
 use crate::lang::{Diagnostic, Severity, Span, words};
 use crate::repl::help;
 use crate::repl::syntax::is_word_char;
@@ -385,4 +387,29 @@ pub(crate) fn symbols(analysis: &Analysis) -> Option<DocumentSymbolResponse> {
         }
     }
     Some(DocumentSymbolResponse::Nested(outline))
+}
+
+/// A swatch for every `color r, g, b` whose three parts are numbers (the
+/// language's 0..255, shown clamped).
+pub(crate) fn colours(analysis: &Analysis) -> Vec<ColorInformation> {
+    let Some(program) = &analysis.program else { return Vec::new() };
+    let channel = |part: &Expr| match part.kind {
+        ExprKind::Number(value) => Some((value / 255.0).clamp(0.0, 1.0) as f32),
+        _ => None,
+    };
+    textures(program)
+        .into_iter()
+        .filter_map(|texture| {
+            let [red, green, blue] = &texture.color.parts;
+            let color = Color { red: channel(red)?, green: channel(green)?, blue: channel(blue)?, alpha: 1.0 };
+            Some(ColorInformation { range: range(texture.color.span, &analysis.sources), color })
+        })
+        .collect()
+}
+
+/// How a colour picked in a swatch is written: its three parts in 0..255.
+pub(crate) fn colour_written(color: Color) -> Vec<ColorPresentation> {
+    let part = |channel: f32| format_number((f64::from(channel) * 255.0).round().clamp(0.0, 255.0));
+    let label = format!("{}, {}, {}", part(color.red), part(color.green), part(color.blue));
+    vec![ColorPresentation { label, text_edit: None, additional_text_edits: None }]
 }

@@ -265,3 +265,22 @@ async def test_signature_help_names_the_parameter_being_typed(client: LanguageCl
     assert found.active_parameter == 1
     start, end = signature.parameters[1].label
     assert signature.label[start:end] == "r"
+
+
+@pytest.mark.asyncio
+async def test_colour_swatches_for_numbers_and_the_picked_colour_in_0_to_255(client: LanguageClient):
+    text = RING + "let g = 100\nput sphere center 0, 2, 0 radius 1 kd 1 ks 0 phong 1 color 0, g, 255 end\n"
+    uri = await open_document(client, "colours.ray", text)
+    document = types.TextDocumentIdentifier(uri=uri)
+    swatches = await client.text_document_document_color_async(types.DocumentColorParams(text_document=document))
+    assert [s.range.start.line for s in swatches] == [5, 7], "not the colour with a name in it"
+    ball = swatches[1]
+    assert (round(ball.color.red * 255), round(ball.color.green * 255), round(ball.color.blue * 255)) == (255, 120, 40)
+    row = text.split("\n")[7]
+    assert ball.range.start.character == row.index("255, 120, 40") and ball.range.end.character == len(row) - 4
+    [written] = await client.text_document_color_presentation_async(
+        types.ColorPresentationParams(
+            text_document=document, color=types.Color(red=0.5, green=1.0, blue=0.0, alpha=1.0), range=ball.range
+        )
+    )
+    assert written.label == "128, 255, 0"
