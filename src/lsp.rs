@@ -14,6 +14,7 @@
 
 mod analysis;
 mod features;
+mod picture;
 mod text;
 mod typing;
 
@@ -24,8 +25,8 @@ use lsp_types::notification::{
     DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, Notification as _, PublishDiagnostics,
 };
 use lsp_types::request::{
-    CodeActionRequest, ColorPresentationRequest, Completion, DocumentColor, DocumentSymbolRequest, GotoDefinition,
-    HoverRequest, PrepareRenameRequest, References, Rename, Request as _, SignatureHelpRequest,
+    CodeActionRequest, ColorPresentationRequest, Completion, DocumentColor, DocumentSymbolRequest, ExecuteCommand,
+    GotoDefinition, HoverRequest, PrepareRenameRequest, References, Rename, Request as _, SignatureHelpRequest,
 };
 use lsp_types::{
     CodeActionKind, CodeActionProviderCapability, HoverProviderCapability, InitializeResult, OneOf,
@@ -134,6 +135,10 @@ fn capabilities() -> ServerCapabilities {
         })),
         document_symbol_provider: Some(OneOf::Left(true)),
         color_provider: Some(lsp_types::ColorProviderCapability::Simple(true)),
+        execute_command_provider: Some(lsp_types::ExecuteCommandOptions {
+            commands: vec![picture::RENDER.to_string()],
+            ..Default::default()
+        }),
         completion_provider: Some(lsp_types::CompletionOptions {
             trigger_characters: Some(vec![" ".to_string(), "(".to_string(), ",".to_string()]),
             ..Default::default()
@@ -241,6 +246,10 @@ fn answer(documents: &HashMap<String, Document>, client: &Client, request: Reque
         CodeActionRequest::METHOD => handle::<CodeActionRequest>(documents, request, |doc, params| {
             Ok(Some(features::quick_fixes(&params.text_document.uri, &doc.analysis, params.range)))
         }),
+        ExecuteCommand::METHOD => request
+            .extract::<lsp_types::ExecuteCommandParams>(ExecuteCommand::METHOD)
+            .map_err(|error| format!("{error:?}"))
+            .and_then(|(_, params)| execute(documents, &params)),
         _ => {
             let message = format!("unknown request `{}`", request.method);
             return Response::new_err(id, ErrorCode::MethodNotFound as i32, message);
@@ -250,6 +259,17 @@ fn answer(documents: &HashMap<String, Document>, client: &Client, request: Reque
         Ok(value) => Response::new_ok(id, value),
         Err(message) => Response::new_err(id, ErrorCode::InvalidParams as i32, message),
     }
+}
+
+/// Runs a command: `rayrepl.render` with the document's URI, and the
+/// render's options or nothing.
+fn execute(documents: &HashMap<String, Document>, params: &lsp_types::ExecuteCommandParams) -> Result<Value, String> {
+    if params.command != picture::RENDER {
+        return Err(format!("unknown command `{}`: the one command is `{}`", params.command, picture::RENDER));
+    }
+    let uri = params.arguments.first().and_then(Value::as_str).ok_or("the render needs the document's URI first")?;
+    let document = documents.get(uri).ok_or_else(|| format!("`{uri}` is not open"))?;
+    picture::render_command(&document.analysis, params.arguments.get(1))
 }
 
 /// Reads the parameters of request `R`, finds its document and answers

@@ -284,3 +284,54 @@ async def test_colour_swatches_for_numbers_and_the_picked_colour_in_0_to_255(cli
         )
     )
     assert written.label == "128, 255, 0"
+
+
+def check_json(path: pathlib.Path) -> list[dict]:
+    """What `rayrepl --check --json` says of the file at `path`."""
+    import json
+    import subprocess
+
+    run = subprocess.run([RAYREPL, "--check", "--json", str(path)], capture_output=True, text=True)
+    return [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
+
+
+CASES = sorted((ROOT / "tests" / "cases").glob("*/*.ray"))
+
+
+@pytest.mark.asyncio
+async def test_every_diagnostic_is_where_the_command_line_puts_it(client: LanguageClient):
+    # Every invalid, valid and warning case: the same diagnostics, in the same
+    # order, at the same lines and UTF-16 columns, with the same codes.
+    assert len(CASES) > 100
+    for path in CASES:
+        expected = check_json(path)
+        uri = await open_document(client, path.name, path.read_text(encoding="utf-8", errors="replace"))
+        shown = [d for d in client.diagnostics[uri] if d.code != "evaluation-too-long"]
+        got = [(d.code, d.range.start.line + 1, d.range.start.character + 1) for d in shown]
+        want = [(d["code"], d["place"]["line"], d["place"]["column_utf16"]) for d in expected]
+        assert got == want, path.name
+
+
+@pytest.mark.asyncio
+async def test_the_render_command_gives_the_batch_renderers_bytes(client: LanguageClient, tmp_path):
+    import base64
+    import subprocess
+
+    scene = ROOT / "scenarios" / "solar.ray"
+    text = scene.read_text()
+    uri = await open_document(client, "solar.ray", text)
+    written = tmp_path / "lsp.png"
+    answer = await client.workspace_execute_command_async(
+        types.ExecuteCommandParams(
+            command="rayrepl.render", arguments=[uri, {"width": 160, "height": 120, "output": str(written)}]
+        )
+    )
+    batch = tmp_path / "batch.png"
+    subprocess.run([RAYREPL, str(scene), "--width", "160", "--height", "120", "-o", str(batch)], check=True, capture_output=True)
+    assert (answer["width"], answer["height"]) == (160, 120)
+    assert base64.b64decode(answer["png"]) == batch.read_bytes()
+    assert written.read_bytes() == batch.read_bytes() and answer["written"] == str(written)
+    with pytest.raises(Exception, match="width"):
+        await client.workspace_execute_command_async(
+            types.ExecuteCommandParams(command="rayrepl.render", arguments=[uri, {"width": 0}])
+        )
