@@ -22,15 +22,21 @@ use crate::repl::completion::{self, CandidateKind};
 /// index of its item), its parameters and locals.
 pub(crate) fn vocabulary(analysis: &Analysis, inside: Option<usize>) -> Vocabulary {
     let names = &analysis.names;
+    // Whether each symbol is bound, and as an object: one pass over the occurrences.
+    let mut bound = vec![(false, false); names.symbols.len()];
+    for occurrence in &names.occurrences {
+        let (any, object) = &mut bound[occurrence.symbol];
+        *any |= occurrence.binding.is_some();
+        *object |= occurrence.binding == Some(Binding::Object);
+    }
     let mut vocabulary = Vocabulary::default();
-    for (index, symbol) in names.symbols.iter().enumerate() {
+    for (symbol, (any, object)) in names.symbols.iter().zip(bound) {
         let visible = symbol.scope == Scope::Global || symbol.scope == Scope::Procedure(inside.unwrap_or(usize::MAX));
-        let bindings: Vec<Binding> = names.occurrences_of(index).filter_map(|occurrence| occurrence.binding).collect();
-        if symbol.namespace != Namespace::Value || !visible || bindings.is_empty() {
+        if symbol.namespace != Namespace::Value || !visible || !any {
             continue;
         }
         vocabulary.variables.push(symbol.name.to_string());
-        if bindings.contains(&Binding::Object) {
+        if object {
             vocabulary.objects.push(symbol.name.to_string());
         }
     }
