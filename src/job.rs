@@ -9,8 +9,10 @@ use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 mod compare;
+mod formatting;
 
 pub use compare::{GradingJob, Report};
+pub use formatting::{Formatted, FormattingJob};
 
 use crate::cli::{Cli, Command};
 use crate::lang::Limits;
@@ -52,6 +54,8 @@ pub enum Task {
     PovExport { scene: SceneFile, depth: u32, output: Destination, quiet: bool },
     /// `rayrepl compare`: grade submissions against a reference.
     Compare(GradingJob),
+    /// `rayrepl fmt`: format scene files in place, or standard input.
+    Format(FormattingJob),
     /// No scene file, or `-i`, with standard input a terminal: the
     /// interactive session.
     Session(SessionOptions),
@@ -176,6 +180,9 @@ impl Job {
         if let Some(Command::Compare(args)) = &cli.command {
             let threads = args.threads.unwrap_or(0) as usize;
             return Ok(Job { threads, task: Task::Compare(compare::grading_job(args)?) });
+        }
+        if let Some(Command::Fmt(args)) = &cli.command {
+            return Ok(Job { threads: 1, task: Task::Format(formatting::formatting_job(args)?) });
         }
         if let Some(misuse) = misuse(cli) {
             return Err(JobError::Misuse(misuse));
