@@ -245,6 +245,21 @@ proptest! {
     }
 }
 
+#[test]
+fn the_readmes_example_is_the_formatters() {
+    let readme = std::fs::read_to_string(repository().join("README.md")).expect("the README");
+    let section = &readme[readme.find("## Formatting").expect("a section on formatting")..];
+    let example = &section[..section.find("\n```\n").expect("the example ends")];
+    let shown = |after: &str, until: &str| {
+        let start = example.find(after).expect("the example shows it") + after.len();
+        let length = example[start..].find(until).unwrap_or(example.len() - start);
+        example[start..start + length].to_string()
+    };
+    let typed = shown("$ cat row.ray\n", "$ rayrepl fmt --check");
+    let formatted = shown("$ rayrepl fmt row.ray\n$ cat row.ray\n", "\n```");
+    assert_eq!(format(SourceId(0), &typed).expect("a program"), format!("{formatted}\n"));
+}
+
 // ---- The command ----------------------------------------------------------------
 
 fn rayrepl() -> Command {
