@@ -16,10 +16,10 @@
 //! - **Indentation follows the constructs `end` closes**, two spaces a
 //!   level: a line inside a `proc`, an `if`, the camera, a light, a shape, a
 //!   transformation or a group is two columns right of the construct; a line
-//!   that starts with `end`, `else` or `by` is at the construct's own
-//!   column. A construct's column is its line's, except for the object right
-//!   after `put` or `object NAME =`, whose column is its own, so that the
-//!   lines of a long object hang under its first word:
+//!   that starts with `end`, `else`, `then` or `by` is at the construct's
+//!   own column. A construct's column is its line's, except for the object
+//!   right after `put` or `object NAME =`, whose column is its own, so that
+//!   the lines of a long object hang under its first word:
 //!
 //!   ```text
 //!   put sphere center 0, 0, 0 radius 1
@@ -27,10 +27,14 @@
 //!       end
 //!   ```
 //!
-//!   A line after one that ends with an operator, `,`, `(` or `put` (an
-//!   expression or an instruction cut in two) is two columns further right.
-//!   Indentation stops growing at column [`MAX_INDENT`], so that a program
-//!   nested thousands deep does not become gigabytes of spaces.
+//!   A line after one that ends with a `,` starts under the first item of
+//!   that list (the arguments of a call, the parameters of a procedure, a
+//!   triple, a colour, the values of a `print`), as
+//!   `tests/cases/valid/comments_everywhere.ray` writes them; a line after
+//!   one that ends with an operator, `(` or `put` (an expression or an
+//!   instruction cut in two) is two columns further right than the lines
+//!   around it. Indentation stops growing at column [`MAX_INDENT`], so that
+//!   a program nested thousands deep does not become gigabytes of spaces.
 //! - **One space between tokens**, except none before `,` and `)`, after
 //!   `(`, after a unary `-` or `!` (`-pi / 4`, `!(i < 8)`), and between a
 //!   name or `sin`, `cos`, `sqrt` and its `(` (`sin(a)`, `row(n - 1)`). Two
@@ -73,7 +77,7 @@ pub fn format(source: SourceId, text: &str) -> Result<String, Diagnostic> {
         tokens.push(token.map_err(|diagnostic| *diagnostic)?);
     }
     let body_start = if text.starts_with(BYTE_ORDER_MARK) { BYTE_ORDER_MARK.len_utf8() } else { 0 };
-    let mut layout = Layout { text, tokens: &tokens, frames: Vec::new(), last_token: None };
+    let mut layout = Layout::new(text, &tokens);
     let mut formatted = String::with_capacity(text.len() + text.len() / 8);
     if body_start > 0 {
         formatted.push(BYTE_ORDER_MARK);
@@ -136,17 +140,28 @@ fn source_lines<'a>(text: &'a str, body_start: usize, tokens: &[WordToken]) -> V
 }
 
 /// Lays out the lines of a program one after the other, knowing the
-/// constructs open at each.
+/// constructs and the lists open at each.
 struct Layout<'a> {
     text: &'a str,
     tokens: &'a [WordToken],
     /// The column of each construct open, innermost last.
     frames: Vec<usize>,
+    /// The column of the first token inside each `(` open, innermost last.
+    parentheses: Vec<usize>,
+    /// The column of the first token after the last word that starts a
+    /// list of numbers separated by commas outside parentheses (`center`,
+    /// `color`, `print`...).
+    word_list: Option<usize>,
     /// The last token laid out.
     last_token: Option<usize>,
 }
 
-impl Layout<'_> {
+impl<'a> Layout<'a> {
+    /// A layout of `tokens`, the tokens of `text`, before its first line.
+    fn new(text: &'a str, tokens: &'a [WordToken]) -> Layout<'a> {
+        Layout { text, tokens, frames: Vec::new(), parentheses: Vec::new(), word_list: None, last_token: None }
+    }
+
     /// Writes `line`, formatted, to `out` (without its line end).
     fn line(&mut self, out: &mut String, line: &SourceLine) {
         let row_start = out.len();
@@ -165,61 +180,87 @@ impl Layout<'_> {
     }
 
     /// Writes the tokens `range`, a line's, indented and spaced, and
-    /// follows the constructs they open and close.
+    /// follows the constructs and the lists they open and close.
     fn code(&mut self, out: &mut String, range: Range<usize>) {
         let row_start = out.len();
         let indent = match self.tokens[range.start].0.1 {
-            Token::End | Token::Else | Token::By => self.frames.last().copied().unwrap_or(0),
+            Token::End | Token::Else | Token::By | Token::Then => self.frames.last().copied().unwrap_or(0),
             _ => self.inner_indent(),
-        };
-        push_spaces(out, indent.min(MAX_INDENT));
-        let mut anchor = indent.min(MAX_INDENT);
+        }
+        .min(MAX_INDENT);
+        push_spaces(out, indent);
+        let mut anchor = indent;
         for index in range.clone() {
             if index > range.start {
                 self.space_before(out, index);
             }
             let column = out.len() - row_start;
+            match self.last_token.map(|before| &self.tokens[before].0.1) {
+                Some(Token::LParen) => self.parentheses.push(column),
+                Some(
+                    Token::Center
+                    | Token::Length
+                    | Token::Vector
+                    | Token::Rotation
+                    | Token::By
+                    | Token::Color
+                    | Token::Print,
+                ) => {
+                    self.word_list = Some(column);
+                }
+                _ => {}
+            }
             let ((start, token, end), word) = &self.tokens[index];
             out.push_str(&self.text[*start..*end]);
-            if *token == Token::End {
-                self.frames.pop();
-            } else if word.is_some_and(Word::opens) {
-                if self.hangs(index) {
-                    anchor = column;
+            match token {
+                Token::End => {
+                    self.frames.pop();
                 }
-                self.frames.push(anchor);
+                Token::RParen => {
+                    self.parentheses.pop();
+                }
+                _ if word.is_some_and(Word::opens) => {
+                    if self.hangs(index) {
+                        anchor = column;
+                    }
+                    self.frames.push(anchor);
+                }
+                _ => {}
             }
             self.last_token = Some(index);
         }
     }
 
-    /// The indentation of a line that does not start with `end`, `else`
-    /// or `by`: inside the innermost construct, and further when the line
-    /// before leaves an expression or an instruction unfinished.
+    /// The indentation of a line that does not start with `end`, `else`,
+    /// `by` or `then`: inside the innermost construct; after a `,` that
+    /// ends a line, under the first item of its list (the arguments of a
+    /// call, the parameters of a procedure, a triple, a colour, the values
+    /// of a `print`); further right when the line before leaves an
+    /// expression or an instruction unfinished otherwise.
     fn inner_indent(&self) -> usize {
         let inside = self.frames.last().map_or(0, |column| column + INDENT_STEP);
-        let unfinished = self.last_token.is_some_and(|index| {
-            matches!(
-                self.tokens[index].0.1,
+        let indent = match self.last_token.map(|index| &self.tokens[index].0.1) {
+            Some(Token::Comma) => self.parentheses.last().copied().or(self.word_list).unwrap_or(inside + INDENT_STEP),
+            Some(
                 Token::Plus
-                    | Token::Minus
-                    | Token::Star
-                    | Token::Slash
-                    | Token::Comma
-                    | Token::LParen
-                    | Token::Eq
-                    | Token::Ne
-                    | Token::Lt
-                    | Token::Le
-                    | Token::Gt
-                    | Token::Ge
-                    | Token::And
-                    | Token::Or
-                    | Token::Bang
-                    | Token::Put
-            )
-        });
-        (inside + if unfinished { INDENT_STEP } else { 0 }).min(MAX_INDENT)
+                | Token::Minus
+                | Token::Star
+                | Token::Slash
+                | Token::LParen
+                | Token::Eq
+                | Token::Ne
+                | Token::Lt
+                | Token::Le
+                | Token::Gt
+                | Token::Ge
+                | Token::And
+                | Token::Or
+                | Token::Bang
+                | Token::Put,
+            ) => inside + INDENT_STEP,
+            _ => inside,
+        };
+        indent.min(MAX_INDENT)
     }
 
     /// Whether the construct token `index` opens is the object of a `put`
@@ -366,6 +407,19 @@ mod tests {
             "proc f(a)\nlet x = a +\n2\nf(1,\n2)\nend\n",
             "proc f(a)\n  let x = a +\n    2\n  f(1,\n    2)\nend\n",
         );
+    }
+
+    #[test]
+    fn a_list_cut_after_a_comma_goes_on_under_its_first_item() {
+        formats_as(
+            "light vector 0,\n0,\n0 intensity 1 end\nproc p(a,\nb)\nput sphere center a, b, 0 radius 1 kd 1 ks 0 phong 1 color 255,\n0, 0\nend\nend\np(1,\n2)\nprint a,\nb\n",
+            "light vector 0,\n             0,\n             0 intensity 1 end\nproc p(a,\n       b)\n  put sphere center a, b, 0 radius 1 kd 1 ks 0 phong 1 color 255,\n                                                             0, 0\n      end\nend\np(1,\n  2)\nprint a,\n      b\n",
+        );
+    }
+
+    #[test]
+    fn then_on_its_own_line_is_under_its_if() {
+        formats_as("if\n1 < 2 &\n2 < 3\nthen\nput a\nend\n", "if\n  1 < 2 &\n    2 < 3\nthen\n  put a\nend\n");
     }
 
     #[test]
