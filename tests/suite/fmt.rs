@@ -220,6 +220,27 @@ fn mutated_program() -> impl Strategy<Value = String> {
         })
 }
 
+/// The tokens of a scenario joined again by random blanks, line ends
+/// and comments: always a program, with lines cut anywhere.
+fn scenario_cut_anywhere() -> impl Strategy<Value = String> {
+    let scenarios: Vec<String> = files_in("scenarios", "ray")
+        .iter()
+        .map(|path| std::fs::read_to_string(path).expect("a readable scene"))
+        .collect();
+    let separators = vec![" ", "  ", "\t", "\n", "\n\n\n", "\r\n  ", " # a comment\n", "\n    # a comment line\n"];
+    (prop::sample::select(scenarios), prop::collection::vec(prop::sample::select(separators), 64)).prop_map(
+        |(text, separators)| {
+            let spans = tokenize(SourceId(0), &text).expect("tokens");
+            let mut joined = String::new();
+            for (number, (start, _, end)) in spans.into_iter().enumerate() {
+                joined.push_str(&text[start..end]);
+                joined.push_str(separators[number % separators.len()]);
+            }
+            joined
+        },
+    )
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
@@ -230,6 +251,14 @@ proptest! {
             prop_assert_eq!(tokens(&once), tokens(&text));
             prop_assert_eq!(comments(&once), comments(&text));
         }
+    }
+
+    #[test]
+    fn programs_cut_anywhere_format_stably(text in scenario_cut_anywhere()) {
+        let once = format(SourceId(0), &text).expect("a program");
+        prop_assert_eq!(format(SourceId(0), &once).ok(), Some(once.clone()));
+        prop_assert_eq!(tokens(&once), tokens(&text));
+        prop_assert_eq!(comments(&once), comments(&text));
     }
 
     #[test]
