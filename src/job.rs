@@ -607,4 +607,18 @@ mod tests {
         assert!(degrees.contains(Check::Degrees) && !degrees.contains(Check::Colours));
         assert!(Cli::try_parse_from(["rayrepl", "--allow", "degree", "a.ray"]).is_err());
     }
+
+    #[test]
+    fn fmt_formats_files_or_standard_input_alone() {
+        let formatting = |args: &[&str]| match task(args) {
+            Task::Format(job) => job,
+            other => panic!("{args:?}: {other:?}"),
+        };
+        let files = formatting(&["fmt", "--check", "a.ray", "b.ray"]);
+        assert_eq!(files.input, Formatted::Files(vec![PathBuf::from("a.ray"), PathBuf::from("b.ray")]));
+        assert!(files.check);
+        assert_eq!(formatting(&["fmt", "-"]), FormattingJob { input: Formatted::Stdin, check: false });
+        let misuse = job(&["fmt", "a.ray", "-"]).expect_err("a misuse");
+        assert!(matches!(&misuse, JobError::Misuse(message) if message.contains("give it alone")), "{misuse}");
+    }
 }

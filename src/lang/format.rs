@@ -149,8 +149,8 @@ struct Layout<'a> {
     /// The column of the first token inside each `(` open, innermost last.
     parentheses: Vec<usize>,
     /// The column of the first token after the last word that starts a
-    /// list of numbers separated by commas outside parentheses (`center`,
-    /// `color`, `print`...).
+    /// list of expressions separated by commas outside parentheses
+    /// (`center`, `color`, `print`...).
     word_list: Option<usize>,
     /// The last token laid out.
     last_token: Option<usize>,
