@@ -83,6 +83,14 @@ fn dispatch(task: Task) -> ExitCode {
         Task::Session(options) => run_session(&options),
         Task::Compare(job) => compare::grade_all(&job),
         Task::Format(job) => formatting::format_all(&job),
+        #[cfg(feature = "lsp")]
+        Task::LanguageServer => match crate::lsp::serve_stdio() {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(message) => {
+                report_failure(message);
+                ExitCode::FAILURE
+            }
+        },
         Task::Script(options) => run_script_on_stdin(&options, switch),
         Task::Watch { scene, render, output, no_preview } => {
             exit_code(watch(&scene, &render, output.as_deref(), no_preview), DiagnosticFormat::Rendered)

@@ -23,7 +23,7 @@ use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, W
 #[derive(Debug, Clone, Parser)]
 #[command(name = "rayrepl", version, after_help = AFTER_HELP, args_conflicts_with_subcommands = true)]
 pub struct Cli {
-    /// A command other than rendering: `compare`, `fmt`.
+    /// A command other than rendering: `compare`, `fmt`, `lsp`.
     #[command(subcommand)]
     pub command: Option<Command>,
 
@@ -151,7 +151,7 @@ pub enum Command {
     /// when all match, 1 when one differs or does not run, 2 for a usage error (a reference that cannot be read
     /// or does not run too).
     #[command(after_help = COMPARE_AFTER_HELP)]
-    Compare(CompareArgs),
+    Compare(Box<CompareArgs>),
 
     /// Format scene files in the style of the bundled scenarios, in place.
     ///
@@ -163,6 +163,13 @@ pub enum Command {
     /// or would change), 2 for a usage error.
     #[command(after_help = FMT_AFTER_HELP)]
     Fmt(FmtArgs),
+
+    /// Serve the Language Server Protocol on standard input and output, for editors.
+    ///
+    /// Diagnostics while typing, quick fixes, hovers with the help of each word, definitions, references,
+    /// renames and the outline of `.ray` files. An editor starts it; the README says how to set one up.
+    #[cfg(feature = "lsp")]
+    Lsp,
 }
 
 /// `rayrepl fmt [--check] FILE...`.

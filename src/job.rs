@@ -36,6 +36,9 @@ pub struct Job {
 /// The tasks of the command line, each with what it needs.
 #[derive(Debug)]
 pub enum Task {
+    /// `lsp`: serve the Language Server Protocol on standard input and output.
+    #[cfg(feature = "lsp")]
+    LanguageServer,
     /// `--check`: evaluate the scene and say what it holds.
     Check(SceneFile),
     /// Render one image at the scene's time and write it to `output`.
@@ -177,12 +180,17 @@ impl Job {
 
     /// [`Job::from_cli`], with standard input and output terminals or not.
     fn resolve(cli: &Cli, stdin_is_terminal: bool, stdout_is_terminal: bool) -> Result<Job, JobError> {
-        if let Some(Command::Compare(args)) = &cli.command {
-            let threads = args.threads.unwrap_or(0) as usize;
-            return Ok(Job { threads, task: Task::Compare(compare::grading_job(args)?) });
-        }
-        if let Some(Command::Fmt(args)) = &cli.command {
-            return Ok(Job { threads: 1, task: Task::Format(formatting::formatting_job(args)?) });
+        match &cli.command {
+            Some(Command::Compare(args)) => {
+                let threads = args.threads.unwrap_or(0) as usize;
+                return Ok(Job { threads, task: Task::Compare(compare::grading_job(args)?) });
+            }
+            Some(Command::Fmt(args)) => {
+                return Ok(Job { threads: 1, task: Task::Format(formatting::formatting_job(args)?) });
+            }
+            #[cfg(feature = "lsp")]
+            Some(Command::Lsp) => return Ok(Job { threads: 0, task: Task::LanguageServer }),
+            None => {}
         }
         if let Some(misuse) = misuse(cli) {
             return Err(JobError::Misuse(misuse));

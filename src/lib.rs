@@ -26,6 +26,8 @@ mod interruption;
 mod job;
 pub mod lang;
 pub mod lint;
+#[cfg(feature = "lsp")]
+pub mod lsp;
 pub mod output;
 pub mod playback;
 mod pov;

@@ -34,4 +34,4 @@ pub(crate) use formats::ImageFormat;
 pub(crate) use frame_names::frame_path;
 pub(crate) use frames::{FrameSink, describe_files};
 pub use still::write_image;
-pub(crate) use still::{write_image_cancellable, write_ppm, write_text};
+pub(crate) use still::{write_image_cancellable, write_png, write_ppm, write_text};

@@ -16,6 +16,7 @@
 
 mod cancel;
 pub(crate) mod commands;
+pub(crate) mod completion;
 mod console;
 mod describe;
 mod excerpt;

@@ -5,7 +5,7 @@
 
 use std::rc::Rc;
 
-use super::ast::{Expr, ExprKind, Instr, InstrKind};
+use super::ast::{Expr, ExprKind, Instr, InstrKind, Item, ObjKind, Program, Texture};
 
 /// The instructions `instrs` run at their own level: each of them and,
 /// inside an `if`, those of both branches, to any depth, in source order.
@@ -53,6 +53,35 @@ pub fn variables<'a>(exprs: impl DoubleEndedIterator<Item = &'a Expr>) -> Vec<&'
     names
 }
 
+/// The textures of every sphere, plane and box written in `program`, in
+/// procedures too, in source order.
+pub fn textures(program: &Program) -> Vec<&Texture> {
+    let bodies = program.items.iter().flat_map(|item| match item {
+        Item::Proc(procedure) => procedure.body.as_slice(),
+        Item::Instr(instr) => std::slice::from_ref(instr),
+        Item::Camera(_) | Item::Ambient(_) | Item::Light(_) => &[],
+    });
+    let mut objects: Vec<_> = same_level(bodies.collect::<Vec<_>>().into_iter())
+        .filter_map(|instr| match &instr.kind {
+            InstrKind::Put(object) | InstrKind::Object(_, object) => Some(&**object),
+            _ => None,
+        })
+        .collect();
+    objects.reverse();
+    let mut textures = Vec::new();
+    while let Some(object) = objects.pop() {
+        match &object.kind {
+            ObjKind::Sphere { texture, .. } | ObjKind::Plane { texture, .. } | ObjKind::Box { texture, .. } => {
+                textures.push(texture);
+            }
+            ObjKind::Translate(inner, _) | ObjKind::Rotate(inner, _) | ObjKind::Scale(inner, _) => objects.push(inner),
+            ObjKind::Group(members) => objects.extend(members.iter().rev()),
+            ObjKind::Var(_) => {}
+        }
+    }
+    textures
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -77,6 +106,27 @@ mod tests {
         assert_eq!(bound, ["a", "b", "c"]);
         let called: Vec<&str> = same_level(instrs(&program)).filter_map(called_name).map(|n| &**n).collect();
         assert_eq!(called, ["p", "q"]);
+    }
+
+    #[test]
+    fn textures_are_found_in_procedures_groups_and_ifs() {
+        let texture = |n: u32| format!("kd 1 ks 0 phong 1 color {n}, 0, 0 end");
+        let text = format!(
+            "proc p() if 1 < 2 then put group sphere center 0, 0, 0 radius 1 {} box center 0, 0, 0 length 1, 1, 1 {} end end end\n\
+             object o = translate plane rotation 0, 0, 0 shift 0 {} by 1, 0, 0 end",
+            texture(1),
+            texture(2),
+            texture(3)
+        );
+        let program = program(&text);
+        let reds: Vec<f64> = textures(&program)
+            .iter()
+            .map(|texture| match texture.color.parts[0].kind {
+                ExprKind::Number(red) => red,
+                _ => panic!("a number"),
+            })
+            .collect();
+        assert_eq!(reds, [1.0, 2.0, 3.0]);
     }
 
     #[test]

@@ -53,7 +53,7 @@ pub(crate) fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<
 }
 
 /// Writes `image` as PNG to `writer`.
-fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
+pub(crate) fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
     // Fast compression: large renders and 100-frame animations would
     // otherwise spend more time compressing than tracing.
     let encoder = PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Adaptive);

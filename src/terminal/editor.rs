@@ -19,11 +19,11 @@ use rustyline::{Context, Helper};
 
 use crate::lang::{EntryState, entry_state};
 
-use crate::lang::words::{self, Role};
 use crate::repl::Vocabulary;
 use crate::repl::commands::{self, COMMANDS, Files, help_pages, is_command};
+use crate::repl::completion::{self, word_start};
 use crate::repl::help;
-use crate::repl::syntax::{PieceKind, is_word_char, pieces};
+use crate::repl::syntax::{PieceKind, pieces};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
 /// rustyline repaint the whole line at every key, so a long pasted line
@@ -38,48 +38,6 @@ pub(crate) struct RayHelper {
     /// Names defined by the session, for completion.
     vocabulary: Vocabulary,
     files: FilenameCompleter,
-}
-
-/// What the grammar lets come where a word is being typed, judged from the
-/// word or sign just before it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Slot {
-    /// An object: after `put`, a transformation, `group`, `object NAME =`.
-    Object,
-    /// A number: after an operator, a comma, `(`, `let NAME =` or a part
-    /// that takes numbers (`center`, `color`, ...).
-    Number,
-    /// A new name: after `let`, `object` or `proc`; nothing to complete.
-    NewName,
-    /// The start of an item: at the start of an entry, after `then` or
-    /// `else`. Only what starts one (`put`, `light`, a call...).
-    Start,
-    /// Anything else.
-    Any,
-}
-
-/// The slot of the word being typed after `before`.
-fn slot(before: &str) -> Slot {
-    let before = before.trim_end();
-    let Some(last) = before.chars().next_back() else { return Slot::Start };
-    if !is_word_char(last) {
-        let head = &before[..before.len() - last.len_utf8()];
-        let defines_object = last == '=' && head.split_whitespace().rev().nth(1) == Some("object");
-        return match last {
-            '=' if defines_object => Slot::Object,
-            ')' => Slot::Any,
-            _ => Slot::Number,
-        };
-    }
-    let word = &before[word_start(before)..];
-    match (word, words::lookup(word).and_then(words::Word::role)) {
-        ("let" | "object" | "proc", _) => Slot::NewName,
-        ("put", _) | (_, Some(Role::Transformation)) => Slot::Object,
-        ("then" | "else", _) => Slot::Start,
-        ("end", _) => Slot::Any,
-        ("if" | "print", _) | (_, Some(Role::Part | Role::Texture)) => Slot::Number,
-        _ => Slot::Any,
-    }
 }
 
 impl RayHelper {
@@ -122,72 +80,20 @@ impl RayHelper {
         Ok((pos, Vec::new()))
     }
 
-    /// Completes the word before `pos` with what may come there: after
-    /// `put` only objects, after `color` only numbers, and so on. With
-    /// nothing typed yet, it lists them where they are few enough to read
-    /// (an object or a number), and nothing elsewhere.
+    /// Completes the word before `pos` with what may come there
+    /// ([`completion::complete`]).
     fn complete_word(&self, line: &str, pos: usize) -> (usize, Vec<Pair>) {
-        let start = word_start(&line[..pos]);
-        let typed = &line[start..pos];
-        let slot = match slot(&line[..start]) {
-            // A line after the first may be anywhere inside a construct.
-            Slot::Start if line[..start].trim().is_empty() && !self.pending.is_empty() => Slot::Any,
-            slot => slot,
-        };
-        if typed.is_empty() && !matches!(slot, Slot::Object | Slot::Number) {
-            return (pos, Vec::new());
-        }
-        let vocabulary = &self.vocabulary;
-        let is_object = |name: &String| vocabulary.objects.contains(name);
-        let objects = vocabulary.variables.iter().filter(|name| is_object(name)).map(|name| plain(name, name));
-        let numbers = vocabulary.variables.iter().filter(|name| !is_object(name)).map(|name| plain(name, name));
-        let procedures = vocabulary.procedures.iter().map(|(name, params)| Pair {
-            display: format!("{name}({})", params.join(", ")),
-            replacement: format!("{name}("),
-        });
-        let language = words::language();
-        let candidates: Vec<Pair> = match slot {
-            Slot::NewName => Vec::new(),
-            Slot::Start => {
-                let starts = language.filter(|word| matches!(word.role(), Some(Role::Definition | Role::Instruction)));
-                starts.map(keyword_candidate).chain(procedures).collect()
-            }
-            Slot::Object => {
-                let shapes = language.filter(|word| matches!(word.role(), Some(Role::Shape | Role::Transformation)));
-                shapes.map(keyword_candidate).chain(objects).collect()
-            }
-            Slot::Number => {
-                let values =
-                    language.filter(|word| matches!(word.role(), Some(Role::Function | Role::Constant) | None));
-                values.map(keyword_candidate).chain(numbers).collect()
-            }
-            Slot::Any => language.map(keyword_candidate).chain(objects).chain(numbers).chain(procedures).collect(),
-        };
-        let mut candidates: Vec<Pair> =
-            candidates.into_iter().filter(|pair| pair.replacement.starts_with(typed)).collect();
-        candidates.sort_by(|a, b| a.display.cmp(&b.display));
-        candidates.dedup_by(|a, b| a.display == b.display);
-        (start, candidates)
-    }
-}
-
-/// A word of the language followed by a space, or a function with its parenthesis.
-fn keyword_candidate(word: &words::Word) -> Pair {
-    let text = word.text;
-    if word.role() == Some(Role::Function) {
-        Pair { display: format!("{text}(x)"), replacement: format!("{text}(") }
-    } else {
-        plain(text, &format!("{text} "))
+        // A line after the first may be anywhere inside a construct.
+        let (start, candidates) = completion::complete(&line[..pos], !self.pending.is_empty(), &self.vocabulary);
+        let pairs = candidates
+            .into_iter()
+            .map(|candidate| Pair { display: candidate.display, replacement: candidate.replacement });
+        (start, pairs.collect())
     }
 }
 
 fn plain(display: &str, replacement: &str) -> Pair {
     Pair { display: display.to_string(), replacement: replacement.to_string() }
-}
-
-/// Where the name that ends at the end of `before` starts.
-fn word_start(before: &str) -> usize {
-    before.char_indices().rev().take_while(|(_, c)| is_word_char(*c)).last().map_or(before.len(), |(i, _)| i)
 }
 
 impl Completer for RayHelper {
