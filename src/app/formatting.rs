@@ -2,6 +2,7 @@
 //! writes it back atomically when its text changes, or says which would
 //! change (`--check`), or formats standard input to standard output.
 
+use std::fmt::Display;
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
@@ -46,13 +47,7 @@ fn format_file(path: &Path, check: bool) -> Outcome {
     if check {
         return report_change(&path.display().to_string(), &text, &formatted);
     }
-    match output::write_text(path, &formatted, &output::NEVER_CANCELLED) {
-        Ok(()) => Outcome::Changed,
-        Err(error) => {
-            report_failure(error);
-            Outcome::Failed
-        }
-    }
+    reported(output::write_text(path, &formatted, &output::NEVER_CANCELLED), Outcome::Changed)
 }
 
 /// Formats standard input to standard output (with `check`, only says
@@ -62,14 +57,8 @@ fn format_stdin(check: bool) -> Outcome {
     if check {
         return if formatted == text { Outcome::Unchanged } else { report_change("<stdin>", &text, &formatted) };
     }
-    match write_stdout("the formatted scene", |stdout| stdout.write_all(formatted.as_bytes())) {
-        Ok(()) if formatted == text => Outcome::Unchanged,
-        Ok(()) => Outcome::Changed,
-        Err(why) => {
-            report_failure(why);
-            Outcome::Failed
-        }
-    }
+    let written = write_stdout("the formatted scene", |stdout| stdout.write_all(formatted.as_bytes()));
+    reported(written, if formatted == text { Outcome::Unchanged } else { Outcome::Changed })
 }
 
 /// The text at `path` (`-`: standard input), as rayrepl reads a scene, and
@@ -94,8 +83,14 @@ fn report_change(name: &str, text: &str, formatted: &str) -> Outcome {
     let said = write_stdout("the files to format", |stdout| {
         writeln!(stdout, "{name}: would be reformatted, from line {line}")
     });
-    match said {
-        Ok(()) => Outcome::Changed,
+    reported(said, Outcome::Changed)
+}
+
+/// `done` if the write `result` succeeded; otherwise, having said why on
+/// standard error, [`Outcome::Failed`].
+fn reported(result: Result<(), impl Display>, done: Outcome) -> Outcome {
+    match result {
+        Ok(()) => done,
         Err(why) => {
             report_failure(why);
             Outcome::Failed
