@@ -1,9 +1,11 @@
 //! The application: runs the job the command line was turned into
 //! (`job`): a check, a still image, an animation, renders at every save of
-//! a file (`--watch`), an explanation, a POV-Ray export or a session. Maps
-//! failures to exit codes.
+//! a file (`--watch`), an explanation, a POV-Ray export, a grading
+//! (`compare`), a formatting (`fmt`) or a session. Maps failures to exit
+//! codes.
 
 mod compare;
+mod formatting;
 
 use std::cell::RefCell;
 use std::io::{self, Read, StdoutLock, Write};
@@ -80,6 +82,7 @@ fn dispatch(task: Task) -> ExitCode {
     match task {
         Task::Session(options) => run_session(&options),
         Task::Compare(job) => compare::grade_all(&job),
+        Task::Format(job) => formatting::format_all(&job),
         #[cfg(feature = "lsp")]
         Task::LanguageServer => match crate::lsp::serve_stdio() {
             Ok(()) => ExitCode::SUCCESS,

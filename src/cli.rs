@@ -23,7 +23,7 @@ use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, W
 #[derive(Debug, Clone, Parser)]
 #[command(name = "rayrepl", version, after_help = AFTER_HELP, args_conflicts_with_subcommands = true)]
 pub struct Cli {
-    /// A command other than rendering: `compare`, `lsp`.
+    /// A command other than rendering: `compare`, `fmt`, `lsp`.
     #[command(subcommand)]
     pub command: Option<Command>,
 
@@ -152,6 +152,18 @@ pub enum Command {
     /// or does not run too).
     #[command(after_help = COMPARE_AFTER_HELP)]
     Compare(Box<CompareArgs>),
+
+    /// Format scene files in the style of the bundled scenarios, in place.
+    ///
+    /// Indents procedures, conditions, the camera, lights, shapes, transformations and groups written over several
+    /// lines, spaces operators, commas and parentheses, and keeps every comment and the lines as written (blank
+    /// lines one at a time). Only a file whose text changes is written, atomically. A file that does not parse gets
+    /// its diagnostic and is left as it is; the others are still formatted. Exit status 0 when every file is
+    /// formatted (with --check: none would change), 1 when one does not parse or cannot be written (with --check:
+    /// or would change), 2 for a usage error.
+    #[command(after_help = FMT_AFTER_HELP)]
+    Fmt(FmtArgs),
+
     /// Serve the Language Server Protocol on standard input and output, for editors.
     ///
     /// Diagnostics while typing, quick fixes, hovers with the help of each word, definitions, references,
@@ -159,6 +171,24 @@ pub enum Command {
     #[cfg(feature = "lsp")]
     Lsp,
 }
+
+/// `rayrepl fmt [--check] FILE...`.
+#[derive(Debug, Clone, Args)]
+pub struct FmtArgs {
+    /// The scene files; `-` alone formats standard input to standard output.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+
+    /// Write nothing: say which files would change, from which line (exit status 1 if one would).
+    #[arg(long)]
+    pub check: bool,
+}
+
+const FMT_AFTER_HELP: &str = "\
+Examples:
+  rayrepl fmt scene.ray                                format scene.ray in place
+  rayrepl fmt --check scenarios/*.ray                  say which files would change
+  rayrepl fmt - < scene.ray > formatted.ray            standard input to standard output";
 
 /// `rayrepl compare REFERENCE SUBMISSION...`.
 #[derive(Debug, Clone, Args)]
@@ -383,6 +413,7 @@ Examples:
   rayrepl scenarios/solar.ray --explain 400,300        why that pixel has its colour
   rayrepl scene.ray --watch -o scene.png               render again at every save
   rayrepl compare reference.ray submissions/          grade submissions against a reference
+  rayrepl fmt scene.ray                                format a scene file in place
   rayrepl                                              the interactive session
   cat script.ray | rayrepl                             run a script
 

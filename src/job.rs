@@ -9,8 +9,10 @@ use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 mod compare;
+mod formatting;
 
 pub use compare::{GradingJob, Report};
+pub use formatting::{Formatted, FormattingJob};
 
 use crate::cli::{Cli, Command};
 use crate::lang::Limits;
@@ -55,6 +57,8 @@ pub enum Task {
     PovExport { scene: SceneFile, depth: u32, output: Destination, quiet: bool },
     /// `rayrepl compare`: grade submissions against a reference.
     Compare(GradingJob),
+    /// `rayrepl fmt`: format scene files in place, or standard input.
+    Format(FormattingJob),
     /// No scene file, or `-i`, with standard input a terminal: the
     /// interactive session.
     Session(SessionOptions),
@@ -180,6 +184,9 @@ impl Job {
             Some(Command::Compare(args)) => {
                 let threads = args.threads.unwrap_or(0) as usize;
                 return Ok(Job { threads, task: Task::Compare(compare::grading_job(args)?) });
+            }
+            Some(Command::Fmt(args)) => {
+                return Ok(Job { threads: 1, task: Task::Format(formatting::formatting_job(args)?) });
             }
             #[cfg(feature = "lsp")]
             Some(Command::Lsp) => return Ok(Job { threads: 0, task: Task::LanguageServer }),
@@ -607,5 +614,19 @@ mod tests {
         let degrees = allowed(&Cli::parse_from(["rayrepl", "--allow", "degrees", "a.ray"]));
         assert!(degrees.contains(Check::Degrees) && !degrees.contains(Check::Colours));
         assert!(Cli::try_parse_from(["rayrepl", "--allow", "degree", "a.ray"]).is_err());
+    }
+
+    #[test]
+    fn fmt_formats_files_or_standard_input_alone() {
+        let formatting = |args: &[&str]| match task(args) {
+            Task::Format(job) => job,
+            other => panic!("{args:?}: {other:?}"),
+        };
+        let files = formatting(&["fmt", "--check", "a.ray", "b.ray"]);
+        assert_eq!(files.input, Formatted::Files(vec![PathBuf::from("a.ray"), PathBuf::from("b.ray")]));
+        assert!(files.check);
+        assert_eq!(formatting(&["fmt", "-"]), FormattingJob { input: Formatted::Stdin, check: false });
+        let misuse = job(&["fmt", "a.ray", "-"]).expect_err("a misuse");
+        assert!(matches!(&misuse, JobError::Misuse(message) if message.contains("give it alone")), "{misuse}");
     }
 }

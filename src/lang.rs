@@ -6,6 +6,7 @@ pub mod degrees;
 pub mod diagnostic;
 pub mod eval;
 pub(crate) mod fast_hash;
+pub mod format;
 pub mod lexer;
 pub mod names;
 pub mod nesting;

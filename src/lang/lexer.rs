@@ -292,7 +292,7 @@ impl<'a> Lexer<'a> {
 }
 
 /// U+FEFF, which some editors write at the start of a file.
-const BYTE_ORDER_MARK: char = '\u{feff}';
+pub(super) const BYTE_ORDER_MARK: char = '\u{feff}';
 
 /// Whether `character` shows as nothing, or as a blank, on screen: a
 /// control character, a zero-width one (U+200B) or an unusual space (U+00A0).

@@ -14,6 +14,7 @@ mod deep;
 mod diagnostics;
 mod eval;
 mod explain;
+mod fmt;
 mod fuzz;
 mod golden;
 mod hostile_files;
