@@ -4,7 +4,7 @@
 //! related places, help and code), quick fixes for the help that proposes
 //! an edit, the help pages of the words, what a name is and where it is
 //! bound, its references and renames, completion, signatures, colour
-//! swatches and the outline of the file.
+//! swatches, formatting and the outline of the file.
 //!
 //! The protocol is rust-analyzer's `lsp-server` (the framing and the
 //! message loop) with `lsp-types` (the messages). Documents are kept as the
@@ -26,7 +26,8 @@ use lsp_types::notification::{
 };
 use lsp_types::request::{
     CodeActionRequest, ColorPresentationRequest, Completion, DocumentColor, DocumentSymbolRequest, ExecuteCommand,
-    GotoDefinition, HoverRequest, PrepareRenameRequest, References, Rename, Request as _, SignatureHelpRequest,
+    Formatting, GotoDefinition, HoverRequest, PrepareRenameRequest, References, Rename, Request as _,
+    SignatureHelpRequest,
 };
 use lsp_types::{
     CodeActionKind, CodeActionProviderCapability, HoverProviderCapability, InitializeResult, OneOf,
@@ -135,6 +136,7 @@ fn capabilities() -> ServerCapabilities {
         })),
         document_symbol_provider: Some(OneOf::Left(true)),
         color_provider: Some(lsp_types::ColorProviderCapability::Simple(true)),
+        document_formatting_provider: Some(OneOf::Left(true)),
         execute_command_provider: Some(lsp_types::ExecuteCommandOptions {
             commands: vec![picture::RENDER.to_string()],
             ..Default::default()
@@ -240,6 +242,9 @@ fn answer(documents: &HashMap<String, Document>, client: &Client, request: Reque
         ColorPresentationRequest::METHOD => handle::<ColorPresentationRequest>(documents, request, |_, params| {
             Ok(features::colour_written(params.color))
         }),
+        Formatting::METHOD => {
+            handle::<Formatting>(documents, request, |doc, _| features::formatting(&doc.text, &doc.analysis).map(Some))
+        }
         DocumentSymbolRequest::METHOD => {
             handle::<DocumentSymbolRequest>(documents, request, |doc, _| Ok(features::symbols(&doc.analysis)))
         }
@@ -317,6 +322,7 @@ document_params! {
     lsp_types::RenameParams => |p| p.text_document_position.text_document.uri;
     lsp_types::CompletionParams => |p| p.text_document_position.text_document.uri;
     lsp_types::DocumentColorParams => |p| p.text_document.uri;
+    lsp_types::DocumentFormattingParams => |p| p.text_document.uri;
     lsp_types::ColorPresentationParams => |p| p.text_document.uri;
     lsp_types::SignatureHelpParams => |p| p.text_document_position_params.text_document.uri;
 }

@@ -1,6 +1,6 @@
 //! The answers of the server, from a document's [`Analysis`]: diagnostics,
 //! quick fixes, hovers, definitions, references, renames, the outline and
-//! the colour swatches.
+//! the colour swatches, the formatting.
 //! Each turns the language's places (spans) into the protocol's ranges.
 
 use std::collections::HashMap;
@@ -15,10 +15,11 @@ use lsp_types::{
 use super::analysis::{Analysis, EVALUATION_BUDGET, Evaluation};
 use super::text::{Lines, range};
 use crate::lang::ast::{Expr, ExprKind, InstrKind, Item};
+use crate::lang::format::format;
 use crate::lang::names::{Binding, Namespace, Occurrence, Scope};
 use crate::lang::number::format_number;
 use crate::lang::walk::{same_level, textures};
-use crate::lang::{Diagnostic, Severity, Span, words};
+use crate::lang::{Diagnostic, Severity, SourceId, Span, words};
 use crate::repl::help;
 use crate::repl::syntax::is_word_char;
 
@@ -412,4 +413,18 @@ pub(crate) fn colour_written(color: Color) -> Vec<ColorPresentation> {
     let part = |channel: f32| format_number((f64::from(channel) * 255.0).round().clamp(0.0, 255.0));
     let label = format!("{}, {}, {}", part(color.red), part(color.green), part(color.blue));
     vec![ColorPresentation { label, text_edit: None, additional_text_edits: None }]
+}
+
+/// The edit that formats the whole document as `rayrepl fmt` does (none if
+/// it is formatted), or why it cannot be: the text does not parse.
+pub(crate) fn formatting(text: &str, analysis: &Analysis) -> Result<Vec<TextEdit>, String> {
+    let formatted = format(SourceId::default(), text).map_err(|error| {
+        let line = line_of(analysis, error.span);
+        format!("the file cannot be formatted until it parses: line {line}: {}", error.message)
+    })?;
+    if formatted == text {
+        return Ok(Vec::new());
+    }
+    let whole = Range { start: Position::default(), end: Lines::new(text).end() };
+    Ok(vec![TextEdit { range: whole, new_text: formatted }])
 }

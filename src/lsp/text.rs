@@ -35,6 +35,13 @@ impl<'a> Lines<'a> {
         Lines { text, starts }
     }
 
+    /// The position just after the text's last character.
+    pub(crate) fn end(&self) -> Position {
+        let last = self.starts.len() - 1;
+        let column: usize = self.text[self.starts[last]..].chars().map(char::len_utf16).sum();
+        Position { line: last as u32, character: column as u32 }
+    }
+
     /// The byte offset of `position`: a column past the end of its line is
     /// the line's end, a line past the last is the text's end, and a
     /// column inside a character two code units wide is that character's start.
@@ -82,6 +89,8 @@ mod tests {
         assert_eq!(lines.offset(at(0, 99)), text.find('\r').unwrap());
         assert_eq!(lines.offset(at(2, 4)), text.find('b').unwrap(), "a lone CR ends a line");
         assert_eq!(lines.offset(at(9, 0)), text.len());
+        assert_eq!(lines.end(), at(2, 5));
+        assert_eq!(Lines::new("a\n").end(), at(1, 0));
         let mut sources = SourceMap::new();
         let id = sources.add("a.ray", text, 0);
         let span = Span::new(id, x, x + 1);

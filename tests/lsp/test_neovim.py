@@ -60,11 +60,14 @@ def test_neovim_hovers_completes_goes_to_definitions_and_renames(tmp_path):
             {"method": "textDocument/definition", "position": at_call},
             {"method": "textDocument/completion", "position": {"line": call_line, "character": len(name) - 1}},
             {"method": "textDocument/rename", "position": at_call, "more": {"newName": "renamed"}},
+            {"method": "textDocument/formatting", "position": at_call, "more": {"options": {"tabSize": 2, "insertSpaces": True}}},
         ]
     }
-    hover, definition, completion, rename = neovim([scene], asks, tmp_path)["scoping.ray"]["asked"]
+    hover, definition, completion, rename, formatting = neovim([scene], asks, tmp_path)["scoping.ray"]["asked"]
     assert f"proc {name}(" in hover["result"]["contents"]["value"]
     assert definition["result"][0]["range"]["start"]["line"] == proc_line
     assert any(item["label"].startswith(name + "(") for item in completion["result"])
     edits = next(iter(rename["result"]["changes"].values()))
     assert len(edits) >= 2 and all(edit["newText"] == "renamed" for edit in edits)
+    # The bundled scenarios are formatted already: no edit.
+    assert formatting.get("error") is None and not formatting.get("result"), formatting

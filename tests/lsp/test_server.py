@@ -335,3 +335,27 @@ async def test_the_render_command_gives_the_batch_renderers_bytes(client: Langua
         await client.workspace_execute_command_async(
             types.ExecuteCommandParams(command="rayrepl.render", arguments=[uri, {"width": 0}])
         )
+
+
+@pytest.mark.asyncio
+async def test_formatting_gives_what_rayrepl_fmt_writes(client: LanguageClient):
+    import subprocess
+
+    messy = HEAD + "proc p(n)\nif n>0 then\nput sphere center n,0,0 radius 1 # a ball\nkd 1 ks 0 phong 1 color 255,0,0 end\np(n-1)\nend\nend\np(3)\n"
+    uri = await open_document(client, "messy.ray", messy)
+    options = types.FormattingOptions(tab_size=2, insert_spaces=True)
+    document = types.TextDocumentIdentifier(uri=uri)
+    [edit] = await client.text_document_formatting_async(types.DocumentFormattingParams(text_document=document, options=options))
+    expected = subprocess.run([RAYREPL, "fmt", "-"], input=messy, capture_output=True, text=True, check=True).stdout
+    assert edit.new_text == expected and "    put sphere center n, 0, 0 radius 1 # a ball" in expected
+    assert edit.range.start == at(0, 0) and edit.range.end == at(messy.count("\n"), 0)
+    tidy = await open_document(client, "tidy.ray", expected)
+    edits = await client.text_document_formatting_async(
+        types.DocumentFormattingParams(text_document=types.TextDocumentIdentifier(uri=tidy), options=options)
+    )
+    assert list(edits) == [], "a formatted file is left alone"
+    broken = await open_document(client, "broken.ray", HEAD + "put sphere\n")
+    with pytest.raises(Exception, match="cannot be formatted until it parses"):
+        await client.text_document_formatting_async(
+            types.DocumentFormattingParams(text_document=types.TextDocumentIdentifier(uri=broken), options=options)
+        )
