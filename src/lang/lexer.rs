@@ -255,13 +255,17 @@ impl<'a> Lexer<'a> {
         let diagnostic = Diagnostic::error(span, format!("unexpected character `{character}`"))
             .with_code("unexpected-character")
             .with_label("this character is not part of the language");
-        let help = if character.is_alphabetic() {
-            Some(self.accented_word_help(start, end))
+        let (help, replacement) = if character.is_alphabetic() {
+            (Some(self.accented_word_help(start, end)), None)
         } else {
-            character_help(character).map(str::to_string)
+            character_help(character).map_or((None, None), |(help, replacement)| (Some(help.to_string()), replacement))
         };
         let diagnostic = match help {
             Some(help) => diagnostic.with_help(help),
+            None => diagnostic,
+        };
+        let diagnostic = match replacement {
+            Some(replacement) => diagnostic.with_replacement(span, replacement),
             None => diagnostic,
         };
         let (word, word_span) = self.word_around(start, end);
@@ -314,22 +318,23 @@ fn small_integer(literal: &str) -> Option<f64> {
 }
 
 /// A hint for characters learners often type by habit from other languages,
-/// or that a word processor puts in their place.
-fn character_help(character: char) -> Option<&'static str> {
-    match character {
-        '\u{2212}' => Some("this is a Unicode minus sign; type `-`"),
-        '\u{2010}'..='\u{2015}' | '\u{fe63}' | '\u{ff0d}' => Some("this is a Unicode dash; type `-`"),
-        '\u{d7}' => Some("to multiply, type `*`"),
-        '\u{f7}' => Some("to divide, type `/`"),
-        '\u{2018}'..='\u{201f}' => Some("the language has no strings: names are written without quotes"),
-        ';' => Some("instructions need no separator: remove the `;`"),
-        '{' | '}' => Some("blocks are closed with `end`, not with braces"),
-        '"' | '\'' => Some("the language has no strings: names are written without quotes"),
-        '.' => Some("write decimals with digits on both sides of the point, like `0.5`"),
-        '^' => Some("there is no power operator: multiply, like `x * x`"),
-        '[' | ']' => Some("use `(` and `)` for grouping"),
-        _ => None,
-    }
+/// or that a word processor puts in their place, and the text to type
+/// instead where it is plain (a quick fix).
+fn character_help(character: char) -> Option<(&'static str, Option<&'static str>)> {
+    Some(match character {
+        '\u{2212}' => ("this is a Unicode minus sign; type `-`", Some("-")),
+        '\u{2010}'..='\u{2015}' | '\u{fe63}' | '\u{ff0d}' => ("this is a Unicode dash; type `-`", Some("-")),
+        '\u{d7}' => ("to multiply, type `*`", Some("*")),
+        '\u{f7}' => ("to divide, type `/`", Some("/")),
+        '\u{2018}'..='\u{201f}' => ("the language has no strings: names are written without quotes", None),
+        ';' => ("instructions need no separator: remove the `;`", Some("")),
+        '{' | '}' => ("blocks are closed with `end`, not with braces", None),
+        '"' | '\'' => ("the language has no strings: names are written without quotes", None),
+        '.' => ("write decimals with digits on both sides of the point, like `0.5`", None),
+        '^' => ("there is no power operator: multiply, like `x * x`", None),
+        '[' | ']' => ("use `(` and `)` for grouping", None),
+        _ => return None,
+    })
 }
 
 impl Iterator for Lexer<'_> {
@@ -495,6 +500,7 @@ mod tests {
     #[test]
     fn typographic_dashes_get_a_hint() {
         assert_eq!(error("\u{2212}1").help.as_deref(), Some("this is a Unicode minus sign; type `-`"));
+        assert_eq!(error("\u{2212}1").replacements[0].text, "-", "a quick fix");
         assert_eq!(error("1 \u{2014} 2").help.as_deref(), Some("this is a Unicode dash; type `-`"));
     }
 

@@ -48,6 +48,17 @@ async def ask(client: LanguageClient, request: str, params, uri: str, position: 
     )
 
 
+async def quick_fixes(client: LanguageClient, uri: str, diagnostic: types.Diagnostic):
+    """The code actions offered for `diagnostic` of `uri`."""
+    return await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            range=diagnostic.range,
+            context=types.CodeActionContext(diagnostics=[diagnostic]),
+        )
+    )
+
+
 def word(text: str, line: int, name: str, nth: int = 0) -> types.Position:
     """The position of the `nth` `name` on `line` of `text` (all ASCII)."""
     row = text.split("\n")[line]
@@ -67,13 +78,7 @@ async def test_a_parse_error_has_its_place_code_and_help(client: LanguageClient)
     assert "help: did you mean `sphere`?" in diagnostic.message
     [related] = diagnostic.related_information
     assert related.location.range.start == at(3, 4) and "not a keyword" in related.message
-    actions = await client.text_document_code_action_async(
-        types.CodeActionParams(
-            text_document=types.TextDocumentIdentifier(uri=uri),
-            range=diagnostic.range,
-            context=types.CodeActionContext(diagnostics=[diagnostic]),
-        )
-    )
+    actions = await quick_fixes(client, uri, diagnostic)
     [fix] = actions
     assert fix.kind == types.CodeActionKind.QuickFix
     [edit] = fix.edit.changes[uri]
@@ -359,3 +364,29 @@ async def test_formatting_gives_what_rayrepl_fmt_writes(client: LanguageClient):
         await client.text_document_formatting_async(
             types.DocumentFormattingParams(text_document=types.TextDocumentIdentifier(uri=broken), options=options)
         )
+
+
+FIXES = [
+    ("put Sphere center 0, 0, 0 radius 1 " + BALL, "Sphere", "sphere"),
+    ("put sphère center 0, 0, 0 radius 1 " + BALL, "sphère", "sphere"),
+    ("put sphere centre 0, 0, 0 radius 1 " + BALL, "centre", "center"),
+    ("put spehre center 0, 0, 0 radius 1 " + BALL, "spehre", "sphere"),
+    ("let a = 1,5", "1,5", "1.5"),
+    ("let a = \u22121", "\u2212", "-"),
+    ("let a = 2 \u00d7 3", "\u00d7", "*"),
+    ("put sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color #ff8000 end", "#ff8000", "255, 128, 0"),
+]
+
+
+@pytest.mark.asyncio
+@pytest.mark.parametrize("line, wrong, right", FIXES)
+async def test_a_quick_fix_for_each_help_that_proposes_an_edit(client: LanguageClient, line, wrong, right):
+    uri = await open_document(client, "fix.ray", HEAD + line + "\n")
+    [diagnostic] = client.diagnostics[uri]
+    actions = await quick_fixes(client, uri, diagnostic)
+    [fix] = actions
+    [edit] = fix.edit.changes[uri]
+    start = line.index(wrong)
+    # Columns in UTF-16 code units: every character here is one.
+    assert edit.range == types.Range(start=at(3, start), end=at(3, start + len(wrong))), edit
+    assert edit.new_text == right

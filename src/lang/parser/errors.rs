@@ -193,9 +193,9 @@ fn end_of_file_error(place: Place<'_>, context: &Context, expected: &Expected, l
     };
     let diagnostic =
         Diagnostic::error(span, message).with_code("unexpected-end-of-file").with_label("the file ends here");
-    match colour_help(place, context, place.text.len()) {
-        Some(help) => diagnostic.with_help(help),
-        None => diagnostic,
+    match (colour_help(place, context, place.text.len()), colour_fix(place, context, place.text.len())) {
+        (Some(help), Some((span, numbers))) => diagnostic.with_help(help).with_replacement(span, numbers),
+        _ => diagnostic,
     }
 }
 
@@ -291,9 +291,13 @@ fn token_error(place: Place<'_>, mode: Mode, context: &Context, expected: &Expec
         return diagnostic;
     }
     if let Some(help) = common_mistake(place, context, expected, found) {
+        let until = found.span.start as usize;
+        let colour =
+            colour_fix(place, context, until).filter(|_| colour_help(place, context, until) == Some(help.clone()));
         let diagnostic = diagnostic.with_help(help);
-        return match decimal_comma(place, context, found) {
-            Some((span, number)) => diagnostic.with_replacement(span, number),
+        let fix = decimal_comma(place, context, found).or(colour);
+        return match fix {
+            Some((span, text)) => diagnostic.with_replacement(span, text),
             None => diagnostic,
         };
     }
@@ -362,16 +366,26 @@ fn decimal_comma(place: Place<'_>, context: &Context, found: &Found) -> Option<(
 /// "colours are three numbers", when a `#ff0000` colour (read as a comment)
 /// follows `color` in the text before byte `until`.
 fn colour_help(place: Place<'_>, context: &Context, until: usize) -> Option<String> {
+    let (_, numbers) = colour_fix(place, context, until)?;
+    Some(format!("`#` starts a comment; colours are three numbers from 0 to 255: `color {numbers}`"))
+}
+
+/// The span of a `#ff0000` colour (read as a comment) that follows `color`
+/// in the text before byte `until`, and its three numbers (`255, 0, 0`).
+fn colour_fix(place: Place<'_>, context: &Context, until: usize) -> Option<(Span, String)> {
     let (Token::Color, color) = place.previous(context)? else { return None };
-    let after = place.text.get(color.end as usize..until)?.trim_start();
-    let digits: String = after.strip_prefix('#')?.chars().take_while(char::is_ascii_alphanumeric).collect();
+    let after = place.text.get(color.end as usize..until)?;
+    let hash = after.find('#').filter(|&at| after[..at].trim().is_empty())?;
+    let digits: String = after[hash + 1..].chars().take_while(char::is_ascii_alphanumeric).collect();
     let six_digits: String = match digits.len() {
-        6 => digits,
+        6 => digits.clone(),
         3 => digits.chars().flat_map(|digit| [digit, digit]).collect(),
         _ => return None,
     };
     let [_, red, green, blue] = u32::from_str_radix(&six_digits, 16).ok()?.to_be_bytes();
-    Some(format!("`#` starts a comment; colours are three numbers from 0 to 255: `color {red}, {green}, {blue}`"))
+    let start = color.end + hash as u32;
+    let span = Span { start, end: start + 1 + digits.len() as u32, ..color };
+    Some((span, format!("{red}, {green}, {blue}")))
 }
 
 /// The message (and label and related spans) for an unexpected token,
