@@ -17,9 +17,15 @@ HEAD = "camera distance 10 angle 1 end\nambient 0.2\nlight vector 0.5, 0, 0.6 in
 BALL = "kd 1 ks 0 phong 1 color 255, 120, 40 end"
 
 
-@pytest_lsp.fixture(config=ClientServerConfig(server_command=[RAYREPL, "lsp"]))
-async def client(lsp_client: LanguageClient):
-    await lsp_client.initialize_session(types.InitializeParams(capabilities=types.ClientCapabilities()))
+@pytest_lsp.fixture(
+    config=ClientServerConfig(server_command=[RAYREPL, "lsp"]),
+    params=["visual-studio-code", "neovim", "emacs"],
+)
+async def client(lsp_client: LanguageClient, request):
+    # Each test runs as each of these clients, with the capabilities
+    # pytest-lsp recorded from it.
+    capabilities = pytest_lsp.client_capabilities(request.param)
+    await lsp_client.initialize_session(types.InitializeParams(capabilities=capabilities))
     yield
     await lsp_client.shutdown_session()
 
@@ -258,6 +264,9 @@ async def test_completion_follows_what_may_come_there_while_the_text_does_not_pa
     assert "put" not in offered and "n" not in offered, "no instruction, no local of `ring`"
     after_start = await type_at_end(client, uri, RING + "put ", "ball\nri", 3)
     assert await labels(after_start) == ["ring(n, r)"]
+    [ring] = await ask(client, "completion", types.CompletionParams, uri, after_start)
+    snippets = client.capabilities.text_document.completion.completion_item.snippet_support
+    assert ring.text_edit.new_text == ("ring(${1:n}, ${2:r})$0" if snippets else "ring(")
 
 
 @pytest.mark.asyncio
