@@ -3,7 +3,8 @@
 // the lexer's reading of every scenario and every valid test case: each
 // keyword of the words table gets a keyword's scope, each number a number's,
 // each comment a comment's, and no other piece of text only `source.ray`.
-// Then a few lines with every scope written out.
+// Then every word of the table alone, and a few lines with every scope
+// written out.
 'use strict';
 
 const fs = require('fs');
@@ -219,6 +220,15 @@ function checkKnownLines(grammar, failures) {
   }
 }
 
+// Every word of the table, alone on a line, gets a keyword's scope.
+function checkTableWords(grammar, keywords, failures) {
+  for (const word of keywords) {
+    const { tokens } = tokenizeLines(grammar, word)[0];
+    const scoped = tokens.length === 1 && tokens[0].scopes.some((s) => expected.keyword.test(s));
+    if (!scoped) failures.push(`the word \`${word}\` of the table is tokenized as ${JSON.stringify(tokens)}`);
+  }
+}
+
 async function main() {
   const grammar = await loadGrammar();
   const keywords = tableWords();
@@ -234,10 +244,12 @@ async function main() {
   const failures = [];
   const counts = { tokens: 0 };
   for (const file of files) checkFile(grammar, file, keywords, failures, counts);
+  checkTableWords(grammar, keywords, failures);
   checkKnownLines(grammar, failures);
   for (const failure of failures) console.error(failure);
   const summary = Object.entries(counts).map(([kind, n]) => `${n} ${kind}`).join(', ');
-  console.log(`${files.length} files (${summary}), ${knownLines.length} known lines: ${failures.length} failures`);
+  const known = `${keywords.size} words of the table alone, ${knownLines.length} known lines`;
+  console.log(`${files.length} files (${summary}), ${known}: ${failures.length} failures`);
   process.exit(failures.length === 0 ? 0 : 1);
 }
 
