@@ -7,6 +7,8 @@ use std::fmt;
 
 use super::token::Token;
 
+pub mod textmate;
+
 /// The part a keyword plays in the grammar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
