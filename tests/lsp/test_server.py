@@ -399,3 +399,22 @@ async def test_a_quick_fix_for_each_help_that_proposes_an_edit(client: LanguageC
     # Columns in UTF-16 code units: every character here is one.
     assert edit.range == types.Range(start=at(3, start), end=at(3, start + len(wrong))), edit
     assert edit.new_text == right
+
+
+@pytest.mark.asyncio
+async def test_the_quick_fix_for_else_if_closes_the_outer_if_after_the_inner_one(client: LanguageClient):
+    body = "if 1 < 2 then\n  print 1\nelse if 2 < 3 then\n  print 2\nend\nprint 3\n"
+    uri = await open_document(client, "else_if.ray", HEAD + body)
+    [diagnostic] = client.diagnostics[uri]
+    assert "`else if` starts a second `if`" in diagnostic.message
+    [fix] = await quick_fixes(client, uri, diagnostic)
+    [edit] = fix.edit.changes[uri]
+    assert edit.range == types.Range(start=at(7, 3), end=at(7, 3)) and edit.new_text == " end"
+    client.text_document_did_change(
+        types.DidChangeTextDocumentParams(
+            text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+            content_changes=[types.TextDocumentContentChangePartial(range=edit.range, text=edit.new_text)],
+        )
+    )
+    await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+    assert list(client.diagnostics[uri]) == [], "the fix makes it run"

@@ -43,6 +43,9 @@ pub(super) struct Open {
     pub else_if: Option<Span>,
     /// Whether this is an `if` written right after `else`.
     pub after_else: bool,
+    /// For an `if` with an `else if`: the `end` that closed the inner
+    /// `if`, after which this one's own `end` most likely belongs.
+    pub else_if_end: Option<Span>,
 }
 
 /// An `end` that closed one construct while lined up with an outer one.
@@ -249,6 +252,7 @@ impl Context {
             dedent: None,
             else_if: None,
             after_else,
+            else_if_end: None,
         });
     }
 
@@ -259,6 +263,11 @@ impl Context {
             self.stray_closer = true;
             return;
         };
+        if closed.after_else
+            && let Some(outer) = self.open.last_mut()
+        {
+            outer.else_if_end = Some(span);
+        }
         let Some(column) = column.filter(|column| *column < closed.indent) else { return };
         let Some(outer) = self.open.iter().rev().take(LOOKBACK).find(|open| open.indent == column) else { return };
         let repeated = self.misclosed.last().is_some_and(|last| last.meant_for.span == outer.span);
@@ -373,6 +382,9 @@ mod tests {
         let [outer, inner] = &context.open[..] else { panic!("two ifs open") };
         assert!(outer.else_if.is_some() && !outer.after_else);
         assert!(inner.after_else);
+        let context = context_of("if a < 1 then\nelse if a < 2 then print 1 end\nprint 2");
+        let [outer] = &context.open[..] else { panic!("the outer if open") };
+        assert_eq!(outer.else_if_end.map(|end| end.start), Some(41), "the inner if's `end`");
     }
 
     #[test]

@@ -231,8 +231,13 @@ fn unclosed_error(place: Place<'_>, blame: Blame<'_>, at: Span, found: Option<&F
     match else_if_help(open) {
         Some((help, related)) => {
             let diagnostic = diagnostic.with_help(help);
-            match related {
+            let diagnostic = match related {
                 Some(span) => diagnostic.with_related(span, "this `if` needs its own `end`"),
+                None => diagnostic,
+            };
+            // The quick fix: the outer `if`'s `end` right after the inner one's.
+            match open.else_if_end.filter(|_| !open.after_else) {
+                Some(end) => diagnostic.with_replacement(Span { start: end.end, ..end }, " end"),
                 None => diagnostic,
             }
         }
