@@ -76,14 +76,20 @@ fn to_protocol(uri: &Uri, analysis: &Analysis, diagnostic: &Diagnostic) -> lsp_t
     }
 }
 
-/// The quick fixes for the diagnostics in `wanted` whose help proposes an
+/// The quick fixes for the diagnostics at `wanted` whose help proposes an
 /// edit (a misspelt word, capitals, a decimal comma, ...).
 pub(crate) fn quick_fixes(uri: &Uri, analysis: &Analysis, wanted: Range) -> Vec<CodeActionOrCommand> {
     let sources = &analysis.sources;
     let overlaps = |other: Range| other.start <= wanted.end && wanted.start <= other.end;
     let fixable = analysis.diagnostics.iter().filter(|diagnostic| !diagnostic.replacements.is_empty());
+    // Asked at the diagnostic or at what the fix changes (the misspelt
+    // word, where the caret points at the word after it).
+    let asked = |diagnostic: &&Diagnostic| {
+        let mut spans = std::iter::once(diagnostic.span).chain(diagnostic.replacements.iter().map(|r| r.span));
+        spans.any(|span| overlaps(range(span, sources)))
+    };
     fixable
-        .filter(|diagnostic| overlaps(range(diagnostic.span, sources)))
+        .filter(asked)
         .map(|diagnostic| {
             let edits = diagnostic
                 .replacements

@@ -89,6 +89,10 @@ async def test_a_parse_error_has_its_place_code_and_help(client: LanguageClient)
     assert fix.kind == types.CodeActionKind.QuickFix
     [edit] = fix.edit.changes[uri]
     assert edit.new_text == "sphere" and edit.range == types.Range(start=at(3, 4), end=at(3, 10))
+    # Asked with the cursor on the misspelt word, as editors ask: the same fix.
+    on_the_word = types.Diagnostic(range=types.Range(start=at(3, 6), end=at(3, 6)), message="")
+    [fix] = await quick_fixes(client, uri, on_the_word)
+    assert list(fix.edit.changes[uri]) == [edit]
 
 
 @pytest.mark.asyncio
