@@ -8,6 +8,7 @@ use std::fmt;
 use super::token::Token;
 
 pub mod textmate;
+pub mod tree_sitter;
 
 /// The part a keyword plays in the grammar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
