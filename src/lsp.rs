@@ -331,30 +331,23 @@ fn to_json(value: impl serde::Serialize) -> Value {
     serde_json::to_value(value).expect("protocol messages are JSON")
 }
 
-/// The name diagnostics give a document: its file's path, or its URI.
+/// The name diagnostics give a document: its file's path (decoded from the
+/// URI, as fluent-uri, the URI type of lsp-types, decodes it), or its URI.
 fn display_name(uri: &Uri) -> String {
-    let text = uri.as_str();
-    text.strip_prefix("file://").map_or_else(|| text.to_string(), percent_decoded)
+    match uri.scheme().map(|scheme| scheme.as_str()) {
+        Some("file") => uri.path().as_estr().decode().into_string_lossy().into_owned(),
+        _ => uri.as_str().to_string(),
+    }
 }
 
-/// `text` with its `%XX` escapes decoded (a URI's path).
-fn percent_decoded(text: &str) -> String {
-    let bytes = text.as_bytes();
-    let mut decoded = Vec::with_capacity(bytes.len());
-    let mut at = 0;
-    while at < bytes.len() {
-        let hex =
-            bytes.get(at + 1..at + 3).and_then(|pair| u8::from_str_radix(std::str::from_utf8(pair).ok()?, 16).ok());
-        match (bytes[at], hex) {
-            (b'%', Some(byte)) => {
-                decoded.push(byte);
-                at += 3;
-            }
-            (byte, _) => {
-                decoded.push(byte);
-                at += 1;
-            }
-        }
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_is_named_by_its_decoded_path() {
+        let uri = |text: &str| text.parse::<Uri>().expect("a URI");
+        assert_eq!(display_name(&uri("file:///tmp/my%20scene%C3%A9.ray")), "/tmp/my sceneé.ray");
+        assert_eq!(display_name(&uri("untitled:Untitled-1")), "untitled:Untitled-1");
     }
-    String::from_utf8_lossy(&decoded).into_owned()
 }

@@ -324,6 +324,22 @@ impl fmt::Display for Token {
     }
 }
 
+/// Checks that the file at `path` (from the crate's root), generated from
+/// the table, holds `generated`; with `RAYREPL_BLESS` set, writes it first.
+/// `tests` is the filter of the tests that do this, for the message.
+#[cfg(test)]
+fn assert_generated(path: &str, generated: &str, tests: &str) {
+    let path_on_disk = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+    if std::env::var_os("RAYREPL_BLESS").is_some() {
+        std::fs::write(&path_on_disk, generated).expect("the generated file is written");
+    }
+    let committed = std::fs::read_to_string(&path_on_disk).unwrap_or_default();
+    assert!(
+        committed == generated,
+        "{path} is not what the words table makes: RAYREPL_BLESS=1 cargo test --release --lib {tests}"
+    );
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -202,23 +202,11 @@ fn escape(text: &str) -> String {
 mod tests {
     use super::*;
 
-    fn committed_path() -> std::path::PathBuf {
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(PATH)
-    }
-
     /// The committed grammar is what the table makes now;
     /// `RAYREPL_BLESS=1 cargo test --release --lib textmate` writes it again.
     #[test]
     fn the_committed_grammar_is_made_from_the_table() {
-        let generated = grammar();
-        if std::env::var_os("RAYREPL_BLESS").is_some() {
-            std::fs::write(committed_path(), &generated).expect("the grammar is written");
-        }
-        let committed = std::fs::read_to_string(committed_path()).unwrap_or_default();
-        assert!(
-            committed == generated,
-            "{PATH} is not what the words table makes: RAYREPL_BLESS=1 cargo test --release --lib textmate"
-        );
+        super::super::assert_generated(PATH, &grammar(), "textmate");
     }
 
     /// Every word with a role, and `time`, is in the rule of its scope.

@@ -136,15 +136,7 @@ mod tests {
     /// `RAYREPL_BLESS=1 cargo test --release --lib tree_sitter` writes them again.
     #[test]
     fn the_committed_highlights_are_made_from_the_table() {
-        let generated = highlights();
-        if std::env::var_os("RAYREPL_BLESS").is_some() {
-            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(HIGHLIGHTS_PATH);
-            std::fs::write(path, &generated).expect("the queries are written");
-        }
-        assert!(
-            committed(HIGHLIGHTS_PATH) == generated,
-            "{HIGHLIGHTS_PATH} is not what the words table makes: RAYREPL_BLESS=1 cargo test --release --lib tree_sitter"
-        );
+        super::super::assert_generated(HIGHLIGHTS_PATH, &highlights(), "tree_sitter");
     }
 
     /// The grammar's keywords are the table's, each of them and no other.
