@@ -7,6 +7,7 @@ use std::fmt;
 
 use super::token::Token;
 
+pub mod codemirror;
 pub mod textmate;
 pub mod tree_sitter;
 

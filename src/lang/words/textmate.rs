@@ -37,7 +37,7 @@ pub const PATH: &str = "editors/textmate/ray.tmLanguage.json";
 const CONTROL_TOPICS: [&str; 3] = ["if", "end", "proc"];
 
 /// What a name is made of, as the lexer reads it.
-const NAME: &str = "[A-Za-z_][A-Za-z0-9_]*";
+pub(super) const NAME: &str = "[A-Za-z_][A-Za-z0-9_]*";
 
 /// After a word: not more of a name (`spheres` is a name, not `sphere`).
 const WORD_END: &str = "(?![A-Za-z0-9_])";
@@ -148,7 +148,7 @@ fn call() -> Value {
 }
 
 /// `[0-9]*(\.[0-9]+)?([eE][+-]?[0-9]+)?` with at least one digit, as the lexer reads it.
-fn number() -> Value {
+pub(super) fn number() -> Value {
     json!({
         "name": "constant.numeric.ray",
         "match": "(?:[0-9]+(?:\\.[0-9]+)?|\\.[0-9]+)(?:[eE][+-]?[0-9]+)?",
