@@ -33,5 +33,5 @@ pub use formats::Content;
 pub(crate) use formats::ImageFormat;
 pub(crate) use frame_names::frame_path;
 pub(crate) use frames::{FrameSink, describe_files};
-pub use still::write_image;
-pub(crate) use still::{write_image_cancellable, write_png, write_ppm, write_text};
+pub use still::{write_image, write_png};
+pub(crate) use still::{write_image_cancellable, write_ppm, write_text};

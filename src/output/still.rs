@@ -52,8 +52,9 @@ pub(crate) fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<
     writer.flush()
 }
 
-/// Writes `image` as PNG to `writer`.
-pub(crate) fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
+/// Writes `image` as PNG to `writer`: the bytes of every PNG file the
+/// program writes, and of the browser playground's downloads (`web/`).
+pub fn write_png(writer: &mut dyn Write, image: &RgbImage) -> image::ImageResult<()> {
     // Fast compression: large renders and 100-frame animations would
     // otherwise spend more time compressing than tracing.
     let encoder = PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Adaptive);
