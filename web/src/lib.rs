@@ -1,0 +1,255 @@
+//! rayrepl's session core for the browser: a [`Playground`] holds one
+//! [`CellSession`] and runs text in it, as cells of a notebook are run,
+//! handing back what the session showed as a [`Reply`]: its outputs as
+//! JSON (text with its role, diagnostics drawn as the terminal draws them
+//! and as data, pixel explanations, lesson steps and verdicts) and its
+//! pictures as bytes. The page (`web/src/`) and the Node test
+//! (`web/test/node.mjs`) call it from JavaScript through wasm-bindgen; the
+//! renderer, the language and the commands are the library's, unchanged,
+//! so the pixels are the bytes the command line writes.
+
+use std::path::Path;
+use std::time::Duration;
+
+use image::RgbImage;
+use rayrepl::lang::{Limits, SourceMap};
+use rayrepl::repl::{CellEnd, CellSession, Collected, LessonVerdict, Output, RenderSettings, SessionOptions, TextRole};
+use serde_json::{Value, json};
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen]
+extern "C" {
+    /// The page's clock: milliseconds since the page (or worker) started.
+    #[wasm_bindgen(js_namespace = performance)]
+    fn now() -> f64;
+
+    /// Writes a line to the browser's console.
+    #[wasm_bindgen(js_namespace = console)]
+    fn error(message: &str);
+}
+
+/// The browser's clock, for the durations the session reports (a render's
+/// time); the standard library has none on `wasm32-unknown-unknown`.
+fn browser_clock() -> Duration {
+    Duration::from_secs_f64(now() / 1000.0)
+}
+
+/// Sets up what the library needs from the browser, once, when the module
+/// is instantiated: its clock, and a panic's message on the console (the
+/// page then sees the module trap, and starts a new worker).
+#[wasm_bindgen(start)]
+pub fn start() {
+    rayrepl::clock::supply_clock(browser_clock);
+    std::panic::set_hook(Box::new(|info| error(&format!("rayrepl panicked: {info}"))));
+}
+
+/// The settings a playground starts with, as the page's controls give them.
+#[wasm_bindgen]
+#[derive(Debug, Clone, Copy)]
+pub struct Settings {
+    /// Width of the picture in pixels.
+    pub width: u32,
+    /// Height of the picture in pixels.
+    pub height: u32,
+    /// Reflections followed.
+    pub depth: u32,
+    /// Rays per pixel.
+    pub samples: u32,
+    /// The value of `time`.
+    pub time: f64,
+}
+
+#[wasm_bindgen]
+impl Settings {
+    /// The command line's defaults (800x600, depth 5, one ray a pixel, time 0).
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> Settings {
+        let defaults = RenderSettings::default();
+        Settings {
+            width: defaults.width,
+            height: defaults.height,
+            depth: defaults.depth,
+            samples: defaults.samples,
+            time: defaults.time,
+        }
+    }
+}
+
+impl Default for Settings {
+    fn default() -> Settings {
+        Settings::new()
+    }
+}
+
+/// One session of the language, driven by the page.
+#[wasm_bindgen]
+pub struct Playground {
+    session: CellSession,
+    /// How many cells have run, to name the next one's diagnostics.
+    cells: usize,
+}
+
+#[wasm_bindgen]
+impl Playground {
+    /// A session with `settings`, checked against the command line's
+    /// limits (a refusal says which and why), with the command line's
+    /// limits on calls and primitives.
+    #[wasm_bindgen(constructor)]
+    pub fn new(settings: &Settings) -> Result<Playground, JsError> {
+        let settings = RenderSettings {
+            width: settings.width,
+            height: settings.height,
+            depth: settings.depth,
+            samples: settings.samples,
+            time: settings.time,
+            ..RenderSettings::default()
+        };
+        settings.validate().map_err(|refusal| JsError::new(&refusal.to_string()))?;
+        let options = SessionOptions { settings, limits: Limits::default(), ..SessionOptions::default() };
+        Ok(Playground { session: CellSession::new(&options), cells: 0 })
+    }
+
+    /// Runs `text` as a cell: items and `:` commands, stopping at the
+    /// first error; its diagnostics name it `<cell N>`.
+    pub fn run(&mut self, text: &str) -> Reply {
+        self.cells += 1;
+        let name = format!("<cell {}>", self.cells);
+        let mut front = Collected::default();
+        let end = self.session.run(&name, text, &mut front);
+        Reply::new(end, front.outputs, self.session.sources())
+    }
+
+    /// Runs `text` as the scene file `name` (`scene.ray`), as `:load`
+    /// would run it: the whole file, its camera first.
+    pub fn load(&mut self, name: &str, text: &str) -> Reply {
+        let mut front = Collected::default();
+        let end = self.session.load_text(Path::new(name), text, &mut front);
+        Reply::new(end, front.outputs, self.session.sources())
+    }
+}
+
+/// What a cell showed: its outputs in order, and their pictures.
+#[wasm_bindgen]
+pub struct Reply {
+    /// How the cell ended: `done`, `failed`, `interrupted` or `quit`.
+    end: &'static str,
+    /// The outputs as a JSON list; a picture names its place in `images`.
+    outputs: String,
+    /// The pictures, in the order the outputs name them.
+    images: Vec<RgbImage>,
+}
+
+#[wasm_bindgen]
+impl Reply {
+    /// How the cell ended: `done`, `failed`, `interrupted` or `quit`.
+    #[wasm_bindgen(getter)]
+    pub fn end(&self) -> String {
+        self.end.to_string()
+    }
+
+    /// The outputs, as a JSON list of objects with a `kind` (README, "In
+    /// the browser", lists them).
+    #[wasm_bindgen(getter)]
+    pub fn outputs(&self) -> String {
+        self.outputs.clone()
+    }
+
+    /// Picture `index` as RGBA bytes, the canvas's `ImageData`: the RGB
+    /// bytes the batch renderer writes, each pixel opaque.
+    pub fn rgba(&self, index: usize) -> Vec<u8> {
+        let Some(image) = self.images.get(index) else { return Vec::new() };
+        image.pixels().flat_map(|pixel| [pixel[0], pixel[1], pixel[2], u8::MAX]).collect()
+    }
+
+    /// Picture `index` as a PNG file, the bytes `rayrepl -o out.png` writes.
+    pub fn png(&self, index: usize) -> Result<Vec<u8>, JsError> {
+        let image = self.images.get(index).ok_or_else(|| JsError::new("no such picture"))?;
+        let mut bytes = Vec::new();
+        rayrepl::output::write_png(&mut bytes, image).map_err(|e| JsError::new(&e.to_string()))?;
+        Ok(bytes)
+    }
+}
+
+impl Reply {
+    /// The reply of a cell that ended with `end` after showing `outputs`,
+    /// its diagnostics pointing into `sources`.
+    fn new(end: CellEnd, outputs: Vec<Output>, sources: &SourceMap) -> Reply {
+        let end = match end {
+            CellEnd::Done => "done",
+            CellEnd::Failed => "failed",
+            CellEnd::Interrupted => "interrupted",
+            CellEnd::Quit => "quit",
+        };
+        let mut images = Vec::new();
+        let listed: Vec<Value> = outputs.into_iter().map(|output| describe(output, sources, &mut images)).collect();
+        Reply { end, outputs: Value::from(listed).to_string(), images }
+    }
+}
+
+/// `output` as a JSON object, its pictures moved to the end of `images`
+/// and named by their index there.
+fn describe(output: Output, sources: &SourceMap, images: &mut Vec<RgbImage>) -> Value {
+    let mut keep = |image: RgbImage| {
+        let (width, height) = image.dimensions();
+        images.push(image);
+        json!({ "index": images.len() - 1, "width": width, "height": height })
+    };
+    match output {
+        Output::Text { role, text } => json!({ "kind": "text", "role": role_name(role), "text": text }),
+        Output::Diagnostic(diagnostic) => json!({
+            "kind": "diagnostic",
+            "rendered": diagnostic.render(sources, false),
+            "data": diagnostic.to_json(sources),
+        }),
+        Output::Picture(picture) => json!({
+            "kind": "picture",
+            "marked": picture.marked.map(|(x, y)| [x, y]),
+            "image": keep(picture.image),
+        }),
+        Output::Frames { frames, fps } => {
+            let frames: Vec<Value> = frames.into_iter().map(&mut keep).collect();
+            json!({ "kind": "frames", "fps": fps, "frames": frames })
+        }
+        Output::AnimationFile(path) => json!({ "kind": "animation-file", "path": path.display().to_string() }),
+        Output::Explanation(explanation) => {
+            json!({ "kind": "explanation", "text": explanation.text, "data": explanation.json })
+        }
+        Output::LessonStep(step) => json!({
+            "kind": "lesson-step",
+            "number": step.number,
+            "steps": step.steps,
+            "task": step.task,
+            "example": step.example,
+            "text": step.to_text(),
+        }),
+        Output::LessonPictures(image) => json!({ "kind": "lesson-pictures", "image": keep(image) }),
+        Output::LessonVerdict(verdict) => {
+            let text = verdict.to_text();
+            match verdict {
+                LessonVerdict::Done { number, already } => {
+                    json!({ "kind": "lesson-verdict", "done": true, "number": number, "already": already, "text": text })
+                }
+                LessonVerdict::NotYet { missing, undo, hint, example } => json!({
+                    "kind": "lesson-verdict",
+                    "done": false,
+                    "missing": missing,
+                    "undo": undo,
+                    "hint": hint,
+                    "example": example,
+                    "text": text,
+                }),
+            }
+        }
+    }
+}
+
+/// The name of a text's role, as the page reads it.
+fn role_name(role: TextRole) -> &'static str {
+    match role {
+        TextRole::Message => "message",
+        TextRole::Note => "note",
+        TextRole::Error => "error",
+        TextRole::Printed => "printed",
+        TextRole::PrintedNote => "printed-note",
+    }
+}

@@ -1,0 +1,22 @@
+// A Reply of the WebAssembly module (web/src/lib.rs) as plain data: its
+// outputs parsed, each picture as RGBA bytes for a canvas and as the PNG
+// file the command line writes. The worker and the Node test read replies
+// this way.
+
+/** `reply` as `{ end, outputs, images }`, the Reply freed. */
+export function replyOf(reply) {
+  try {
+    const outputs = JSON.parse(reply.outputs);
+    const images = [];
+    const keep = (image) => {
+      images[image.index] = { width: image.width, height: image.height, rgba: reply.rgba(image.index), png: reply.png(image.index) };
+    };
+    for (const output of outputs) {
+      if (output.image) keep(output.image);
+      for (const frame of output.frames ?? []) keep(frame);
+    }
+    return { end: reply.end, outputs, images };
+  } finally {
+    reply.free();
+  }
+}
