@@ -15,6 +15,7 @@
 //! `session_commands`, `play`, `reload`, `write_back`, `lessons`).
 
 mod cancel;
+mod cells;
 pub(crate) mod commands;
 pub(crate) mod completion;
 mod console;
@@ -44,6 +45,7 @@ pub(crate) mod write_back;
 
 pub use cancel::CancelSwitch;
 pub(crate) use cancel::{LOOK, cancel_flag};
+pub use cells::{CellEnd, CellSession, Completeness, Completions};
 pub(crate) use console::Console;
 pub use options::SessionOptions;
 pub(crate) use options::new_session;

@@ -8,6 +8,8 @@ use std::fmt;
 use super::token::Token;
 
 pub mod codemirror;
+pub mod highlight;
+pub mod pygments;
 pub mod textmate;
 pub mod tree_sitter;
 
@@ -364,6 +366,42 @@ mod tests {
     #[test]
     fn the_texture_words_are_in_their_order() {
         assert_eq!(with_role(Texture).collect::<Vec<_>>(), ["kd", "ks", "phong", "color"]);
+    }
+
+    /// The class of a word of each class, and what the TextMate grammar and
+    /// the Pygments lexer give it (the words from elsewhere are names).
+    #[test]
+    fn highlighters_by_class() {
+        use highlight::Class::*;
+        let rows = [
+            ("if", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
+            ("else", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
+            ("end", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
+            ("proc", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
+            ("camera", Some(Definition), Some("storage.type.ray"), Some("Keyword.Declaration")),
+            ("put", Some(Instruction), Some("keyword.other.instruction.ray"), Some("Keyword.Reserved")),
+            ("box", Some(Shape), Some("support.type.shape.ray"), Some("Keyword.Type")),
+            (
+                "group",
+                Some(Transformation),
+                Some("support.type.transformation.ray"),
+                Some("Keyword.Type.Transformation"),
+            ),
+            ("radius", Some(Part), Some("keyword.other.part.ray"), Some("Name.Attribute")),
+            ("phong", Some(Texture), Some("keyword.other.texture.ray"), Some("Name.Attribute.Texture")),
+            ("sqrt", Some(Function), Some("support.function.ray"), Some("Name.Builtin")),
+            ("pi", Some(Constant), Some("constant.language.ray"), Some("Keyword.Constant")),
+            ("time", Some(Predefined), Some("variable.language.ray"), Some("Name.Builtin.Pseudo")),
+            ("colour", None, None, None),
+        ];
+        for (text, class, scope, token_type) in rows {
+            let word = lookup(text).expect("a word of the table");
+            let given = (highlight::class(word), textmate::scope(word), pygments::token_type(word));
+            assert_eq!(given, (class, scope, token_type), "`{text}`");
+        }
+        for topic in highlight::CONTROL_TOPICS {
+            assert!(lookup(topic).is_some_and(|word| word.topic == topic), "`{topic}` is a help page");
+        }
     }
 
     #[test]

@@ -76,6 +76,8 @@ pub(crate) fn complete(text: &str, position: Position, vocabulary: &Vocabulary, 
             CandidateKind::Number => (CompletionItemKind::VARIABLE, Some("number".to_string())),
             CandidateKind::Object => (CompletionItemKind::STRUCT, Some("object".to_string())),
             CandidateKind::Procedure => (CompletionItemKind::FUNCTION, Some(format!("proc {}", candidate.display))),
+            // A program file holds no commands.
+            CandidateKind::Command => (CompletionItemKind::KEYWORD, None),
         };
         let params = vocabulary.procedures.iter().find(|(name, _)| candidate.replacement == format!("{name}("));
         let (new_text, format) = match params {

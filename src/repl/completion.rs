@@ -6,6 +6,8 @@
 use crate::lang::words::{self, Role};
 
 use super::Vocabulary;
+use super::commands::{self, COMMANDS, Files, help_pages};
+use super::help;
 use super::syntax::is_word_char;
 
 /// What the grammar lets come where a word is being typed, judged from the
@@ -39,6 +41,8 @@ pub(crate) enum CandidateKind {
     Object,
     /// A procedure defined by the program, with its parenthesis.
     Procedure,
+    /// A command, or a help page's name after `:help`.
+    Command,
 }
 
 /// One completion: what the list shows, and what replaces the word typed.
@@ -130,6 +134,36 @@ pub(crate) fn complete(before: &str, inside: bool, vocabulary: &Vocabulary) -> (
     candidates.sort_by(|a, b| a.display.cmp(&b.display));
     candidates.dedup_by(|a, b| a.display == b.display);
     (start, candidates)
+}
+
+/// The completions on a command's line, `before` being the line up to the
+/// place asked about: the commands' names while the first word is typed,
+/// the help pages' names after `:help`, nothing after the other commands;
+/// `None` after a command that takes a file (the front-end lists files).
+pub(crate) fn complete_command(before: &str) -> Option<(usize, Vec<Candidate>)> {
+    let start = before.len() - before.trim_start().len();
+    let command = |display: &str, replacement: String| Candidate {
+        display: display.to_string(),
+        replacement,
+        kind: CandidateKind::Command,
+    };
+    let Some(command_end) = before[start..].find(char::is_whitespace).map(|i| start + i) else {
+        let typed = &before[start..];
+        let names = COMMANDS.iter().map(|command| command.topic.name).filter(|name| name.starts_with(typed));
+        return Some((start, names.map(|name| command(name, format!("{name} "))).collect()));
+    };
+    match commands::find(&before[start..command_end]) {
+        Some(found) if found.files != Files::None => None,
+        Some(found) if found.topic.name == ":help" => {
+            let word_start = word_start(before);
+            let typed = &before[word_start..];
+            let mut topics: Vec<&str> = help::all_names(&help_pages()).filter(|name| name.starts_with(typed)).collect();
+            topics.sort_unstable();
+            topics.dedup();
+            Some((word_start, topics.into_iter().map(|name| command(name, name.to_string())).collect()))
+        }
+        _ => Some((before.len(), Vec::new())),
+    }
 }
 
 /// A word of the language followed by a space, or a function with its parenthesis.

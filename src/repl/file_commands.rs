@@ -31,11 +31,28 @@ pub(crate) fn load_reporting(shell: &mut Shell, path: &Path, front: &mut dyn Fro
     loaded.map(|_| ()).map_err(|error| error.report(&shell.session, front))
 }
 
+/// Runs `text` into the session as the file at `path`, as `:load` does,
+/// reporting any failure on the front; `Err(())` if it failed (the session
+/// is then unchanged). What it printed is left for the caller to show.
+pub(crate) fn load_text_reporting(
+    shell: &mut Shell,
+    path: &Path,
+    text: &str,
+    front: &mut dyn FrontEnd,
+) -> Result<(), ()> {
+    load_text(shell, path, text, front).map(|_| ()).map_err(|error| error.report(&shell.session, front))
+}
+
 /// Runs the file at `path` into the session, as one input.
 fn load_file(shell: &mut Shell, path: &Path, front: &mut dyn FrontEnd) -> CommandResult {
     let text = reload::read(path, cancel_flag(front.cancel()))?;
+    load_text(shell, path, &text, front)
+}
+
+/// Runs `text`, the content of the file at `path`, into the session, as one input.
+fn load_text(shell: &mut Shell, path: &Path, text: &str, front: &mut dyn FrontEnd) -> CommandResult {
     let session = &mut shell.session;
-    let mut accepted = session.load(path, &text).map_err(|d| CommandError::Program(Box::new(d)))?;
+    let mut accepted = session.load(path, text).map_err(|d| CommandError::Program(Box::new(d)))?;
     show_warnings(session, &mut shell.warned, front, std::mem::take(&mut accepted.warnings));
     front.say(format!("loaded {}", path.display()));
     report::confirm(&accepted, session, front);

@@ -19,6 +19,7 @@ use super::file_commands::load_reporting;
 use super::inputs::report_input;
 use super::lessons;
 use super::options::{SessionOptions, new_session};
+use super::outputs::FrontEnd;
 use super::session::Session;
 use super::shell::Shell;
 use crate::interruption::Signal;
@@ -94,16 +95,17 @@ enum Ended {
 
 /// Runs the script in `shell`, as [`run_script`] says.
 fn run_in(shell: &mut Shell, console: &mut Console, input: impl BufRead, options: &SessionOptions) -> Ended {
-    let mut script =
-        Script { shell, console, keep_going: options.keep_going, errors: 0, wrote: false, interrupted: false };
+    let cancel = console.cancel;
+    let named = Named { name: SCRIPT_NAME, noun: "script" };
+    let mut script = Script::new(shell, console, cancel, named, options.keep_going);
     if let Some(path) = &options.initial_file {
-        let loaded = load_reporting(script.shell, path, script.console);
+        let loaded = load_reporting(script.shell, path, script.front);
         if script.after(loaded.is_ok()) == Step::Stop {
             return Ended::Status(1);
         }
     }
     if let Some(lesson) = &options.lesson {
-        let started = lessons::start_reporting(script.shell, lesson, script.console);
+        let started = lessons::start_reporting(script.shell, lesson, script.front);
         if script.after(started.is_ok()) == Step::Stop {
             return Ended::Status(1);
         }
@@ -118,6 +120,53 @@ fn run_in(shell: &mut Shell, console: &mut Console, input: impl BufRead, options
     } else {
         Ended::WithoutPicture
     }
+}
+
+/// How the text of a cell ran (see [`run_text`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum TextRan {
+    /// Every input and command succeeded.
+    Done,
+    /// One failed, and the text stopped there.
+    Failed,
+    /// Ctrl-C (the switch of `front`) stopped it.
+    Interrupted,
+    /// `:quit` ended it.
+    Quit,
+}
+
+/// Runs `text` in `shell` as a script is run, its diagnostics and messages
+/// naming it as `named` says: for a notebook's cell, whose inputs and
+/// commands run in order until the first that fails. Raising `cancel`
+/// stops it.
+pub(crate) fn run_text(
+    shell: &mut Shell,
+    front: &mut dyn FrontEnd,
+    cancel: Option<&'static CancelSwitch>,
+    named: Named,
+    text: &str,
+) -> TextRan {
+    let mut script = Script::new(shell, front, cancel, named, false);
+    script.run(text.as_bytes());
+    if script.interrupted {
+        TextRan::Interrupted
+    } else if script.errors > 0 {
+        TextRan::Failed
+    } else if script.quit {
+        TextRan::Quit
+    } else {
+        TextRan::Done
+    }
+}
+
+/// Who a script is: the name its diagnostics show (`<stdin>`, `<cell 3>`)
+/// and the word its messages use for it ("script", "cell").
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Named<'n> {
+    /// The name diagnostics show, before the line and column.
+    pub name: &'n str,
+    /// What it is, in messages ("the script stopped at line 3").
+    pub noun: &'static str,
 }
 
 /// Finished inputs read ahead of the one running, with their first lines.
@@ -155,19 +204,35 @@ enum Step {
     Stop,
 }
 
-/// A script being run.
-struct Script<'s, 'c> {
+/// A script (or a notebook's cell) being run.
+struct Script<'s> {
     shell: &'s mut Shell,
-    console: &'s mut Console<'c>,
+    front: &'s mut dyn FrontEnd,
+    /// The switch Ctrl-C raises, if the front-end has one.
+    cancel: Option<&'static CancelSwitch>,
+    /// Who the script is, in its diagnostics and messages.
+    named: Named<'s>,
     keep_going: bool,
     errors: usize,
+    /// Whether `:quit` ended it.
+    quit: bool,
     /// Whether a command wrote an image file.
     wrote: bool,
     /// Whether Ctrl-C stopped the script.
     interrupted: bool,
 }
 
-impl Script<'_, '_> {
+impl<'s> Script<'s> {
+    fn new(
+        shell: &'s mut Shell,
+        front: &'s mut dyn FrontEnd,
+        cancel: Option<&'static CancelSwitch>,
+        named: Named<'s>,
+        keep_going: bool,
+    ) -> Script<'s> {
+        Script { shell, front, cancel, named, keep_going, errors: 0, quit: false, wrote: false, interrupted: false }
+    }
+
     fn run(&mut self, input: impl BufRead) {
         let mut lines = ScriptLines::new(input);
         let mut ready = ReadAhead::default();
@@ -180,7 +245,7 @@ impl Script<'_, '_> {
                 Ok(line) => line,
                 Err(error) => {
                     if self.run_ready(&mut ready) == Step::Next {
-                        self.console.error(line_error(&error, number));
+                        self.front.error(line_error(&error, number, self.named.noun));
                         self.errors += 1;
                     }
                     return;
@@ -188,14 +253,14 @@ impl Script<'_, '_> {
             };
             let line = line.strip_suffix('\r').unwrap_or(line);
             // Ctrl-C while a long line is lexed stops the script here.
-            let armed = self.console.cancel.map(|switch| switch.arm());
+            let armed = self.cancel.map(|switch| switch.arm());
             let entry = match pending.take() {
                 Some(mut entry) => {
                     if entry.text().len() + line.len() > MOST_LINE_BYTES {
                         // An input that never ends (a line ending in `+`,
                         // again and again) must not fill the memory either.
                         if self.run_ready(&mut ready) == Step::Next {
-                            self.console.error(input_too_long(first_line));
+                            self.front.error(input_too_long(first_line, self.named.noun));
                             self.errors += 1;
                         }
                         return;
@@ -249,10 +314,10 @@ impl Script<'_, '_> {
     /// Ctrl-C during the parse stops the script at the first of them.
     fn run_ready(&mut self, ready: &mut ReadAhead) -> Step {
         let Some(&first_line) = ready.first_lines.first() else { return Step::Next };
-        let armed = self.console.cancel.map(|switch| switch.arm());
+        let armed = self.cancel.map(|switch| switch.arm());
         let sources: Vec<SourceId> = (ready.entries.iter().zip(&ready.first_lines))
             .map(|(entry, first_line)| {
-                self.shell.session.add_source(SCRIPT_NAME, entry.text(), first_line.saturating_sub(1))
+                self.shell.session.add_source(self.named.name, entry.text(), first_line.saturating_sub(1))
             })
             .collect();
         let parsed = parse_entries(&mut ready.entries, &sources);
@@ -269,9 +334,9 @@ impl Script<'_, '_> {
     }
 
     fn input(&mut self, text: &str, source: SourceId, parsed: Result<Program, Diagnostic>, first_line: usize) -> Step {
-        let armed = self.console.cancel.map(|switch| switch.arm());
+        let armed = self.cancel.map(|switch| switch.arm());
         let accepted = self.shell.session.submit_program(source, parsed);
-        let result = report_input(self.shell, self.console, text, accepted);
+        let result = report_input(self.shell, self.front, text, accepted);
         if self.stopped_by_ctrl_c(armed, first_line) {
             return Step::Stop;
         }
@@ -284,13 +349,16 @@ impl Script<'_, '_> {
     }
 
     fn command(&mut self, line: &str, number: usize) -> Step {
-        let armed = self.console.cancel.map(|switch| switch.arm());
-        let result = commands::execute(self.shell, line, self.console);
+        let armed = self.cancel.map(|switch| switch.arm());
+        let result = commands::execute(self.shell, line, self.front);
         if self.stopped_by_ctrl_c(armed, number) {
             return Step::Stop;
         }
         match result {
-            Ok(Flow::Quit) => Step::Stop,
+            Ok(Flow::Quit) => {
+                self.quit = true;
+                Step::Stop
+            }
             Ok(Flow::Continue) => {
                 self.wrote |= commands::writes_pictures(line);
                 self.after(true)
@@ -306,7 +374,8 @@ impl Script<'_, '_> {
     fn stopped_by_ctrl_c(&mut self, armed: Option<ArmedSwitch>, line: usize) -> bool {
         let Some(armed) = armed.filter(ArmedSwitch::pressed) else { return false };
         let signal = armed.signal().unwrap_or(Signal::Interrupt);
-        self.console.error(format!("interrupted by {signal}: the script stopped at line {line}"));
+        let noun = self.named.noun;
+        self.front.error(format!("interrupted by {signal}: the {noun} stopped at line {line}"));
         self.interrupted = true;
         true
     }
@@ -320,24 +389,24 @@ impl Script<'_, '_> {
     }
 }
 
-/// Why the input starting at line `first_line` of the script cannot run.
-fn input_too_long(first_line: usize) -> String {
+/// Why the input starting at line `first_line` of the script (or `noun`) cannot run.
+fn input_too_long(first_line: usize, noun: &str) -> String {
     format!(
-        "the input starting at line {first_line} of the script is longer than {} MiB, the most an input may be \
+        "the input starting at line {first_line} of the {noun} is longer than {} MiB, the most an input may be \
          (a long program is better read from a file with `:load`)",
         MOST_LINE_BYTES >> 20
     )
 }
 
-/// Why line `number` of the script cannot run, in words.
-fn line_error(error: &LineError, number: usize) -> String {
+/// Why line `number` of the script (or `noun`) cannot run, in words.
+fn line_error(error: &LineError, number: usize, noun: &str) -> String {
     match error {
-        LineError::NotText => format!("line {number} of the script cannot be read as text"),
+        LineError::NotText => format!("line {number} of the {noun} cannot be read as text"),
         LineError::TooLong => {
-            format!("line {number} of the script is longer than {} MiB, the most a line may be", MOST_LINE_BYTES >> 20)
+            format!("line {number} of the {noun} is longer than {} MiB, the most a line may be", MOST_LINE_BYTES >> 20)
         }
         LineError::Read(error) => {
-            format!("line {number} of the script cannot be read: {}", crate::output::io_reason(error))
+            format!("line {number} of the {noun} cannot be read: {}", crate::output::io_reason(error))
         }
     }
 }

@@ -48,6 +48,15 @@ enum UndoStep {
     Reload(Vec<Input>, PathBuf),
 }
 
+/// What a session held at one moment ([`Session::checkpoint`]).
+#[derive(Debug)]
+pub(crate) struct Checkpoint {
+    history: Vec<Input>,
+    undo_steps: Vec<UndoStep>,
+    settings: RenderSettings,
+    limits: Limits,
+}
+
 /// What an accepted input did, for the confirmation printed after it.
 #[derive(Debug, Clone)]
 pub(crate) struct Accepted {
@@ -351,6 +360,42 @@ impl Session {
             return Err(error);
         }
         Ok(undone)
+    }
+
+    /// What the session holds now, to come back to with [`Session::restore`].
+    pub(crate) fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            history: self.history.clone(),
+            undo_steps: self.undo_steps.clone(),
+            settings: self.settings,
+            limits: self.limits,
+        }
+    }
+
+    /// Comes back to what the session held at `checkpoint`: its inputs,
+    /// undo steps, settings and limits (a notebook's cell stopped by an
+    /// interrupt leaves the session as it was before the cell). The inputs
+    /// are evaluated again only if they or the settings changed, and
+    /// without the interrupt, which is still raised then: they ran before,
+    /// and end as they did.
+    pub(crate) fn restore(&mut self, checkpoint: Checkpoint) -> Result<(), Diagnostic> {
+        let Checkpoint { history, undo_steps, settings, limits } = checkpoint;
+        let same_inputs = history.len() == self.history.len()
+            && history.iter().zip(&self.history).all(|(then, now)| Rc::ptr_eq(&then.program, &now.program));
+        let same_settings = settings == self.settings && limits == self.limits;
+        if !(same_inputs && same_settings) {
+            (self.settings, self.limits) = (settings, limits);
+            let interrupt = self.interrupt.take();
+            let rebuilt = self.rebuild(history);
+            self.interrupt = interrupt;
+            if let Some(flag) = interrupt {
+                let interpreter = std::mem::replace(&mut self.interpreter, Interpreter::new(settings.time, limits));
+                self.interpreter = interpreter.interruptible(flag);
+            }
+            rebuilt?;
+        }
+        self.undo_steps = undo_steps;
+        Ok(())
     }
 
     /// Forgets every input; `:undo` brings them back.

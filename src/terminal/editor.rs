@@ -20,9 +20,8 @@ use rustyline::{Context, Helper};
 use crate::lang::{EntryState, entry_state};
 
 use crate::repl::Vocabulary;
-use crate::repl::commands::{self, COMMANDS, Files, help_pages, is_command};
-use crate::repl::completion::{self, word_start};
-use crate::repl::help;
+use crate::repl::commands::{self, is_command};
+use crate::repl::completion;
 use crate::repl::syntax::{PieceKind, pieces};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
@@ -57,27 +56,10 @@ impl RayHelper {
     }
 
     fn complete_command(&self, line: &str, pos: usize, ctx: &Context<'_>) -> rustyline::Result<(usize, Vec<Pair>)> {
-        let before = &line[..pos];
-        let start = before.len() - before.trim_start().len();
-        let command_end = before[start..].find(char::is_whitespace).map(|i| start + i);
-        let Some(command_end) = command_end else {
-            let typed = &before[start..];
-            let names = COMMANDS.iter().map(|command| command.topic.name).filter(|name| name.starts_with(typed));
-            return Ok((start, names.map(|name| plain(name, &format!("{name} "))).collect()));
-        };
-        let command = commands::find(&before[start..command_end]);
-        if command.is_some_and(|command| command.files != Files::None) {
-            return self.files.complete(line, pos, ctx);
+        match completion::complete_command(&line[..pos]) {
+            Some((start, candidates)) => Ok((start, candidates.into_iter().map(pair).collect())),
+            None => self.files.complete(line, pos, ctx),
         }
-        if command.is_some_and(|command| command.topic.name == ":help") {
-            let word_start = word_start(before);
-            let typed = &before[word_start..];
-            let mut topics: Vec<&str> = help::all_names(&help_pages()).filter(|name| name.starts_with(typed)).collect();
-            topics.sort_unstable();
-            topics.dedup();
-            return Ok((word_start, topics.into_iter().map(|name| plain(name, name)).collect()));
-        }
-        Ok((pos, Vec::new()))
     }
 
     /// Completes the word before `pos` with what may come there
@@ -85,15 +67,13 @@ impl RayHelper {
     fn complete_word(&self, line: &str, pos: usize) -> (usize, Vec<Pair>) {
         // A line after the first may be anywhere inside a construct.
         let (start, candidates) = completion::complete(&line[..pos], !self.pending.is_empty(), &self.vocabulary);
-        let pairs = candidates
-            .into_iter()
-            .map(|candidate| Pair { display: candidate.display, replacement: candidate.replacement });
-        (start, pairs.collect())
+        (start, candidates.into_iter().map(pair).collect())
     }
 }
 
-fn plain(display: &str, replacement: &str) -> Pair {
-    Pair { display: display.to_string(), replacement: replacement.to_string() }
+/// A completion as the line editor lists it.
+fn pair(candidate: completion::Candidate) -> Pair {
+    Pair { display: candidate.display, replacement: candidate.replacement }
 }
 
 impl Completer for RayHelper {

@@ -9,12 +9,12 @@ import table from "./ray-words.json";
 
 const name = new RegExp(`^${table.name}`);
 const number = new RegExp(`^(?:${table.number})`);
-const byLength = (a, b) => b.length - a.length;
+// The operators come longest first (`!=` before `!`), as they are tried.
 const symbols = [
   ...table.operators.map((text) => [text, "operator"]),
   ...table.separators.map((text) => [text, "separator"]),
   ...table.parentheses.map((text) => [text, "paren"]),
-].sort(([a], [b]) => byLength(a, b));
+];
 
 /** The tag of the next token of `stream`, as StreamLanguage asks. */
 function token(stream, state) {

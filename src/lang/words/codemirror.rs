@@ -3,41 +3,55 @@
 //! the editor's tokenizer (`web/src/highlight.js`). A test checks that the
 //! committed file is this text.
 //!
-//! Each word gets the CodeMirror highlighting tag of its TextMate scope
-//! ([`super::textmate::scope`]), so that the two grammars colour a word by
-//! the same part it plays; names and numbers are read with the TextMate
-//! grammar's patterns, which are the lexer's.
+//! The tags, per kind of word (the classes of [`super::highlight::Class`],
+//! as `@lezer/highlight` names its tags, modifiers after a dot, the way
+//! CodeMirror's `StreamLanguage` reads a token's name):
+//!
+//! | words | tag |
+//! |---|---|
+//! | `if`, `then`, `else`, `end`, `proc` | `controlKeyword` |
+//! | definitions: `camera`, `ambient`, `light` | `definitionKeyword` |
+//! | instructions: `let`, `object`, `put`, `print` | `keyword` |
+//! | shapes: `sphere`, `plane`, `box` | `typeName` |
+//! | transformations and `group` | `modifier` |
+//! | parts: `center`, `radius`, `by`... | `propertyName` |
+//! | texture words: `kd`, `ks`, `phong`, `color` | `attributeName` |
+//! | functions: `sin`, `cos`, `sqrt` | `variableName.standard` |
+//! | `pi` | `atom` |
+//! | `time` | `variableName.special` |
+//! | a name before `(` | `variableName.function`, after `proc` with `.definition` |
+//!
+//! Names and numbers are read with the regular expressions of
+//! [`super::highlight`], which are the lexer's; the operators are listed
+//! longest first, as the tokenizer tries them.
 
 use serde_json::{Map, Value, json};
 
-use super::textmate::{self, NAME};
+use super::highlight::{self, ARITHMETIC, COMPARISONS, Class, LOGICAL, NAME, NUMBER};
 use super::{WORDS, Word};
 use crate::lang::token::Token;
 
 /// Where the words are committed, from the crate's root.
 pub const PATH: &str = "web/src/ray-words.json";
 
-/// The CodeMirror tag (`@lezer/highlight`'s `tags`, modifiers after a dot,
-/// as `StreamLanguage` reads token names) of each TextMate scope a word of
-/// the language has.
-const TAGS: [(&str, &str); 11] = [
-    ("keyword.control.ray", "controlKeyword"),
-    ("storage.type.ray", "definitionKeyword"),
-    ("keyword.other.instruction.ray", "keyword"),
-    ("support.type.shape.ray", "typeName"),
-    ("support.type.transformation.ray", "modifier"),
-    ("keyword.other.part.ray", "propertyName"),
-    ("keyword.other.texture.ray", "attributeName"),
-    ("support.function.ray", "variableName.standard"),
-    ("constant.language.ray", "atom"),
-    ("variable.language.ray", "variableName.special"),
-    ("entity.name.function.ray", "variableName.function"),
-];
+/// The tag of a name called, or defined after `proc` (with `.definition`).
+const CALL: &str = "variableName.function";
 
 /// The CodeMirror tag of a word of the language; `None` for words from
 /// elsewhere, which are names to the lexer.
 pub fn tag(word: &Word) -> Option<&'static str> {
-    textmate::scope(word).map(tag_of_scope)
+    Some(match highlight::class(word)? {
+        Class::Control => "controlKeyword",
+        Class::Definition => "definitionKeyword",
+        Class::Instruction => "keyword",
+        Class::Shape => "typeName",
+        Class::Transformation => "modifier",
+        Class::Part => "propertyName",
+        Class::Texture => "attributeName",
+        Class::Function => "variableName.standard",
+        Class::Constant => "atom",
+        Class::Predefined => "variableName.special",
+    })
 }
 
 /// The words, as the JSON text committed at [`PATH`].
@@ -48,25 +62,11 @@ pub fn words_file() -> String {
 }
 
 /// Every word with its tag; the patterns of names and numbers; the
-/// operators, longest first.
+/// symbols.
 fn words_value() -> Value {
     let words: Map<String, Value> =
         WORDS.iter().filter_map(|word| Some((word.text.to_string(), Value::from(tag(word)?)))).collect();
-    let operators = [
-        Token::Ne,
-        Token::Le,
-        Token::Ge,
-        Token::Eq,
-        Token::Lt,
-        Token::Gt,
-        Token::Plus,
-        Token::Minus,
-        Token::Star,
-        Token::Slash,
-        Token::And,
-        Token::Or,
-        Token::Bang,
-    ];
+    let operators: Vec<Token> = [COMPARISONS, ARITHMETIC, LOGICAL].concat();
     let spelt = |tokens: &[Token]| -> Vec<&str> {
         tokens.iter().map(|token| token.spelling().expect("a symbol has a spelling")).collect()
     };
@@ -74,18 +74,13 @@ fn words_value() -> Value {
         "comment": "Generated from the words table (src/lang/words.rs) by src/lang/words/codemirror.rs: do not edit; RAYREPL_BLESS=1 cargo test --release --lib codemirror writes it again.",
         "words": words,
         "name": NAME,
-        "number": textmate::number()["match"],
-        "procedure": "proc",
-        "call": tag_of_scope("entity.name.function.ray"),
+        "number": NUMBER,
+        "procedure": Token::Proc.spelling(),
+        "call": CALL,
         "operators": spelt(&operators),
         "separators": spelt(&[Token::Comma]),
         "parentheses": spelt(&[Token::LParen, Token::RParen]),
     })
-}
-
-/// The tag [`TAGS`] gives `scope`.
-fn tag_of_scope(scope: &str) -> &'static str {
-    TAGS.iter().find(|(known, _)| *known == scope).map(|(_, tag)| *tag).expect("the scope has a tag")
 }
 
 #[cfg(test)]
@@ -100,7 +95,7 @@ mod tests {
     }
 
     #[test]
-    fn tags_follow_the_textmate_scopes() {
+    fn tags_by_class() {
         let tag_of = |text| super::super::lookup(text).and_then(tag);
         assert_eq!(tag_of("if"), Some("controlKeyword"));
         assert_eq!(tag_of("camera"), Some("definitionKeyword"));
@@ -111,7 +106,7 @@ mod tests {
     }
 
     #[test]
-    fn the_operators_are_longest_first() {
+    fn no_operator_comes_after_one_it_starts_with() {
         let value = words_value();
         let operators: Vec<&str> =
             value["operators"].as_array().expect("a list").iter().filter_map(Value::as_str).collect();

@@ -26,21 +26,12 @@
 
 use serde_json::{Map, Value, json};
 
-use super::{Kind, Role, WORDS, Word};
+use super::Word;
+use super::highlight::{self, ARITHMETIC, COMPARISONS, Class, FOREIGN_COMMENT, LOGICAL, NAME, NUMBER, WORD_END};
 use crate::lang::token::Token;
 
 /// Where the grammar is committed, from the crate's root.
 pub const PATH: &str = "editors/textmate/ray.tmLanguage.json";
-
-/// The help pages whose keywords direct the flow of a program: `if`, `then`
-/// and `else`; `end`; `proc`.
-const CONTROL_TOPICS: [&str; 3] = ["if", "end", "proc"];
-
-/// What a name is made of, as the lexer reads it.
-pub(super) const NAME: &str = "[A-Za-z_][A-Za-z0-9_]*";
-
-/// After a word: not more of a name (`spheres` is a name, not `sphere`).
-const WORD_END: &str = "(?![A-Za-z0-9_])";
 
 /// The grammar, as the JSON text committed at [`PATH`].
 pub fn grammar() -> String {
@@ -52,23 +43,17 @@ pub fn grammar() -> String {
 /// The TextMate scope of a word of the language; `None` for words from
 /// elsewhere, which are names to the lexer.
 pub fn scope(word: &Word) -> Option<&'static str> {
-    let role = match word.kind {
-        Kind::Keyword { role, .. } => role,
-        Kind::Predefined => return Some("variable.language.ray"),
-        Kind::Elsewhere { .. } | Kind::MissingFunction => return None,
-    };
-    if CONTROL_TOPICS.contains(&word.topic) {
-        return Some("keyword.control.ray");
-    }
-    Some(match role {
-        Role::Definition => "storage.type.ray",
-        Role::Instruction => "keyword.other.instruction.ray",
-        Role::Shape => "support.type.shape.ray",
-        Role::Transformation => "support.type.transformation.ray",
-        Role::Part => "keyword.other.part.ray",
-        Role::Texture => "keyword.other.texture.ray",
-        Role::Function => "support.function.ray",
-        Role::Constant => "constant.language.ray",
+    Some(match highlight::class(word)? {
+        Class::Control => "keyword.control.ray",
+        Class::Definition => "storage.type.ray",
+        Class::Instruction => "keyword.other.instruction.ray",
+        Class::Shape => "support.type.shape.ray",
+        Class::Transformation => "support.type.transformation.ray",
+        Class::Part => "keyword.other.part.ray",
+        Class::Texture => "keyword.other.texture.ray",
+        Class::Function => "support.function.ray",
+        Class::Constant => "constant.language.ray",
+        Class::Predefined => "variable.language.ray",
     })
 }
 
@@ -82,7 +67,7 @@ fn grammar_value() -> Value {
         ("call", call()),
         ("name", json!({ "name": "variable.other.ray", "match": NAME })),
         ("number", number()),
-        ("foreign-comment", json!({ "name": "invalid.illegal.comment.ray", "match": "//|/\\*" })),
+        ("foreign-comment", json!({ "name": "invalid.illegal.comment.ray", "match": FOREIGN_COMMENT })),
         ("operator", operators()),
         ("punctuation", punctuation()),
         ("invalid", json!({ "name": "invalid.illegal.character.ray", "match": "[^\\s]" })),
@@ -127,15 +112,7 @@ fn proc_name() -> Value {
 /// keyword starts with no boundary, and inside a name the rule for names
 /// has already matched the whole name.
 fn words() -> Value {
-    let mut scopes: Vec<(&str, Vec<&str>)> = Vec::new();
-    for word in WORDS {
-        let Some(scope) = scope(word) else { continue };
-        match scopes.iter_mut().find(|(known, _)| *known == scope) {
-            Some((_, words)) => words.push(word.text),
-            None => scopes.push((scope, vec![word.text])),
-        }
-    }
-    let patterns: Vec<Value> = scopes
+    let patterns: Vec<Value> = highlight::grouped(scope)
         .into_iter()
         .map(|(scope, words)| json!({ "name": scope, "match": format!("(?:{}){WORD_END}", words.join("|")) }))
         .collect();
@@ -147,26 +124,22 @@ fn call() -> Value {
     json!({ "name": "entity.name.function.ray", "match": format!("{NAME}(?=\\s*\\()") })
 }
 
-/// `[0-9]*(\.[0-9]+)?([eE][+-]?[0-9]+)?` with at least one digit, as the lexer reads it.
-pub(super) fn number() -> Value {
-    json!({
-        "name": "constant.numeric.ray",
-        "match": "(?:[0-9]+(?:\\.[0-9]+)?|\\.[0-9]+)(?:[eE][+-]?[0-9]+)?",
-    })
+/// A number, as the lexer reads it.
+fn number() -> Value {
+    json!({ "name": "constant.numeric.ray", "match": NUMBER })
 }
 
 /// The operators, spelt as the tokens are, two-character ones first.
 fn operators() -> Value {
     let kinds = [
-        (
-            "keyword.operator.comparison.ray",
-            [Token::Ne, Token::Le, Token::Ge, Token::Eq, Token::Lt, Token::Gt].as_slice(),
-        ),
-        ("keyword.operator.arithmetic.ray", &[Token::Plus, Token::Minus, Token::Star, Token::Slash]),
-        ("keyword.operator.logical.ray", &[Token::And, Token::Or, Token::Bang]),
+        ("keyword.operator.comparison.ray", COMPARISONS),
+        ("keyword.operator.arithmetic.ray", ARITHMETIC),
+        ("keyword.operator.logical.ray", LOGICAL),
     ];
-    let patterns: Vec<Value> =
-        kinds.iter().map(|(scope, tokens)| json!({ "name": scope, "match": alternatives(tokens) })).collect();
+    let patterns: Vec<Value> = kinds
+        .iter()
+        .map(|(scope, tokens)| json!({ "name": scope, "match": highlight::alternatives(tokens) }))
+        .collect();
     json!({ "patterns": patterns })
 }
 
@@ -174,32 +147,16 @@ fn operators() -> Value {
 fn punctuation() -> Value {
     json!({
         "patterns": [
-            { "name": "punctuation.separator.comma.ray", "match": alternatives(&[Token::Comma]) },
-            { "name": "punctuation.section.parens.begin.ray", "match": alternatives(&[Token::LParen]) },
-            { "name": "punctuation.section.parens.end.ray", "match": alternatives(&[Token::RParen]) },
+            { "name": "punctuation.separator.comma.ray", "match": highlight::alternatives(&[Token::Comma]) },
+            { "name": "punctuation.section.parens.begin.ray", "match": highlight::alternatives(&[Token::LParen]) },
+            { "name": "punctuation.section.parens.end.ray", "match": highlight::alternatives(&[Token::RParen]) },
         ]
     })
 }
 
-/// A regular expression for any of `tokens`, each as it is spelt.
-fn alternatives(tokens: &[Token]) -> String {
-    let spellings: Vec<String> =
-        tokens.iter().map(|token| escape(token.spelling().expect("a symbol has a spelling"))).collect();
-    spellings.join("|")
-}
-
-/// `text` with the characters regular expressions give a meaning escaped.
-fn escape(text: &str) -> String {
-    text.chars()
-        .flat_map(|c| {
-            let special = "\\^$.|?*+()[]{}".contains(c);
-            special.then_some('\\').into_iter().chain([c])
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::{Kind, WORDS};
     use super::*;
 
     /// The committed grammar is what the table makes now;
@@ -223,33 +180,5 @@ mod tests {
             });
             assert!(listed, "`{}` is not in the grammar as {scope}", word.text);
         }
-    }
-
-    #[test]
-    fn scopes_by_role() {
-        let scope_of = |text| super::super::lookup(text).and_then(scope);
-        assert_eq!(scope_of("if"), Some("keyword.control.ray"));
-        assert_eq!(scope_of("else"), Some("keyword.control.ray"));
-        assert_eq!(scope_of("end"), Some("keyword.control.ray"));
-        assert_eq!(scope_of("proc"), Some("keyword.control.ray"));
-        assert_eq!(scope_of("camera"), Some("storage.type.ray"));
-        assert_eq!(scope_of("put"), Some("keyword.other.instruction.ray"));
-        assert_eq!(scope_of("box"), Some("support.type.shape.ray"));
-        assert_eq!(scope_of("group"), Some("support.type.transformation.ray"));
-        assert_eq!(scope_of("radius"), Some("keyword.other.part.ray"));
-        assert_eq!(scope_of("phong"), Some("keyword.other.texture.ray"));
-        assert_eq!(scope_of("sqrt"), Some("support.function.ray"));
-        assert_eq!(scope_of("pi"), Some("constant.language.ray"));
-        assert_eq!(scope_of("time"), Some("variable.language.ray"));
-        assert_eq!(scope_of("colour"), None);
-        for topic in CONTROL_TOPICS {
-            assert!(super::super::lookup(topic).is_some_and(|word| word.topic == topic), "`{topic}` is a help page");
-        }
-    }
-
-    #[test]
-    fn operators_are_escaped() {
-        assert_eq!(escape("*"), "\\*");
-        assert_eq!(alternatives(&[Token::Ne, Token::Or, Token::Plus]), "!=|\\||\\+");
     }
 }

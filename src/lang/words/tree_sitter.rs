@@ -52,15 +52,7 @@ pub fn highlights() -> String {
          (comment) @comment\n\n\
          (number) @number\n\n",
     );
-    let mut captures: Vec<(&str, Vec<&str>)> = Vec::new();
-    for word in WORDS {
-        let Some(capture) = capture(word) else { continue };
-        match captures.iter_mut().find(|(known, _)| *known == capture) {
-            Some((_, words)) => words.push(word.text),
-            None => captures.push((capture, vec![word.text])),
-        }
-    }
-    for (capture, words) in captures {
+    for (capture, words) in super::highlight::grouped(capture) {
         text.push_str(&list(&words, capture));
     }
     for word in WORDS.iter().filter(|word| word.kind == Kind::Predefined) {

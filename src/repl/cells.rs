@@ -1,0 +1,324 @@
+//! A session driven by cells of text: a notebook's kernel, a web page.
+//! Each cell is run as a piped script is (items and `:` commands mixed,
+//! accumulating into one session, stopping at the first error), its
+//! diagnostics naming it (`<cell 3>:2:5`); a cell stopped by an interrupt
+//! leaves the session as it was before the cell. What a cell shows comes
+//! back as [`Output`](super::Output) values to the front-end that runs it.
+//! Beside running, the questions an editor of cells asks: whether a cell
+//! is complete, what may be typed at a place, what the word at a place is.
+
+use std::path::Path;
+
+use crate::lang::{Entry, EntryState, SourceMap};
+
+use super::cancel::CancelSwitch;
+use super::commands::{self, is_command};
+use super::completion::{self, Candidate};
+use super::file_commands::load_text_reporting;
+use super::options::{SessionOptions, new_session};
+use super::outputs::{Collected, FrontEnd, Output};
+use super::report::show_printed;
+use super::script::{Named, TextRan, run_text};
+use super::shell::Shell;
+use super::syntax::{is_word_char, open_constructs};
+
+/// How a cell ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CellEnd {
+    /// Every input and command in it succeeded.
+    Done,
+    /// One failed (its diagnostic was shown); the cell stopped there, and
+    /// what ran before it in the cell stays.
+    Failed,
+    /// The interrupt stopped it; the session is as it was before the cell.
+    Interrupted,
+    /// `:quit` ended it.
+    Quit,
+}
+
+/// Whether a cell's text is ready to run, as the parser reads it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Completeness {
+    /// It is: every input in it is finished.
+    Complete,
+    /// Its last input waits for more lines (an `end`): the next line's
+    /// indent, one level per construct left open.
+    Incomplete {
+        /// The spaces to start the next line with.
+        indent: String,
+    },
+    /// No line can mend it: running it shows the error.
+    Invalid,
+}
+
+/// The completions of the word at a place in a cell.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Completions {
+    /// Where the word being typed starts, in bytes from the cell's start.
+    pub start: usize,
+    /// Where it ends (the place asked about).
+    pub end: usize,
+    /// What may replace it, sorted.
+    pub candidates: Vec<String>,
+}
+
+/// Spaces per open construct in an indent.
+const INDENT: &str = "  ";
+
+/// A session whose inputs come in cells.
+#[derive(Debug)]
+pub struct CellSession {
+    shell: Shell,
+    /// The switch that stops a cell, if there is one.
+    cancel: Option<&'static CancelSwitch>,
+}
+
+impl CellSession {
+    /// A session set up with `options`' settings, limits and allowed
+    /// warnings (its file and lesson are not started: run `:load` or
+    /// `:lesson` in a cell).
+    pub fn new(options: &SessionOptions) -> CellSession {
+        CellSession { shell: Shell::new(new_session(options, None)), cancel: None }
+    }
+
+    /// The same session, its cells stopped when `switch` is raised (the
+    /// front-end running them gives the same switch to renders and reads,
+    /// from [`FrontEnd::cancel`]).
+    pub fn with_cancel(self, switch: &'static CancelSwitch) -> CellSession {
+        let mut shell = self.shell;
+        shell.session = shell.session.interruptible(switch.flag());
+        CellSession { shell, cancel: Some(switch) }
+    }
+
+    /// Runs the text of a cell, its diagnostics naming it `name`
+    /// (`<cell 3>`), showing what it does on `front`.
+    pub fn run(&mut self, name: &str, text: &str, front: &mut dyn FrontEnd) -> CellEnd {
+        let before = self.shell.session.checkpoint();
+        match run_text(&mut self.shell, front, self.cancel, Named { name, noun: "cell" }, text) {
+            TextRan::Done => CellEnd::Done,
+            TextRan::Failed => CellEnd::Failed,
+            TextRan::Quit => CellEnd::Quit,
+            TextRan::Interrupted => {
+                if let Err(error) = self.shell.session.restore(before) {
+                    front.diagnostic(&error, self.shell.session.sources());
+                }
+                CellEnd::Interrupted
+            }
+        }
+    }
+
+    /// Runs `text` as `:load` runs the file at `path` (all of it one
+    /// input, its items in any order), without reading the file: for a
+    /// front-end that holds the file's text itself (an editor in a page).
+    pub fn load_text(&mut self, path: &Path, text: &str, front: &mut dyn FrontEnd) -> CellEnd {
+        let loaded = load_text_reporting(&mut self.shell, path, text, front);
+        show_printed(&self.shell.session, front);
+        if loaded.is_ok() { CellEnd::Done } else { CellEnd::Failed }
+    }
+
+    /// The texts the session's diagnostics point into.
+    pub fn sources(&self) -> &SourceMap {
+        self.shell.session.sources()
+    }
+
+    /// Whether `text` is ready to run, or how the next line starts.
+    pub fn completeness(text: &str) -> Completeness {
+        let mut pending: Option<Entry> = None;
+        for line in text.lines() {
+            let entry = match pending.take() {
+                Some(mut entry) => {
+                    entry.add_line(line);
+                    entry
+                }
+                None if is_command(line) => continue,
+                None => Entry::read(line.to_string()),
+            };
+            match entry.state() {
+                EntryState::Unfinished => pending = Some(entry),
+                EntryState::Broken | EntryState::BrokenBeforeLastLine => return Completeness::Invalid,
+                EntryState::Complete => {}
+            }
+        }
+        match pending {
+            Some(entry) => Completeness::Incomplete { indent: INDENT.repeat(open_constructs(entry.text()).len()) },
+            None => Completeness::Complete,
+        }
+    }
+
+    /// What may replace the word that ends at byte `cursor` of the cell
+    /// `text`: commands and help topics on a command's line, elsewhere the
+    /// words the grammar lets come there and the names the session defines.
+    pub fn complete(&self, text: &str, cursor: usize) -> Completions {
+        let cursor = floor_char_boundary(text, cursor);
+        let line_start = text[..cursor].rfind('\n').map_or(0, |at| at + 1);
+        let before = &text[line_start..cursor];
+        let (start, candidates) = if is_command(before) {
+            completion::complete_command(before).unwrap_or((before.len(), Vec::new()))
+        } else {
+            let inside = matches!(CellSession::completeness(&text[..line_start]), Completeness::Incomplete { .. });
+            completion::complete(before, inside, &self.shell.session.vocabulary())
+        };
+        let candidates = candidates.into_iter().map(|Candidate { replacement, .. }| replacement).collect();
+        Completions { start: line_start + start, end: cursor, candidates }
+    }
+
+    /// What the word at byte `cursor` of `text` is, as the session says it:
+    /// the definition `:show` gives of a name the session defines (a
+    /// procedure's source, a number's value), else the `:help` page of a
+    /// word of the language or a command. `None` for anything else.
+    pub fn inspect(&mut self, text: &str, cursor: usize) -> Option<String> {
+        let word = word_at(text, floor_char_boundary(text, cursor))?;
+        let defined = self.shell.session.vocabulary();
+        let is_defined = defined.variables.iter().any(|name| name == word)
+            || defined.procedures.iter().any(|(name, _)| name == word)
+            || word == "time";
+        let command = if is_defined { format!(":show {word}") } else { format!(":help {word}") };
+        let mut said = Collected::default();
+        commands::execute(&mut self.shell, &command, &mut said).ok()?;
+        let texts: Vec<String> = said
+            .outputs
+            .into_iter()
+            .filter_map(|output| match output {
+                Output::Text { text, .. } => Some(text),
+                _ => None,
+            })
+            .collect();
+        (!texts.is_empty()).then(|| texts.join("\n"))
+    }
+}
+
+/// The word (a name, a word of the language, or a command with its colon)
+/// around byte `at` of `text`.
+fn word_at(text: &str, at: usize) -> Option<&str> {
+    let is_part = |c: char| is_word_char(c) || c == ':';
+    let start = text[..at].char_indices().rev().take_while(|(_, c)| is_part(*c)).last().map_or(at, |(i, _)| i);
+    let end = text[at..].char_indices().find(|(_, c)| !is_part(*c)).map_or(text.len(), |(i, _)| at + i);
+    let word = text[start..end].trim_start_matches(':');
+    let word = if text[start..end].starts_with(':') { &text[start..end] } else { word };
+    (!word.is_empty()).then_some(word)
+}
+
+/// The largest char boundary of `text` at or before `at`.
+fn floor_char_boundary(text: &str, at: usize) -> usize {
+    let mut at = at.min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::repl::TextRole;
+
+    fn session() -> CellSession {
+        CellSession::new(&SessionOptions::default())
+    }
+
+    fn messages(front: &Collected) -> Vec<&str> {
+        let texts = front.outputs.iter().filter_map(|output| match output {
+            Output::Text { role: TextRole::Message, text } => Some(text.as_str()),
+            _ => None,
+        });
+        texts.collect()
+    }
+
+    #[test]
+    fn a_cell_mixes_items_and_commands_and_stops_at_its_first_error() {
+        let mut cells = session();
+        let mut front = Collected::default();
+        let cell = "let r = 2\n:size 40 30\nput sphere center 0, 0, 0 radius r kd 1 ks 0 phong 1 color 9, 9, 9 end\nput box end\nlet after = 1";
+        assert_eq!(cells.run("<cell 1>", cell, &mut front), CellEnd::Failed);
+        assert_eq!(cells.shell.session.global_number("r"), Some(2.0));
+        assert_eq!(cells.shell.session.global_number("after"), None, "the cell stopped at `put box end`");
+        assert_eq!(cells.shell.session.settings().width, 40);
+        let Some(Output::Diagnostic(diagnostic)) = front.outputs.last() else { panic!("{:?}", front.outputs) };
+        let place = diagnostic.render(cells.sources(), false);
+        assert!(place.contains("<cell 1>:4:"), "{place}");
+    }
+
+    #[test]
+    fn definitions_accumulate_across_cells() {
+        let mut cells = session();
+        let mut front = Collected::default();
+        assert_eq!(
+            cells.run(
+                "<cell 1>",
+                "proc ball(r)\n  put sphere center 0, 0, 0 radius r kd 1 ks 0 phong 1 color 9, 9, 9 end\nend",
+                &mut front
+            ),
+            CellEnd::Done
+        );
+        assert_eq!(cells.run("<cell 2>", "ball(3)", &mut front), CellEnd::Done);
+        assert_eq!(messages(&front).last(), Some(&"put 1 sphere (1 object in the scene)"));
+    }
+
+    #[test]
+    fn a_cell_is_complete_incomplete_with_its_indent_or_invalid() {
+        assert_eq!(CellSession::completeness("put sphere end\n:render"), Completeness::Complete);
+        assert_eq!(
+            CellSession::completeness("proc p()\n  if 1 < 2 then"),
+            Completeness::Incomplete { indent: "    ".to_string() }
+        );
+        assert_eq!(CellSession::completeness("put sphere radius 1 radius end )"), Completeness::Invalid);
+        assert_eq!(CellSession::completeness(""), Completeness::Complete);
+    }
+
+    #[test]
+    fn completion_follows_the_grammar_and_the_session() {
+        let mut cells = session();
+        cells.run(
+            "<cell 1>",
+            "let radius_big = 3\nobject ball = sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end",
+            &mut Collected::default(),
+        );
+        let text = "put sph";
+        let completions = cells.complete(text, text.len());
+        assert_eq!((completions.start, completions.candidates), (4, vec!["sphere ".to_string()]));
+        let text = "let a = 1\nput b";
+        assert_eq!(cells.complete(text, text.len()).candidates, ["ball", "box "]);
+        let text = ":ren";
+        assert_eq!(cells.complete(text, text.len()).candidates, [":render "]);
+    }
+
+    #[test]
+    fn inspecting_a_word_gives_its_definition_or_its_help_page() {
+        let mut cells = session();
+        cells.run(
+            "<cell 1>",
+            "let size = 4\nproc ball(r)\n  put sphere center 0, 0, 0 radius r kd 1 ks 0 phong 1 color 9, 9, 9 end\nend",
+            &mut Collected::default(),
+        );
+        let ball = cells.inspect("ball(2)", 1).expect("a procedure");
+        assert!(ball.contains("proc ball(r)"), "{ball}");
+        assert!(cells.inspect("size", 2).expect("a number").contains("size = 4 now"));
+        assert!(cells.inspect("put sphere end", 6).expect("a word").contains("sphere"));
+        assert!(cells.inspect(":render", 3).expect("a command").contains(":render"));
+        assert_eq!(cells.inspect("   ", 1), None);
+    }
+
+    #[test]
+    fn an_interrupted_cell_leaves_the_session_as_before_it() {
+        let switch: &'static CancelSwitch = Box::leak(Box::default());
+        let mut cells = session().with_cancel(switch);
+        let mut front = Collected::default();
+        cells.run("<cell 1>", "let a = 1", &mut front);
+        // As a kernel does: armed for the whole cell, interrupted from another thread.
+        let armed = switch.arm();
+        let interrupter = std::thread::spawn(|| {
+            std::thread::sleep(std::time::Duration::from_millis(100));
+            switch.cancel_if_armed(crate::interruption::Signal::Interrupt)
+        });
+        let runaway =
+            "let b = 2\n:size 10 10\nproc f(n)\n  if n > 0 then\n    f(n - 1)\n    f(n - 1)\n  end\nend\nf(60)";
+        let ended = cells.run("<cell 2>", runaway, &mut front);
+        assert!(interrupter.join().expect("it raises the flag"));
+        drop(armed);
+        assert_eq!(ended, CellEnd::Interrupted, "{:?}", front.outputs);
+        assert_eq!(cells.shell.session.global_number("a"), Some(1.0));
+        assert_eq!(cells.shell.session.global_number("b"), None);
+        assert_eq!(cells.shell.session.settings().width, SessionOptions::default().settings.width);
+        assert_eq!(cells.run("<cell 3>", "let c = a + 1", &mut front), CellEnd::Done, "the session goes on");
+    }
+}
