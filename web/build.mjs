@@ -5,9 +5,9 @@
 
 import { build } from "esbuild";
 import { copyFileSync, mkdirSync, readdirSync, readFileSync } from "node:fs";
-import { join } from "node:path";
+import { join, resolve } from "node:path";
 
-const [pkg, dist] = process.argv.slice(2);
+const [pkg, dist] = process.argv.slice(2).map((path) => resolve(path));
 const root = join(import.meta.dirname, "..");
 const source = join(import.meta.dirname, "src");
 

@@ -43,6 +43,13 @@ pub fn start() {
     std::panic::set_hook(Box::new(|info| error(&format!("rayrepl panicked: {info}"))));
 }
 
+/// The deepest chain of procedure calls in the browser. A worker's stack
+/// (V8's, about 1 MB, which WebAssembly cannot grow) holds about 1,500 of
+/// the interpreter's calls, where the command line's grows to its 100,000
+/// (`stacker`); past this limit a scene gets the diagnostic the command
+/// line gives with `--max-calls 1000`, not a trap.
+const BROWSER_CALL_DEPTH: usize = 1_000;
+
 /// The settings a playground starts with, as the page's controls give them.
 #[wasm_bindgen]
 #[derive(Debug, Clone, Copy)]
@@ -93,7 +100,7 @@ pub struct Playground {
 impl Playground {
     /// A session with `settings`, checked against the command line's
     /// limits (a refusal says which and why), with the command line's
-    /// limits on calls and primitives.
+    /// limit on primitives and [`BROWSER_CALL_DEPTH`] calls.
     #[wasm_bindgen(constructor)]
     pub fn new(settings: &Settings) -> Result<Playground, JsError> {
         let settings = RenderSettings {
@@ -105,7 +112,8 @@ impl Playground {
             ..RenderSettings::default()
         };
         settings.validate().map_err(|refusal| JsError::new(&refusal.to_string()))?;
-        let options = SessionOptions { settings, limits: Limits::default(), ..SessionOptions::default() };
+        let limits = Limits { max_call_depth: BROWSER_CALL_DEPTH, ..Limits::DEFAULT };
+        let options = SessionOptions { settings, limits, ..SessionOptions::default() };
         Ok(Playground { session: CellSession::new(&options), cells: 0 })
     }
 

@@ -206,9 +206,9 @@ async function pick(x, y) {
 }
 
 canvas.addEventListener("click", (event) => {
-  const box = canvas.getBoundingClientRect();
-  const x = Math.floor(((event.clientX - box.left) * canvas.width) / box.width);
-  const y = Math.floor(((event.clientY - box.top) * canvas.height) / box.height);
+  // offsetX and offsetY are inside the border, where the pixels are drawn.
+  const x = Math.floor((event.offsetX * canvas.width) / canvas.clientWidth);
+  const y = Math.floor((event.offsetY * canvas.height) / canvas.clientHeight);
   pick(Math.min(Math.max(x, 0), canvas.width - 1), Math.min(Math.max(y, 0), canvas.height - 1));
 });
 

@@ -6,39 +6,32 @@
 //   node web/test/bench.mjs    (after web/build.sh and cargo build --release)
 
 import { spawnSync } from "node:child_process";
-import { createReadStream, readFileSync } from "node:fs";
-import { createServer } from "node:http";
-import { extname, join } from "node:path";
+import { readFileSync } from "node:fs";
+import { join } from "node:path";
 import { gzipSync } from "node:zlib";
 import { chromium } from "playwright-core";
+import { serve } from "./serve.mjs";
 
 const root = join(import.meta.dirname, "../..");
 const dist = join(root, "web/dist");
 const RUNS = 7;
-const types = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm" };
 const median = (values) => [...values].sort((a, b) => a - b)[Math.floor(values.length / 2)];
 
-const server = createServer((request, response) => {
-  const path = new URL(request.url, "http://x").pathname;
-  const file = join(dist, path === "/" ? "index.html" : path);
-  response.writeHead(200, { "content-type": types[extname(file)] ?? "application/octet-stream" });
-  createReadStream(file).pipe(response);
-});
-await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
+const server = await serve(dist);
 const browser = await chromium.launch({ executablePath: process.env.RAYREPL_CHROMIUM ?? "/usr/bin/chromium", args: ["--no-sandbox"] });
 
 const firsts = [];
 for (let run = 0; run < RUNS; run++) {
   const page = await browser.newPage();
   const started = Date.now();
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
+  await page.goto(`${server.base}`);
   await page.waitForFunction(() => document.querySelector("#picture").dataset.state === "done");
   firsts.push(Date.now() - started);
   await page.close();
 }
 
 const page = await browser.newPage();
-await page.goto(`http://127.0.0.1:${server.address().port}/`);
+await page.goto(`${server.base}`);
 await page.waitForFunction(() => document.querySelector("#picture").dataset.state === "done");
 const solar = readFileSync(join(root, "scenarios/solar.ray"), "utf8");
 const renders = [];

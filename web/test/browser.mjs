@@ -8,13 +8,13 @@
 
 import assert from "node:assert/strict";
 import { spawnSync } from "node:child_process";
-import { createReadStream, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
-import { createServer } from "node:http";
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { extname, join, normalize } from "node:path";
+import { join } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { unseenScenes } from "./scenes.mjs";
+import { serve } from "./serve.mjs";
 
 const root = join(import.meta.dirname, "../..");
 const dist = join(root, "web/dist");
@@ -27,26 +27,14 @@ const GOLDEN = { width: 96, height: 72, depth: 5, samples: 1, time: 7 };
 /** The bundled scenarios at a size quick to render twenty times. */
 const SMALL = { width: 160, height: 120, depth: 5, samples: 1, time: 0 };
 
-const types = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm" };
-
 let server;
 let browser;
 let base;
 
 before(async () => {
   assert.ok(existsSync(join(dist, "index.html")), "web/dist/ is built (bash web/build.sh)");
-  server = createServer((request, response) => {
-    const path = normalize(decodeURIComponent(new URL(request.url, "http://x").pathname)).replace(/^(\.\.[/\\])+/, "");
-    const file = join(dist, path.endsWith("/") ? `${path}index.html` : path);
-    if (!file.startsWith(dist) || !existsSync(file)) {
-      response.writeHead(404).end();
-      return;
-    }
-    response.writeHead(200, { "content-type": types[extname(file)] ?? "application/octet-stream" });
-    createReadStream(file).pipe(response);
-  });
-  await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
-  base = `http://127.0.0.1:${server.address().port}/`;
+  server = await serve(dist);
+  base = server.base;
   browser = await chromium.launch({ executablePath: process.env.RAYREPL_CHROMIUM ?? "/usr/bin/chromium", args: ["--no-sandbox"] });
 });
 
@@ -83,7 +71,8 @@ function nativePixels(text, settings) {
 
 /** A new page of the playground, opened at `fragment`, its first picture waited for. */
 async function openPage(fragment = "") {
-  const page = await browser.newPage();
+  // Wide enough for the picture at its size: a pixel clicked is a pixel of the canvas.
+  const page = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
   const problems = [];
   page.on("pageerror", (error) => problems.push(String(error)));
   await page.goto(`${base}${fragment}`);
@@ -186,10 +175,11 @@ test("a click on a pixel explains it as --explain does", async () => {
   await waitForPixels(page, nativePixels(HELLO, PAGE), PAGE);
   const [x, y] = [320, 260];
   const box = await page.$eval("#picture", (canvas) => {
-    const { left, top, width, height } = canvas.getBoundingClientRect();
-    return { left, top, scale: width / canvas.width, scaleY: height / canvas.height };
+    const { left, top } = canvas.getBoundingClientRect();
+    const scale = canvas.clientWidth / canvas.width;
+    return { left: left + canvas.clientLeft, top: top + canvas.clientTop, scale };
   });
-  await page.mouse.click(box.left + (x + 0.5) * box.scale, box.top + (y + 0.5) * box.scaleY);
+  await page.mouse.click(box.left + (x + 0.5) * box.scale, box.top + (y + 0.5) * box.scale);
   await page.waitForFunction((pixel) => document.querySelector("#explanation").dataset.pixel === pixel, `${x},${y}`);
   await page.waitForFunction(() => document.querySelector("#explanation").textContent.startsWith("pixel"));
   const explanation = await page.$eval("#explanation", (element) => element.textContent);
@@ -253,11 +243,12 @@ test("a render that runs too long is stopped, and the page goes on", async () =>
 
 test("a runaway recursion ends with the terminal's diagnostic, and the page goes on", async () => {
   const page = await openPage();
-  const runaway = "camera distance 8 angle 1 end\nproc f(n)\nf(n + 1)\nend\nf(0)\n";
+  const runaway = "camera distance 8 angle 1 end\nambient 0.2\nproc f(n)\nf(n + 1)\nend\nf(0)\n";
   await page.evaluate((text) => window.rayrepl.load(text), runaway);
   await page.waitForSelector("#diagnostics [data-line]", { timeout: 30_000 });
   const shown = await page.$eval("#diagnostics [data-line]", (element) => element.textContent);
-  const check = runNative(["--check", sceneFile(runaway)]);
+  // The browser's limit on calls is 1,000 (web/src/lib.rs): the command line's message at that limit.
+  const check = runNative(["--check", "--max-calls", "1000", sceneFile(runaway)]);
   assert.equal(shown, check.stderr);
   await checkScene(page, HELLO, SMALL);
   await page.close();
