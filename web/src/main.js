@@ -206,9 +206,10 @@ async function pick(x, y) {
 }
 
 canvas.addEventListener("click", (event) => {
-  // offsetX and offsetY are inside the border, where the pixels are drawn.
-  const x = Math.floor((event.offsetX * canvas.width) / canvas.clientWidth);
-  const y = Math.floor((event.offsetY * canvas.height) / canvas.clientHeight);
+  // From inside the border, where the pixels are drawn (offsetX is rounded).
+  const box = canvas.getBoundingClientRect();
+  const x = Math.floor(((event.clientX - box.left - canvas.clientLeft) * canvas.width) / canvas.clientWidth);
+  const y = Math.floor(((event.clientY - box.top - canvas.clientTop) * canvas.height) / canvas.clientHeight);
   pick(Math.min(Math.max(x, 0), canvas.width - 1), Math.min(Math.max(y, 0), canvas.height - 1));
 });
 
