@@ -17,8 +17,8 @@ import examples from "rayrepl-examples";
 const TYPING_PAUSE_MS = 300;
 /** The time slider's range: the frames of `:anim 100`. */
 const MOST_TIME = 100;
-/** Frames of the animation that the play button plays (`:play FRAMES FPS`). */
-const PLAYED_FRAMES = 48;
+/** Frames of the animation that the play button plays (`:play FRAMES FPS`): the session's two seconds. */
+const PLAYED_FRAMES = 24;
 const PLAYED_FPS = 12;
 
 const $ = (selector) => document.querySelector(selector);
@@ -355,8 +355,10 @@ $("#lessons").addEventListener("change", async (event) => {
   lessonNumber = event.target.value || null;
   lessonPanel.hidden = !lessonNumber;
   if (!lessonNumber) return;
-  const reply = await tutor.request({ kind: "lesson", start: lessonNumber, settings: { ...settings } });
-  showLesson(reply);
+  const started = await tutor.request({ kind: "lesson", number: lessonNumber, settings: { ...settings } });
+  showLesson(started);
+  // The lesson's starting scene in the editor, as the session holds it: the picture and the check follow.
+  if (started.startingScene !== undefined) load(started.startingScene);
 });
 
 function showLesson(reply) {
@@ -381,7 +383,7 @@ function showLesson(reply) {
 
 async function checkLesson() {
   if (!lessonNumber) return;
-  const reply = await tutor.request({ kind: "lesson", cell: `:reset\n${sceneText()}` });
+  const reply = await tutor.request({ kind: "lesson", number: lessonNumber, settings: { ...settings }, scene: sceneText() });
   showLesson(reply);
 }
 

@@ -50,19 +50,46 @@ function runOn(scene, settings, cell) {
   return replyOf(current.playground.run(cell));
 }
 
-/** The lesson's own session: `:lesson N`, then the learner's scene at each edit. */
+/** The lesson's own session and its number: `:lesson N`, then the learner's scene at each edit. */
 let lesson = null;
 
-function lessonCell(request) {
-  if (request.start !== undefined) {
-    lesson?.free();
-    const made = playground(request.settings);
-    if (made.refused) return made.refused;
-    lesson = made.playground;
-    return replyOf(lesson.run(`:lesson ${request.start}`));
+/** Starts lesson `number` unless this worker follows it already (a new worker follows none). */
+function follow(number, settings) {
+  if (lesson?.number === number) return null;
+  lesson?.playground.free();
+  lesson = null;
+  const made = playground(settings);
+  if (made.refused) return made.refused;
+  lesson = { number, playground: made.playground };
+  const started = replyOf(lesson.playground.run(`:lesson ${number}`));
+  return { ...started, startingScene: listedScene(replyOf(lesson.playground.run(":list"))) };
+}
+
+/** The program `:list` lists, without the names of its inputs: the
+ * listing gives each input as `<name>:LINE  text`, its next lines
+ * indented under the text. */
+function listedScene(reply) {
+  const lines = [];
+  let indent = 0;
+  for (const output of reply.outputs.filter((output) => output.kind === "text" && output.role === "message")) {
+    for (const line of output.text.split("\n")) {
+      const named = /^<[^>]*>:\d+ +/.exec(line);
+      if (named) indent = named[0].length;
+      lines.push(named ? line.slice(indent) : line.slice(Math.min(indent, line.length - line.trimStart().length)));
+    }
   }
-  if (!lesson) return { end: "failed", outputs: [{ kind: "text", role: "error", text: "no lesson started" }], images: [] };
-  return replyOf(lesson.run(request.cell));
+  return lines.length ? `${lines.join("\n")}\n` : "";
+}
+
+/** Lesson `number`'s step, or, with `scene`, the verdict on it: the
+ * session emptied, then the scene run as a cell, each of its inputs
+ * checked as the terminal checks them (so its lines are the editor's). */
+function lessonCell({ number, settings, scene }) {
+  const started = follow(number, settings);
+  if (scene === undefined || started?.end === "failed") return started ?? { end: "done", outputs: [], images: [] };
+  replyOf(lesson.playground.run(":reset"));
+  const checked = replyOf(lesson.playground.run(scene));
+  return started ? { ...checked, outputs: [...started.outputs, ...checked.outputs] } : checked;
 }
 
 const handlers = {

@@ -253,3 +253,18 @@ test("a runaway recursion ends with the terminal's diagnostic, and the page goes
   await checkScene(page, HELLO, SMALL);
   await page.close();
 });
+
+test("a lesson shows its step, checks each edit and shows the goal beside the learner's picture", async () => {
+  const page = await openPage();
+  await page.selectOption("#lessons", "1");
+  await page.waitForFunction(() => document.querySelector("#lesson-task").textContent.startsWith("step 1 of 3"));
+  await page.evaluate(() => window.rayrepl.load("camera distance 8 angle 0.8 end\n"));
+  await page.waitForFunction(() => document.querySelector("#lesson-verdict").textContent.startsWith("not yet"));
+  assert.match(await page.$eval("#lesson-verdict", (element) => element.textContent), /distance 8 \(the goal: 10\)/);
+  const pictures = await page.$eval("#lesson-pictures", (canvas) => [canvas.width, canvas.height]);
+  assert.deepEqual(pictures, [2 * PAGE.width, PAGE.height]);
+  await page.evaluate(() => window.rayrepl.load("camera distance 10 angle 0.8 end\n"));
+  await page.waitForFunction(() => document.querySelector("#lesson-task").textContent.startsWith("step 2 of 3"));
+  assert.match(await page.$eval("#lesson-verdict", (element) => element.textContent), /✓ step 1 done/);
+  await page.close();
+});
