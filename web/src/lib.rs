@@ -8,11 +8,13 @@
 //! renderer, the language and the commands are the library's, unchanged,
 //! so the pixels are the bytes the command line writes.
 
+use std::ops::Range;
 use std::path::Path;
 use std::time::Duration;
 
 use image::RgbImage;
 use rayrepl::lang::{Limits, SourceMap};
+use rayrepl::playback::Playback;
 use rayrepl::repl::{CellEnd, CellSession, Collected, LessonVerdict, Output, RenderSettings, SessionOptions, TextRole};
 use serde_json::{Value, json};
 use wasm_bindgen::prelude::*;
@@ -145,6 +147,9 @@ pub struct Reply {
     outputs: String,
     /// The pictures, in the order the outputs name them.
     images: Vec<RgbImage>,
+    /// The frames of the animation `:play` showed, if it did: where they
+    /// are in `images`, and the frames a second.
+    animation: Option<(Range<usize>, u32)>,
 }
 
 #[wasm_bindgen]
@@ -169,6 +174,14 @@ impl Reply {
         image.pixels().flat_map(|pixel| [pixel[0], pixel[1], pixel[2], u8::MAX]).collect()
     }
 
+    /// The animation `:play N FPS` showed as an APNG file, the bytes
+    /// `rayrepl --anim N --fps FPS -o out.apng` writes; empty without one.
+    pub fn apng(&self) -> Result<Vec<u8>, JsError> {
+        let Some((frames, fps)) = &self.animation else { return Ok(Vec::new()) };
+        let playback = Playback { fps: Some(f64::from(*fps)), loops: None };
+        rayrepl::output::apng_bytes(&self.images[frames.clone()], &playback).map_err(|e| JsError::new(&e.to_string()))
+    }
+
     /// Picture `index` as a PNG file, the bytes `rayrepl -o out.png` writes.
     pub fn png(&self, index: usize) -> Result<Vec<u8>, JsError> {
         let image = self.images.get(index).ok_or_else(|| JsError::new("no such picture"))?;
@@ -189,8 +202,20 @@ impl Reply {
             CellEnd::Quit => "quit",
         };
         let mut images = Vec::new();
-        let listed: Vec<Value> = outputs.into_iter().map(|output| describe(output, sources, &mut images)).collect();
-        Reply { end, outputs: Value::from(listed).to_string(), images }
+        let mut animation = None;
+        let mut listed = Vec::new();
+        for output in outputs {
+            let first = images.len();
+            let fps = match &output {
+                Output::Frames { fps, .. } => Some(*fps),
+                _ => None,
+            };
+            listed.push(describe(output, sources, &mut images));
+            if let Some(fps) = fps {
+                animation = Some((first..images.len(), fps));
+            }
+        }
+        Reply { end, outputs: Value::from(listed).to_string(), images, animation }
     }
 }
 

@@ -44,6 +44,8 @@ const tutor = new Renderer(module, workerUrl, { supersede: false });
 let shown = null;
 /** The PNG file of the picture shown, for its download. */
 let shownPng = null;
+/** The APNG file of the animation last played, for its download. */
+let shownAnimation = null;
 
 // The editor.
 const renderSoon = debounce(render, TYPING_PAUSE_MS);
@@ -268,6 +270,8 @@ $("#play").addEventListener("click", async () => {
     return;
   }
   setState("done", `${frames.frames.length} frames in ${Math.round(reply.took)} ms`);
+  shownAnimation = reply.animation;
+  $("#download-animation").hidden = false;
   let frame = 0;
   $("#play").textContent = "■ pause";
   playing = setInterval(() => {
@@ -300,6 +304,9 @@ function download(bytes, name, type) {
 
 $("#download").addEventListener("click", () => {
   if (shownPng) download(shownPng, "scene.png", "image/png");
+});
+$("#download-animation").addEventListener("click", () => {
+  if (shownAnimation) download(shownAnimation, "scene.apng", "image/apng");
 });
 
 async function link() {

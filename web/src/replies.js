@@ -1,9 +1,10 @@
 // A Reply of the WebAssembly module (web/src/lib.rs) as plain data: its
 // outputs parsed, each picture as RGBA bytes for a canvas and as the PNG
-// file the command line writes. The worker and the Node test read replies
+// file the command line writes, an animation as its APNG file. The worker and the Node test read replies
 // this way.
 
-/** `reply` as `{ end, outputs, images }`, the Reply freed. */
+/** `reply` as `{ end, outputs, images, animation }` (the APNG file of
+ * the frames `:play` showed, or `null`), the Reply freed. */
 export function replyOf(reply) {
   try {
     const outputs = JSON.parse(reply.outputs);
@@ -15,7 +16,8 @@ export function replyOf(reply) {
       if (output.image) keep(output.image);
       for (const frame of output.frames ?? []) keep(frame);
     }
-    return { end: reply.end, outputs, images };
+    const animation = outputs.some((output) => output.kind === "frames") ? reply.apng() : null;
+    return { end: reply.end, outputs, images, animation };
   } finally {
     reply.free();
   }

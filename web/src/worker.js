@@ -107,5 +107,6 @@ self.onmessage = ({ data }) => {
   const started = performance.now();
   const reply = handlers[data.kind](data);
   const transfer = reply.images.flatMap((image) => [image.rgba.buffer, image.png.buffer]);
+  if (reply.animation) transfer.push(reply.animation.buffer);
   self.postMessage({ id: data.id, took: performance.now() - started, ...reply }, transfer);
 };

@@ -103,3 +103,21 @@ test("a scene that does not parse gives its diagnostic with its line", () => {
     playground.free();
   }
 });
+
+test("the frames :play shows, as an APNG file, are the bytes of --anim", () => {
+  const path = join(root, "scenarios/spiral.ray");
+  const settings = { width: 64, height: 48, depth: 5, samples: 1, time: 0 };
+  const playground = new glue.Playground(Object.assign(new glue.Settings(), settings));
+  try {
+    assert.equal(replyOf(playground.load("scene.ray", readFileSync(path, "utf8"))).end, "done");
+    const played = replyOf(playground.run(":play 4 12"));
+    assert.equal(played.end, "done", JSON.stringify(played.outputs));
+    const out = join(scratch, "spiral.apng");
+    const args = [path, "--width", "64", "--height", "48", "--anim", "4", "--fps", "12", "-q", "-o", out];
+    const run = spawnSync(native, args, { encoding: "utf8" });
+    assert.equal(run.status, 0, run.stderr);
+    assert.ok(Buffer.from(played.animation).equals(readFileSync(out)), "the APNG files differ");
+  } finally {
+    playground.free();
+  }
+});
