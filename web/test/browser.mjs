@@ -268,3 +268,26 @@ test("a lesson shows its step, checks each edit and shows the goal beside the le
   assert.match(await page.$eval("#lesson-verdict", (element) => element.textContent), /✓ step 1 done/);
   await page.close();
 });
+
+test("a scene that reads time has a slider and play; the downloads are the native files", async () => {
+  const page = await openPage();
+  assert.equal(await page.$eval("#time-controls", (element) => element.hidden), true, "hello.ray does not read time");
+  const spiral = readFileSync(join(root, "scenarios/spiral.ray"), "utf8");
+  const settings = { width: 96, height: 72, depth: 5, samples: 1, time: 3 };
+  await checkScene(page, spiral, settings);
+  assert.equal(await page.$eval("#time-controls", (element) => element.hidden), false);
+
+  const [png] = await Promise.all([page.waitForEvent("download"), page.click("#download")]);
+  const nativePng = runNative([sceneFile(spiral), ...settingsArgs(settings), "-q", "-o", "out.png"]);
+  assert.equal(nativePng.status, 0, nativePng.stderr);
+  assert.ok(readFileSync(await png.path()).equals(readFileSync(join(scratch, "out.png"))), "the PNG downloaded is the native file");
+
+  await page.click("#play");
+  await page.waitForFunction(() => document.querySelector("#status").textContent.startsWith("24 frames"), null, { timeout: 30_000 });
+  const [apng] = await Promise.all([page.waitForEvent("download"), page.click("#download-animation")]);
+  const nativeApng = runNative([sceneFile(spiral), "--width", 96, "--height", 72, "--anim", 24, "--fps", 12, "-q", "-o", "out.apng"]);
+  assert.equal(nativeApng.status, 0, nativeApng.stderr);
+  assert.ok(readFileSync(await apng.path()).equals(readFileSync(join(scratch, "out.apng"))), "the APNG downloaded is --anim's file");
+  await page.click("#play");
+  await page.close();
+});
