@@ -190,6 +190,7 @@ async function render() {
     return;
   }
   paint(image);
+  $("#mark").hidden = true;
   shown = { scene, settings: asked };
   shownPng = image.png;
   setState("done", `${image.width}×${image.height} in ${Math.round(reply.took)} ms`);
@@ -203,8 +204,17 @@ async function pick(x, y) {
   const reply = await renderer.request({ kind: "run", ...shown, cell: `:pick ${x} ${y}` });
   if (reply.superseded) return;
   const found = reply.outputs.find((output) => output.kind === "explanation");
+  markPixel(x, y);
   explanation.dataset.pixel = `${x},${y}`;
   explanation.textContent = found ? found.text : textsOf(reply.outputs).map(({ text }) => text).join("\n") || reply.stopped || "";
+}
+
+/** Marks pixel (x, y) over the picture, at its place as the picture is shown. */
+function markPixel(x, y) {
+  const mark = $("#mark");
+  mark.style.left = `${canvas.clientLeft + ((x + 0.5) * canvas.clientWidth) / canvas.width}px`;
+  mark.style.top = `${canvas.clientTop + ((y + 0.5) * canvas.clientHeight) / canvas.height}px`;
+  mark.hidden = false;
 }
 
 canvas.addEventListener("click", (event) => {
