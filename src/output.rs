@@ -25,6 +25,7 @@ mod gif;
 mod still;
 mod video;
 
+pub(crate) use apng::apng_bytes;
 pub(crate) use atomic::{INTERRUPTED_EXIT_CODE, NEVER_CANCELLED, discarding_unfinished, exit_discarding_unfinished};
 pub(crate) use checks::{check_animation_output, check_output, frame_over, same_file};
 pub use error::OutputError;

@@ -2,7 +2,7 @@
 //! pixel exact, unlike a GIF's 256 colours.
 
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
@@ -34,23 +34,8 @@ impl ApngStream {
         cancel: &'static AtomicBool,
     ) -> Result<ApngStream, OutputError> {
         let (pending, writer) = PendingFile::create(path, cancel)?;
-        let png_error = |e| pending.failure(png_encode_error(path, e));
-        let mut encoder = png::Encoder::new(writer, first.width(), first.height());
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        // The same trade as single PNGs: fast compression, so that encoding never outweighs tracing.
-        encoder.set_compression(png::Compression::Fast);
-        encoder.set_filter(png::Filter::Adaptive);
-        // APNG counts plays in all; 0 is forever.
-        let plays = match playback.loops.unwrap_or(Loops::Forever) {
-            Loops::Forever => 0,
-            Loops::Times(times) => times,
-        };
-        encoder.set_animated(frames, plays).map_err(png_error)?;
-        // fps is at most 100, so the denominator is at most 10000.
-        let denominator = (playback.fps() * f64::from(DELAY_NUMERATOR)).round() as u16;
-        encoder.set_frame_delay(DELAY_NUMERATOR, denominator).map_err(png_error)?;
-        let writer = encoder.write_header().map_err(png_error)?;
+        let writer =
+            start_encoding(writer, first, frames, playback).map_err(|e| pending.failure(png_encode_error(path, e)))?;
         Ok(ApngStream { pending, writer })
     }
 
@@ -71,6 +56,45 @@ impl ApngStream {
     fn failure(&self, error: png::EncodingError) -> OutputError {
         self.pending.failure(png_encode_error(&self.pending.path, error))
     }
+}
+
+/// Writes the header of an APNG of `frames` frames the size of `first`,
+/// played as `playback` says, to `writer`: the frames follow.
+fn start_encoding<W: Write>(
+    writer: W,
+    first: &RgbImage,
+    frames: u32,
+    playback: &Playback,
+) -> Result<png::Writer<W>, png::EncodingError> {
+    let mut encoder = png::Encoder::new(writer, first.width(), first.height());
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    // The same trade as single PNGs: fast compression, so that encoding never outweighs tracing.
+    encoder.set_compression(png::Compression::Fast);
+    encoder.set_filter(png::Filter::Adaptive);
+    // APNG counts plays in all; 0 is forever.
+    let plays = match playback.loops.unwrap_or(Loops::Forever) {
+        Loops::Forever => 0,
+        Loops::Times(times) => times,
+    };
+    encoder.set_animated(frames, plays)?;
+    // fps is at most 100, so the denominator is at most 10000.
+    let denominator = (playback.fps() * f64::from(DELAY_NUMERATOR)).round() as u16;
+    encoder.set_frame_delay(DELAY_NUMERATOR, denominator)?;
+    encoder.write_header()
+}
+
+/// `frames` (at least one, all of one size) as the bytes of an APNG played
+/// as `playback` says, for a front-end that shows it (a notebook).
+pub(crate) fn apng_bytes(frames: &[RgbImage], playback: &Playback) -> Result<Vec<u8>, png::EncodingError> {
+    let mut bytes = Vec::new();
+    let first = frames.first().ok_or(png::EncodingError::LimitsExceeded)?;
+    let mut writer = start_encoding(&mut bytes, first, frames.len() as u32, playback)?;
+    for frame in frames {
+        writer.write_image_data(frame.as_raw())?;
+    }
+    writer.finish()?;
+    Ok(bytes)
 }
 
 fn png_encode_error(path: &Path, source: png::EncodingError) -> OutputError {
