@@ -14,6 +14,7 @@ mod front;
 mod install;
 mod sockets;
 
+use std::cell::RefCell;
 use std::path::Path;
 
 use jupyter_protocol::{
@@ -185,11 +186,13 @@ impl Kernel {
             switch: self.switch,
             history: self.history.iter().map(|(_, code)| code.clone()).collect(),
             first_error: None,
+            pending: RefCell::default(),
         };
         // Armed for the whole cell: an interrupt between two of its inputs stops it too.
         let armed = self.switch.arm();
         let ended = self.cells.run(&name, &execute.code, &mut front);
         drop(armed);
+        front.flush();
         let first_error = front.first_error.take();
         if stored {
             self.history.push((self.count, execute.code.clone()));
@@ -214,7 +217,8 @@ impl Kernel {
             status: if error.is_some() { ReplyStatus::Error } else { ReplyStatus::Ok },
             execution_count: count,
             payload: Vec::new(),
-            user_expressions: None,
+            // Expressions are not asked for by name here: none are evaluated.
+            user_expressions: Some(std::collections::HashMap::new()),
             error: error.map(Box::new),
         }
     }

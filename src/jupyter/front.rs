@@ -2,6 +2,7 @@
 //! `stream`, pictures, animations, explanations and lessons as
 //! `display_data`, errors as `error` (kept for the cell's reply).
 
+use std::cell::RefCell;
 use std::path::Path;
 
 use base64::Engine;
@@ -13,7 +14,9 @@ use jupyter_protocol::{
 
 use crate::lang::{Diagnostic, Severity, SourceMap};
 use crate::playback::Playback;
-use crate::repl::{CancelSwitch, FrontEnd, LessonStep, LessonVerdict, Output, Picture, Size, TextRole, mark_pixel};
+use crate::repl::{
+    CancelSwitch, FrontEnd, LessonStep, LessonVerdict, Output, Picture, Size, TextRole, Ticker, mark_pixel,
+};
 
 use super::sockets::Outgoing;
 
@@ -26,8 +29,11 @@ pub(crate) const MOST_OUTPUT_BYTES: usize = 20 << 20;
 /// The MIME type of a pixel's explanation as data (`--explain --json`).
 pub(crate) const EXPLANATION_MIME: &str = "application/vnd.rayrepl.explanation+json";
 
-/// Shows a cell's outputs in the notebook: each goes out at once, as a
-/// child of the cell's request.
+/// Shows a cell's outputs in the notebook, as children of the cell's
+/// request. Lines for standard output are gathered into one `stream`
+/// message until something else is shown, a render starts or the cell
+/// ends (as IPython's kernel buffers them): a cell that prints a thousand
+/// lines sends a few messages, not a thousand.
 pub(crate) struct KernelFront<'k> {
     /// Where messages go.
     pub outgoing: &'k Outgoing,
@@ -41,19 +47,40 @@ pub(crate) struct KernelFront<'k> {
     pub history: Vec<String>,
     /// The first error the cell showed, for its reply.
     pub first_error: Option<ReplyError>,
+    /// Lines for standard output not yet sent.
+    pub pending: RefCell<String>,
 }
 
 impl KernelFront<'_> {
-    /// Publishes `content` as a child of the cell's request.
+    /// Publishes `content` as a child of the cell's request, after the
+    /// lines of standard output before it.
     fn publish(&self, content: impl Into<JupyterMessageContent>) {
+        self.flush();
+        self.send(content.into());
+    }
+
+    fn send(&self, content: JupyterMessageContent) {
         if !self.silent {
             self.outgoing.iopub(JupyterMessage::new(content, Some(self.parent)));
         }
     }
 
+    /// Sends the lines of standard output gathered so far.
+    pub(crate) fn flush(&self) {
+        let pending = std::mem::take(&mut *self.pending.borrow_mut());
+        if !pending.is_empty() {
+            self.send(StreamContent::stdout(&pending).into());
+        }
+    }
+
     fn stream(&self, text: &str, stderr: bool) {
-        let text = format!("{text}\n");
-        self.publish(if stderr { StreamContent::stderr(&text) } else { StreamContent::stdout(&text) });
+        if stderr {
+            self.publish(StreamContent::stderr(&format!("{text}\n")));
+        } else {
+            let mut pending = self.pending.borrow_mut();
+            pending.push_str(text);
+            pending.push('\n');
+        }
     }
 
     /// Publishes an error, and keeps the first for the reply.
@@ -179,6 +206,12 @@ impl FrontEnd for KernelFront<'_> {
 
     fn cancel(&self) -> Option<&'static CancelSwitch> {
         Some(self.switch)
+    }
+
+    /// No progress is drawn; what was said before the work shows while it runs.
+    fn progress(&self, _total: u64, _what: &str) -> Ticker<'_> {
+        self.flush();
+        Box::new(|_| {})
     }
 
     fn history(&self) -> Vec<String> {
