@@ -22,6 +22,8 @@ for mode in ("message", "signal"):
     # The signal-mode spec under a name of its own, beside the default one.
     if mode == "signal":
         (kernels / "rayrepl").rename(kernels / "rayrepl-signal")
+# The lessons' progress of the kernels the tests start, away from the user's.
+os.environ["XDG_DATA_HOME"] = tempfile.mkdtemp(prefix="rayrepl-data-")
 os.environ["JUPYTER_PATH"] = os.pathsep.join(
     str(Path(_prefix) / mode / "share" / "jupyter") for mode in ("message", "signal")
 )
