@@ -60,8 +60,19 @@ pub(crate) fn serve(connection_file: &Path, switch: &'static CancelSwitch) -> Re
         history: Vec::new(),
     };
     kernel.outgoing.iopub(JupyterMessage::new(Status::starting(), None));
-    for request in requests {
-        kernel.handle(&request);
+    while let Ok(request) = requests.recv() {
+        if kernel.handle(&request) == Handled::FailedStoppingQueue {
+            // As IPython's kernel does: the cells queued behind a failed one
+            // (a notebook's "Run All") are not run, each says it was aborted.
+            for queued in requests.try_iter() {
+                match &queued.content {
+                    JupyterMessageContent::ExecuteRequest(_) => kernel.abort(&queued),
+                    _ => {
+                        kernel.handle(&queued);
+                    }
+                }
+            }
+        }
     }
     Ok(())
 }
@@ -125,6 +136,15 @@ fn kernel_info() -> KernelInfoReply {
     }
 }
 
+/// How a shell request went.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Handled {
+    /// Answered.
+    Answered,
+    /// A cell failed, asking (`stop_on_error`) that the cells queued behind it be aborted.
+    FailedStoppingQueue,
+}
+
 /// The session and what the kernel keeps beside it.
 struct Kernel {
     cells: CellSession,
@@ -138,10 +158,17 @@ struct Kernel {
 
 impl Kernel {
     /// Answers one shell request, between a `busy` and an `idle` status.
-    fn handle(&mut self, request: &JupyterMessage) {
+    fn handle(&mut self, request: &JupyterMessage) -> Handled {
         self.outgoing.iopub(JupyterMessage::new(Status::busy(), Some(request)));
+        let mut handled = Handled::Answered;
         let reply: Option<JupyterMessageContent> = match &request.content {
-            JupyterMessageContent::ExecuteRequest(execute) => Some(self.execute(request, execute).into()),
+            JupyterMessageContent::ExecuteRequest(execute) => {
+                let reply = self.execute(request, execute);
+                if reply.status == ReplyStatus::Error && execute.stop_on_error {
+                    handled = Handled::FailedStoppingQueue;
+                }
+                Some(reply.into())
+            }
             JupyterMessageContent::KernelInfoRequest(_) => Some(kernel_info().into()),
             JupyterMessageContent::IsCompleteRequest(IsCompleteRequest { code }) => Some(is_complete(code).into()),
             JupyterMessageContent::CompleteRequest(complete) => Some(self.complete(complete).into()),
@@ -163,6 +190,21 @@ impl Kernel {
         if let Some(reply) = reply {
             self.outgoing.reply(JupyterMessage::new(reply, Some(request)));
         }
+        self.outgoing.iopub(JupyterMessage::new(Status::idle(), Some(request)));
+        handled
+    }
+
+    /// Answers a queued cell without running it: a cell before it failed.
+    fn abort(&self, request: &JupyterMessage) {
+        self.outgoing.iopub(JupyterMessage::new(Status::busy(), Some(request)));
+        let reply = ExecuteReply {
+            status: ReplyStatus::Aborted,
+            execution_count: ExecutionCount::new(self.count),
+            payload: Vec::new(),
+            user_expressions: Some(std::collections::HashMap::new()),
+            error: None,
+        };
+        self.outgoing.reply(JupyterMessage::new(reply, Some(request)));
         self.outgoing.iopub(JupyterMessage::new(Status::idle(), Some(request)));
     }
 

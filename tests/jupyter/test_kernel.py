@@ -149,9 +149,10 @@ def test_history_lists_the_cells(client):
 
 RUNAWAY = "let b = 2\nproc f(n)\n  if n > 0 then\n    f(n - 1)\n    f(n - 1)\n  end\nend\nf(60)"
 LARGE_RENDER = ":size 4000 3000\n:samples 4\n:depth 20\n:render"
+ANIMATION = ":size 1200 900\nput sphere center sin(time), 0, 0 radius 0.5 kd 1 ks 0 phong 1 color 9, 9, 9 end\n:play 100 10"
 
 
-@pytest.mark.parametrize("code", [RUNAWAY, LARGE_RENDER], ids=["runaway recursion", "large render"])
+@pytest.mark.parametrize("code", [RUNAWAY, LARGE_RENDER, ANIMATION], ids=["runaway recursion", "large render", "animation"])
 def test_an_interrupt_stops_the_cell_within_half_a_second(kernel, code):
     manager, client = kernel
     scene = ROOT / "scenarios" / "mirrors.ray"
@@ -182,6 +183,34 @@ def test_an_interrupt_while_idle_changes_nothing(kernel):
     reply, _ = run(client, "print a")
     assert reply["status"] == "ok"
     assert manager.is_alive()
+
+
+def test_cells_queued_behind_a_failed_one_are_aborted(client):
+    failing = client.execute("put box end")
+    queued = [client.execute("let after = 1"), client.execute("print 2")]
+    statuses = {}
+    while len(statuses) < 3:
+        reply = client.get_shell_msg(timeout=TIMEOUT)
+        statuses[reply["parent_header"]["msg_id"]] = reply["content"]["status"]
+    assert [statuses[failing]] + [statuses[msg_id] for msg_id in queued] == ["error", "aborted", "aborted"]
+    reply, _ = run(client, "print after")
+    assert reply["status"] == "error", "the aborted cell did not run"
+    reply, _ = run(client, "put box end", stop_on_error=False)
+    queued = client.execute("let after = 1")
+    assert client.get_shell_msg(timeout=TIMEOUT)["content"]["status"] == "ok"
+
+
+def test_the_heartbeat_beats_and_a_restart_gives_a_new_session(kernel):
+    manager, client = kernel
+    time.sleep(1.5)
+    assert client.hb_channel.is_beating()
+    run(client, "let a = 1")
+    manager.restart_kernel(now=False)
+    client.wait_for_ready(timeout=TIMEOUT)
+    reply, _ = run(client, "print a")
+    assert reply["status"] == "error", "a restarted kernel starts an empty session"
+    reply, _ = run(client, "let a = 2\nprint a")
+    assert (reply["status"], reply["execution_count"]) == ("ok", 2)
 
 
 def test_bad_messages_are_ignored_and_the_kernel_goes_on(client):
