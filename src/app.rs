@@ -72,6 +72,24 @@ pub fn run(cli: Cli) -> ExitCode {
     pool.install(|| dispatch(job.task))
 }
 
+/// Writes the kernelspec and says where, or why it could not.
+#[cfg(feature = "jupyter")]
+fn install_kernel(prefix: &crate::jupyter::KernelPrefix, interrupt_mode: &str) -> ExitCode {
+    let installed = std::env::current_exe()
+        .map_err(|error| format!("this program's path is not known: {}", output::io_reason(&error)))
+        .and_then(|program| crate::jupyter::install(prefix, &program, interrupt_mode));
+    match installed {
+        Ok(folder) => {
+            tell!("installed the kernel `rayrepl` (\"rayrepl (.ray)\") in {}", folder.display());
+            ExitCode::SUCCESS
+        }
+        Err(message) => {
+            report_failure(message);
+            ExitCode::FAILURE
+        }
+    }
+}
+
 /// Does `task` and gives the exit code. While a still image or an
 /// animation renders and writes, Ctrl-C (or `kill`) stops it; at any other
 /// time it ends the process.
@@ -91,6 +109,19 @@ fn dispatch(task: Task) -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+        #[cfg(feature = "jupyter")]
+        Task::Kernel(connection_file) => match switch
+            .ok_or_else(|| "Ctrl-C cannot be handled here".to_string())
+            .and_then(|switch| crate::jupyter::serve(&connection_file, switch))
+        {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(message) => {
+                report_failure(message);
+                ExitCode::FAILURE
+            }
+        },
+        #[cfg(feature = "jupyter")]
+        Task::KernelInstall { prefix, interrupt_mode } => install_kernel(&prefix, interrupt_mode),
         Task::Script(options) => run_script_on_stdin(&options, switch),
         Task::Watch { scene, render, output, no_preview } => {
             exit_code(watch(&scene, &render, output.as_deref(), no_preview), DiagnosticFormat::Rendered)

@@ -23,7 +23,7 @@ use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, W
 #[derive(Debug, Clone, Parser)]
 #[command(name = "rayrepl", version, after_help = AFTER_HELP, args_conflicts_with_subcommands = true)]
 pub struct Cli {
-    /// A command other than rendering: `compare`, `fmt`, `lsp`.
+    /// A command other than rendering: `compare`, `fmt`, `lsp`, `jupyter`.
     #[command(subcommand)]
     pub command: Option<Command>,
 
@@ -170,7 +170,75 @@ pub enum Command {
     /// renames and the outline of `.ray` files. An editor starts it; the README says how to set one up.
     #[cfg(feature = "lsp")]
     Lsp,
+
+    /// Serve a Jupyter notebook kernel (Jupyter starts it), or install its kernelspec (`jupyter install`).
+    ///
+    /// Each cell holds items and `:` commands, run as a piped script runs them: definitions accumulate across
+    /// cells, a cell stops at its first error, `:render` shows the picture in the notebook. The README's notebook
+    /// section says how to start.
+    #[cfg(feature = "jupyter")]
+    #[command(after_help = JUPYTER_AFTER_HELP, args_conflicts_with_subcommands = true)]
+    Jupyter(JupyterArgs),
 }
+
+/// `rayrepl jupyter [--connection-file FILE | install ...]`.
+#[cfg(feature = "jupyter")]
+#[derive(Debug, Clone, Args)]
+pub struct JupyterArgs {
+    /// What to do other than serving: `install`.
+    #[command(subcommand)]
+    pub action: Option<JupyterAction>,
+
+    /// The connection file Jupyter writes for the kernel it starts (the kernelspec passes it).
+    #[arg(long, value_name = "FILE")]
+    pub connection_file: Option<PathBuf>,
+}
+
+/// What `rayrepl jupyter` does other than serving.
+#[cfg(feature = "jupyter")]
+#[derive(Debug, Clone, Subcommand)]
+pub enum JupyterAction {
+    /// Install the kernelspec `rayrepl` ("rayrepl (.ray)"), which starts this program; for the user by default.
+    Install(JupyterInstallArgs),
+}
+
+/// `rayrepl jupyter install [--user | --sys-prefix | --prefix DIR]`.
+#[cfg(feature = "jupyter")]
+#[derive(Debug, Clone, Args)]
+pub struct JupyterInstallArgs {
+    /// For the user (the default): in JUPYTER_DATA_DIR, else ~/.local/share/jupyter on Linux.
+    #[arg(long, conflicts_with_all = ["sys_prefix", "prefix"])]
+    pub user: bool,
+
+    /// In the Python environment Jupyter runs in (VIRTUAL_ENV, CONDA_PREFIX, else python3's sys.prefix).
+    #[arg(long, conflicts_with = "prefix")]
+    pub sys_prefix: bool,
+
+    /// In DIR/share/jupyter/kernels.
+    #[arg(long, value_name = "DIR")]
+    pub prefix: Option<PathBuf>,
+
+    /// How Jupyter interrupts a running cell: with a message on the control channel, or with SIGINT.
+    #[arg(long, value_enum, default_value_t = InterruptMode::Message)]
+    pub interrupt_mode: InterruptMode,
+}
+
+/// How Jupyter interrupts the kernel (the kernelspec's `interrupt_mode`).
+#[cfg(feature = "jupyter")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum InterruptMode {
+    /// An `interrupt_request` on the control channel.
+    Message,
+    /// SIGINT.
+    Signal,
+}
+
+#[cfg(feature = "jupyter")]
+const JUPYTER_AFTER_HELP: &str = "\
+Examples:
+  rayrepl jupyter install                              install the kernel for the user
+  rayrepl jupyter install --sys-prefix                 install it in the active Python environment
+  jupyter lab                                          then pick \"rayrepl (.ray)\" for a new notebook";
 
 /// `rayrepl fmt [--check] FILE...`.
 #[derive(Debug, Clone, Args)]

@@ -39,6 +39,17 @@ pub enum Task {
     /// `lsp`: serve the Language Server Protocol on standard input and output.
     #[cfg(feature = "lsp")]
     LanguageServer,
+    /// `jupyter --connection-file FILE`: serve a notebook kernel.
+    #[cfg(feature = "jupyter")]
+    Kernel(PathBuf),
+    /// `jupyter install`: write the kernelspec under `prefix`.
+    #[cfg(feature = "jupyter")]
+    KernelInstall {
+        /// Where.
+        prefix: crate::jupyter::KernelPrefix,
+        /// The kernelspec's `interrupt_mode`.
+        interrupt_mode: &'static str,
+    },
     /// `--check`: evaluate the scene and say what it holds.
     Check(SceneFile),
     /// Render one image at the scene's time and write it to `output`.
@@ -190,6 +201,8 @@ impl Job {
             }
             #[cfg(feature = "lsp")]
             Some(Command::Lsp) => return Ok(Job { threads: 0, task: Task::LanguageServer }),
+            #[cfg(feature = "jupyter")]
+            Some(Command::Jupyter(args)) => return Ok(Job { threads: 0, task: kernel_task(args)? }),
             None => {}
         }
         if let Some(misuse) = misuse(cli) {
@@ -452,6 +465,32 @@ fn time_with_an_animation() -> String {
     "--time sets the time of one image; frame k of an animation has time = k, \
      or A + (k - 1) * S with --time-start A --time-step S"
         .into()
+}
+
+/// The task `rayrepl jupyter` asks for.
+#[cfg(feature = "jupyter")]
+fn kernel_task(args: &crate::cli::JupyterArgs) -> Result<Task, JobError> {
+    use crate::cli::{InterruptMode, JupyterAction};
+    use crate::jupyter::KernelPrefix;
+    match (&args.action, &args.connection_file) {
+        (Some(JupyterAction::Install(install)), _) => {
+            let prefix = match (&install.prefix, install.sys_prefix) {
+                (Some(prefix), _) => KernelPrefix::Prefix(prefix.clone()),
+                (None, true) => KernelPrefix::SysPrefix,
+                (None, false) => KernelPrefix::User,
+            };
+            let interrupt_mode = match install.interrupt_mode {
+                InterruptMode::Message => "message",
+                InterruptMode::Signal => "signal",
+            };
+            Ok(Task::KernelInstall { prefix, interrupt_mode })
+        }
+        (None, Some(file)) => Ok(Task::Kernel(file.clone())),
+        (None, None) => Err(JobError::Misuse(
+            "Jupyter starts the kernel with --connection-file FILE; to let it, run `rayrepl jupyter install` first"
+                .to_string(),
+        )),
+    }
 }
 
 #[cfg(test)]

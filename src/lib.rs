@@ -24,6 +24,8 @@ pub mod failure;
 mod interruption;
 #[cfg(feature = "terminal")]
 mod job;
+#[cfg(feature = "jupyter")]
+mod jupyter;
 pub mod lang;
 pub mod lint;
 #[cfg(feature = "lsp")]

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use crate::lang::{Entry, EntryState, SourceMap};
+use crate::lang::{Entry, EntryState, SourceId, SourceMap, parse_items};
 
 use super::cancel::CancelSwitch;
 use super::commands::{self, is_command};
@@ -121,7 +121,8 @@ impl CellSession {
         self.shell.session.sources()
     }
 
-    /// Whether `text` is ready to run, or how the next line starts.
+    /// Whether `text` is ready to run (every input in it finished and
+    /// parsed), or how the next line starts.
     pub fn completeness(text: &str) -> Completeness {
         let mut pending: Option<Entry> = None;
         for line in text.lines() {
@@ -136,6 +137,9 @@ impl CellSession {
             match entry.state() {
                 EntryState::Unfinished => pending = Some(entry),
                 EntryState::Broken | EntryState::BrokenBeforeLastLine => return Completeness::Invalid,
+                EntryState::Complete if parse_items(SourceId::default(), entry.text()).is_err() => {
+                    return Completeness::Invalid;
+                }
                 EntryState::Complete => {}
             }
         }
@@ -262,6 +266,7 @@ mod tests {
             Completeness::Incomplete { indent: "    ".to_string() }
         );
         assert_eq!(CellSession::completeness("put sphere radius 1 radius end )"), Completeness::Invalid);
+        assert_eq!(CellSession::completeness("let = 3"), Completeness::Invalid);
         assert_eq!(CellSession::completeness(""), Completeness::Complete);
     }
 

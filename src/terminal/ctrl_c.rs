@@ -76,8 +76,19 @@ fn on_signal(signal: Signal) {
     }
     match SWITCH.get() {
         Some(Some(switch)) if switch.cancel_if_armed(signal) => end_if_stuck(switch, signal),
+        _ if signal == Signal::Interrupt && IDLE_INTERRUPTS_IGNORED.load(Ordering::SeqCst) => {}
         _ => exit_discarding_unfinished(INTERRUPTED_EXIT_CODE),
     }
+}
+
+/// Whether SIGINT while nothing runs is ignored ([`ignore_idle_interrupts`]).
+static IDLE_INTERRUPTS_IGNORED: AtomicBool = AtomicBool::new(false);
+
+/// From now on SIGINT while no job runs does nothing, rather than end the
+/// process: a notebook's kernel, which Jupyter interrupts with SIGINT
+/// whether a cell runs or not (SIGTERM and SIGHUP still end it).
+pub(crate) fn ignore_idle_interrupts() {
+    IDLE_INTERRUPTS_IGNORED.store(true, Ordering::SeqCst);
 }
 
 /// Watches the job `signal` stopped until its switch is disarmed: if a
