@@ -291,3 +291,16 @@ test("a scene that reads time has a slider and play; the downloads are the nativ
   await page.click("#play");
   await page.close();
 });
+
+test("a scene too large for the browser's memory ends with a diagnostic, and the page goes on", async () => {
+  const page = await openPage();
+  const huge = "camera distance 8 angle 1 end\nambient 0.2\nproc f(d)\nif d < 26 then\n" +
+    "put sphere center d, 0, 0 radius 0.1 kd 0.5 ks 0 phong 1 color 1, 2, 3 end\nf(d + 1)\nf(d + 1)\nend\nend\nf(0)\n";
+  await page.evaluate((text) => window.rayrepl.load(text), huge);
+  await page.waitForSelector("#diagnostics [data-line]", { timeout: 50_000 });
+  const shown = await page.$eval("#diagnostics [data-line]", (element) => element.textContent);
+  assert.match(shown, /^error: /);
+  assert.equal(await page.$eval("#picture", (canvas) => canvas.dataset.state), "error");
+  await checkScene(page, HELLO, SMALL);
+  await page.close();
+});
