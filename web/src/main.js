@@ -4,7 +4,7 @@
 // file shows its outputs. The hooks of `window.rayrepl` are the README's
 // ("In the browser").
 
-import { history, defaultKeymap, historyKeymap, indentWithTab } from "@codemirror/commands";
+import { defaultKeymap, history as undoHistory, historyKeymap, indentWithTab } from "@codemirror/commands";
 import { setDiagnostics, lintGutter } from "@codemirror/lint";
 import { EditorState } from "@codemirror/state";
 import { EditorView, keymap, lineNumbers, highlightActiveLine } from "@codemirror/view";
@@ -49,14 +49,14 @@ let shownAnimation = null;
 
 // The editor.
 const renderSoon = debounce(render, TYPING_PAUSE_MS);
-const checkLessonSoon = debounce(() => checkLesson(), TYPING_PAUSE_MS);
+const checkLessonSoon = debounce(checkLesson, TYPING_PAUSE_MS);
 const editor = new EditorView({
   parent: $("#editor"),
   state: EditorState.create({
     doc: examples.scenarios.find((example) => example.name === "hello")?.text ?? "",
     extensions: [
       lineNumbers(),
-      history(),
+      undoHistory(),
       highlightActiveLine(),
       lintGutter(),
       ray,
@@ -331,8 +331,10 @@ $("#share").addEventListener("click", async () => {
     history.replaceState(null, "", made);
     await navigator.clipboard?.writeText(made).catch(() => {});
     shareStatus.textContent = "the link is in the address bar (and copied)";
+    delete shareStatus.dataset.error;
   } catch (error) {
     shareStatus.textContent = error.message;
+    shareStatus.dataset.error = "true";
   }
 });
 

@@ -195,6 +195,9 @@ test("a shared link opens the same scene and settings; a damaged or too long one
   await checkScene(page, scene.text, scene.settings);
   const link = await page.evaluate(() => window.rayrepl.link());
   assert.match(link, /#v=1&w=160&h=120&d=7&s=1&t=0&scene=[A-Za-z0-9_-]+$/);
+  await page.click("#share");
+  await page.waitForFunction(() => document.querySelector("#share-status").textContent.startsWith("the link is in the address bar"));
+  assert.equal(page.url(), link, "the button puts the link in the address bar");
   await page.close();
 
   const opened = await openPage(link.slice(link.indexOf("#")));
