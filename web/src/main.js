@@ -175,6 +175,7 @@ function pictureOf(reply) {
 // Rendering.
 
 async function render() {
+  stopPlaying();
   const scene = sceneText();
   const asked = { ...settings };
   $("#time-controls").hidden = !readsTime(scene);
@@ -203,10 +204,16 @@ async function pick(x, y) {
   explanation.textContent = `why pixel (${x}, ${y})…`;
   const reply = await renderer.request({ kind: "run", ...shown, cell: `:pick ${x} ${y}` });
   if (reply.superseded) return;
+  resumeRendering();
   const found = reply.outputs.find((output) => output.kind === "explanation");
   markPixel(x, y);
   explanation.dataset.pixel = `${x},${y}`;
   explanation.textContent = found ? found.text : textsOf(reply.outputs).map(({ text }) => text).join("\n") || reply.stopped || "";
+}
+
+/** Renders again if a pick abandoned the render of the editor's scene. */
+function resumeRendering() {
+  if (canvas.dataset.state === "rendering") renderSoon();
 }
 
 /** Marks pixel (x, y) over the picture, at its place as the picture is shown. */
