@@ -9,8 +9,7 @@ import { spawnSync } from "node:child_process";
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
 import { gzipSync } from "node:zlib";
-import { chromium } from "playwright-core";
-import { serve } from "./serve.mjs";
+import { launchBrowser, serve } from "./serve.mjs";
 
 const root = join(import.meta.dirname, "../..");
 const dist = join(root, "web/dist");
@@ -18,7 +17,7 @@ const RUNS = 7;
 const median = (values) => [...values].sort((a, b) => a - b)[Math.floor(values.length / 2)];
 
 const server = await serve(dist);
-const browser = await chromium.launch({ executablePath: process.env.RAYREPL_CHROMIUM ?? "/usr/bin/chromium", args: ["--no-sandbox"] });
+const browser = await launchBrowser();
 
 const firsts = [];
 for (let run = 0; run < RUNS; run++) {

@@ -12,9 +12,8 @@ import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFil
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
 import { unseenScenes } from "./scenes.mjs";
-import { serve } from "./serve.mjs";
+import { launchBrowser, serve } from "./serve.mjs";
 
 const root = join(import.meta.dirname, "../..");
 const dist = join(root, "web/dist");
@@ -35,7 +34,7 @@ before(async () => {
   assert.ok(existsSync(join(dist, "index.html")), "web/dist/ is built (bash web/build.sh)");
   server = await serve(dist);
   base = server.base;
-  browser = await chromium.launch({ executablePath: process.env.RAYREPL_CHROMIUM ?? "/usr/bin/chromium", args: ["--no-sandbox"] });
+  browser = await launchBrowser();
 });
 
 after(async () => {
