@@ -186,8 +186,9 @@ async function render() {
   showMessages(reply.outputs);
   const image = pictureOf(reply);
   if (reply.end !== "done" || !image) {
-    // The last good picture stays.
-    setState("error", reply.stopped ?? "the scene has an error: the picture is the last one that rendered");
+    // The last good picture stays; a setting refused says why.
+    const refused = textsOf(reply.outputs).find(({ role }) => role === "error");
+    setState("error", reply.stopped ?? refused?.text ?? "the scene has an error: the picture is the last one that rendered");
     return;
   }
   paint(image);

@@ -306,3 +306,14 @@ test("a scene too large for the browser's memory ends with a diagnostic, and the
   await checkScene(page, HELLO, SMALL);
   await page.close();
 });
+
+test("a setting past the command line's limit is refused with its message", async () => {
+  const page = await openPage();
+  await page.evaluate(() => window.rayrepl.settings({ width: 100000 }));
+  await page.waitForFunction(() => document.querySelector("#picture").dataset.state === "error");
+  const run = runNative([sceneFile(HELLO), "--width", "100000", "-o", "out.png"]);
+  assert.equal(run.status, 2);
+  const status = await page.$eval("#status", (element) => element.textContent);
+  assert.ok(run.stderr.includes(`: ${status}\n`), `${status} is not in: ${run.stderr}`);
+  await page.close();
+});
