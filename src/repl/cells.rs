@@ -260,7 +260,7 @@ mod tests {
 
     #[test]
     fn a_cell_is_complete_incomplete_with_its_indent_or_invalid() {
-        assert_eq!(CellSession::completeness("put sphere end\n:render"), Completeness::Complete);
+        assert_eq!(CellSession::completeness("let a = 1\n:render"), Completeness::Complete);
         assert_eq!(
             CellSession::completeness("proc p()\n  if 1 < 2 then"),
             Completeness::Incomplete { indent: "    ".to_string() }

@@ -5,7 +5,7 @@ do not edit; RAYREPL_BLESS=1 cargo test --release --lib pygments writes it again
 """
 
 from pygments.lexer import RegexLexer, bygroups, words
-from pygments.token import Comment, Error, Keyword, Name, Number, Operator, Punctuation, Whitespace
+from pygments.token import Comment, Error, Keyword, Name, Number, Operator, Punctuation, Text, Whitespace
 
 __all__ = ["RayLexer"]
 
@@ -25,10 +25,12 @@ class RayLexer(RegexLexer):
     filenames = ["*.ray"]
     mimetypes = ["text/x-ray"]
 
-    # Tried in this order at each place: a keyword before a name, `proc f`
+    # Tried in this order at each place: a command's line first (a cell
+    # of a notebook holds commands), a keyword before a name, `proc f`
     # before `proc`, a whole integer before a number with a point.
     tokens = {
         "root": [
+            (r"^([ \t]*)(:[A-Za-z_]+)([^\n]*)", bygroups(Whitespace, Keyword.Pseudo, Text)),
             (BLANK + r"+", Whitespace),
             (r"#.*", Comment.Single),
             (r"(proc)(" + BLANK + r"+)(" + NAME + r")", bygroups(Keyword, Whitespace, Name.Function)),

@@ -15,7 +15,7 @@ import unittest
 import pygments
 import pygments.lexers
 from pygments.formatters import HtmlFormatter
-from pygments.token import Comment, Error, Keyword, Name, Number, Operator, Punctuation, Whitespace
+from pygments.token import Comment, Error, Keyword, Name, Number, Operator, Punctuation, Text, Whitespace
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 FOLDERS = ["scenarios", "tests/cases/valid", "tests/cases/warnings"]
@@ -170,6 +170,11 @@ KNOWN_LINES = [
             (Punctuation, ")"), (Error, "//"), (Name, "no"), (Error, "$"), (Number.Integer, "5"), (Error, "."),
             (Name, "sph"), (Error, "è"), (Name, "re"),
         ],
+    ),
+    (
+        # A notebook's cell holds commands: each is its whole line.
+        "  :save out 1.png",
+        [(Keyword.Pseudo, ":save"), (Text, " out 1.png")],
     ),
     (
         "let\u00a0x = 1\u2212y;",

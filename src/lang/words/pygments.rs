@@ -65,6 +65,10 @@ pub fn token_type(word: &Word) -> Option<&'static str> {
     })
 }
 
+/// A line that is a command of the session (`:render`, `:size 320 240`):
+/// its indent, its name with the colon, the rest of the line.
+const COMMAND_LINE: &str = "^([ \\t]*)(:[A-Za-z_]+)([^\\n]*)";
+
 /// The lexer, as the Python source committed at [`PATH`].
 pub fn lexer() -> String {
     let mut text = format!(
@@ -75,7 +79,7 @@ do not edit; RAYREPL_BLESS=1 cargo test --release --lib pygments writes it again
 """
 
 from pygments.lexer import RegexLexer, bygroups, words
-from pygments.token import Comment, Error, Keyword, Name, Number, Operator, Punctuation, Whitespace
+from pygments.token import Comment, Error, Keyword, Name, Number, Operator, Punctuation, Text, Whitespace
 
 __all__ = ["RayLexer"]
 
@@ -95,7 +99,8 @@ class RayLexer(RegexLexer):
     filenames = ["*.ray"]
     mimetypes = ["text/x-ray"]
 
-    # Tried in this order at each place: a keyword before a name, `proc f`
+    # Tried in this order at each place: a command's line first (a cell
+    # of a notebook holds commands), a keyword before a name, `proc f`
     # before `proc`, a whole integer before a number with a point.
     tokens = {{
         "root": [
@@ -117,6 +122,9 @@ fn rules() -> Vec<(String, String)> {
     let proc = super::lookup("proc").expect("`proc` is in the table");
     let proc_type = token_type(proc).expect("`proc` is a keyword");
     let mut rules = vec![
+        // A session's command, in a notebook's cell or a script: its whole
+        // line (files hold none; the lexer rejects the colon there).
+        (raw(COMMAND_LINE), "bygroups(Whitespace, Keyword.Pseudo, Text)".to_string()),
         (format!("BLANK + {}", raw("+")), "Whitespace".to_string()),
         (raw("#.*"), "Comment.Single".to_string()),
         (
