@@ -169,9 +169,9 @@ impl Reply {
 
     /// Picture `index` as RGBA bytes, the canvas's `ImageData`: the RGB
     /// bytes the batch renderer writes, each pixel opaque.
-    pub fn rgba(&self, index: usize) -> Vec<u8> {
-        let Some(image) = self.images.get(index) else { return Vec::new() };
-        image.pixels().flat_map(|pixel| [pixel[0], pixel[1], pixel[2], u8::MAX]).collect()
+    pub fn rgba(&self, index: usize) -> Result<Vec<u8>, JsError> {
+        let image = self.image(index)?;
+        Ok(image.pixels().flat_map(|pixel| [pixel[0], pixel[1], pixel[2], u8::MAX]).collect())
     }
 
     /// The animation `:play N FPS` showed as an APNG file, the bytes
@@ -184,7 +184,7 @@ impl Reply {
 
     /// Picture `index` as a PNG file, the bytes `rayrepl -o out.png` writes.
     pub fn png(&self, index: usize) -> Result<Vec<u8>, JsError> {
-        let image = self.images.get(index).ok_or_else(|| JsError::new("no such picture"))?;
+        let image = self.image(index)?;
         let mut bytes = Vec::new();
         rayrepl::output::write_png(&mut bytes, image).map_err(|e| JsError::new(&e.to_string()))?;
         Ok(bytes)
@@ -192,6 +192,11 @@ impl Reply {
 }
 
 impl Reply {
+    /// Picture `index`, or the error JavaScript sees for one it does not have.
+    fn image(&self, index: usize) -> Result<&RgbImage, JsError> {
+        self.images.get(index).ok_or_else(|| JsError::new(&format!("the reply has no picture {index}")))
+    }
+
     /// The reply of a cell that ended with `end` after showing `outputs`,
     /// its diagnostics pointing into `sources`.
     fn new(end: CellEnd, outputs: Vec<Output>, sources: &SourceMap) -> Reply {
