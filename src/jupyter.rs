@@ -16,6 +16,8 @@ mod sockets;
 
 use std::cell::RefCell;
 use std::path::Path;
+use std::sync::mpsc;
+use std::time::Duration;
 
 use jupyter_protocol::{
     CodeMirrorMode, CommInfoReply, CompleteReply, CompleteRequest, ConnectionInfo, ExecuteInput, ExecuteReply,
@@ -24,6 +26,7 @@ use jupyter_protocol::{
     LanguageInfo, Media, MediaType, ReplyError, ReplyStatus, ShutdownReply, Status,
 };
 
+use crate::clock::Stopwatch;
 use crate::interruption::Signal;
 use crate::repl::{CancelSwitch, CellEnd, CellSession, Completeness, SessionOptions};
 use front::KernelFront;
@@ -61,18 +64,7 @@ pub(crate) fn serve(connection_file: &Path, switch: &'static CancelSwitch) -> Re
     };
     kernel.outgoing.iopub(JupyterMessage::new(Status::starting(), None));
     while let Ok(request) = requests.recv() {
-        if kernel.handle(&request) == Handled::FailedStoppingQueue {
-            // As IPython's kernel does: the cells queued behind a failed one
-            // (a notebook's "Run All") are not run, each says it was aborted.
-            for queued in requests.try_iter() {
-                match &queued.content {
-                    JupyterMessageContent::ExecuteRequest(_) => kernel.abort(&queued),
-                    _ => {
-                        kernel.handle(&queued);
-                    }
-                }
-            }
-        }
+        kernel.handle(&request, &requests);
     }
     Ok(())
 }
@@ -136,14 +128,12 @@ fn kernel_info() -> KernelInfoReply {
     }
 }
 
-/// How a shell request went.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Handled {
-    /// Answered.
-    Answered,
-    /// A cell failed, asking (`stop_on_error`) that the cells queued behind it be aborted.
-    FailedStoppingQueue,
-}
+/// How long a failed cell waits for the requests its client sent before
+/// the failure reached it (a notebook's "Run All" sends every cell at
+/// once), to abort them: they are read by the sockets' thread, and may
+/// reach the session's thread just after the cell ends. A client that
+/// waits for each reply (nbclient) sends nothing in this window.
+const QUEUED_WINDOW: Duration = Duration::from_millis(50);
 
 /// The session and what the kernel keeps beside it.
 struct Kernel {
@@ -158,14 +148,23 @@ struct Kernel {
 
 impl Kernel {
     /// Answers one shell request, between a `busy` and an `idle` status.
-    fn handle(&mut self, request: &JupyterMessage) -> Handled {
+    /// A cell that fails with `stop_on_error` aborts the cells its client
+    /// queued behind it, as IPython's kernel does; the other requests
+    /// queued with them are answered in order.
+    fn handle(&mut self, request: &JupyterMessage, requests: &mpsc::Receiver<JupyterMessage>) {
         self.outgoing.iopub(JupyterMessage::new(Status::busy(), Some(request)));
-        let mut handled = Handled::Answered;
+        let mut queued = Vec::new();
         let reply: Option<JupyterMessageContent> = match &request.content {
             JupyterMessageContent::ExecuteRequest(execute) => {
                 let reply = self.execute(request, execute);
                 if reply.status == ReplyStatus::Error && execute.stop_on_error {
-                    handled = Handled::FailedStoppingQueue;
+                    // Before the reply: what comes after it may follow it.
+                    let waited = Stopwatch::start();
+                    while let Some(left) = QUEUED_WINDOW.checked_sub(waited.elapsed())
+                        && let Ok(next) = requests.recv_timeout(left)
+                    {
+                        queued.push(next);
+                    }
                 }
                 Some(reply.into())
             }
@@ -191,7 +190,12 @@ impl Kernel {
             self.outgoing.reply(JupyterMessage::new(reply, Some(request)));
         }
         self.outgoing.iopub(JupyterMessage::new(Status::idle(), Some(request)));
-        handled
+        for next in queued {
+            match &next.content {
+                JupyterMessageContent::ExecuteRequest(_) => self.abort(&next),
+                _ => self.handle(&next, requests),
+            }
+        }
     }
 
     /// Answers a queued cell without running it: a cell before it failed.
