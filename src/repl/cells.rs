@@ -197,8 +197,7 @@ fn word_at(text: &str, at: usize) -> Option<&str> {
     let is_part = |c: char| is_word_char(c) || c == ':';
     let start = text[..at].char_indices().rev().take_while(|(_, c)| is_part(*c)).last().map_or(at, |(i, _)| i);
     let end = text[at..].char_indices().find(|(_, c)| !is_part(*c)).map_or(text.len(), |(i, _)| at + i);
-    let word = text[start..end].trim_start_matches(':');
-    let word = if text[start..end].starts_with(':') { &text[start..end] } else { word };
+    let word = &text[start..end];
     (!word.is_empty()).then_some(word)
 }
 
