@@ -45,6 +45,8 @@ mod pixels;
 pub mod reuse;
 pub mod shade;
 
+use std::ops::Range;
+
 use image::RgbImage;
 
 pub use adaptive::{ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, FINE_DETAIL, Glimpse, glimpse_pass, refinement_mask};
@@ -74,6 +76,31 @@ pub fn render(
     control: &RenderControl,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
     render_with(scene, prepared, options, control, None)
+}
+
+/// Rows `rows` (top included, bottom not; those past the image's bottom
+/// are left out) of the image [`render`] makes with `options`, the same
+/// bytes, computed on the calling thread: for a front-end that splits one
+/// image into bands over workers of its own (the browser page, whose
+/// WebAssembly has no threads). Every pixel is computed on its own
+/// (`pixels`), so the bands put together are the whole image's bytes.
+///
+/// # Panics
+///
+/// If `options` asks for adaptive anti-aliasing, whose choice of pixels
+/// looks at their neighbours across a band's edge.
+pub fn render_rows(
+    scene: &Scene,
+    prepared: &SceneGeometry,
+    options: &RenderOptions,
+    rows: Range<u32>,
+    control: &RenderControl,
+) -> Result<RgbImage, Cancelled> {
+    assert!(!options.is_adaptive(), "adaptive anti-aliasing renders whole images");
+    let (top, bottom) = (rows.start.min(options.height), rows.end.min(options.height));
+    let mut image = RgbImage::new(options.width, bottom.saturating_sub(top));
+    pixels::Pass::new(scene, prepared, options, control, options.samples).run_rows(top, &mut image)?;
+    Ok(image)
 }
 
 /// [`render`] with adaptive anti-aliasing (`options.adaptive`, more than one
@@ -136,6 +163,22 @@ mod tests {
         let mut interpreter = crate::lang::Interpreter::new(0.0, crate::lang::Limits::default());
         interpreter.run(&program).expect("runs");
         interpreter.into_scene()
+    }
+
+    /// Bands of rows put together are the bytes of the whole image,
+    /// wherever their edges fall; rows past the bottom are left out.
+    #[test]
+    fn bands_put_together_are_the_whole_image() {
+        let s = scene();
+        let prepared = SceneGeometry::new(&s);
+        let options = RenderOptions { width: 40, height: 30, samples: 4, ..RenderOptions::default() };
+        let control = RenderControl::default();
+        let (whole, _) = render(&s, &prepared, &options, &control).expect("runs");
+        let mut bands = Vec::new();
+        for rows in [0..7, 7..23, 23..40] {
+            bands.extend_from_slice(&render_rows(&s, &prepared, &options, rows, &control).expect("runs"));
+        }
+        assert!(bands == whole.into_raw());
     }
 
     /// Each pixel of an adaptive render holds the bytes of the pass that

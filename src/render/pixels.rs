@@ -100,6 +100,15 @@ impl<'a> Pass<'a> {
         self.run(buffer, flags, &mut vec![(); buffer.len() / 3])
     }
 
+    /// Renders into `buffer` (the RGB bytes of whole rows) the rows from
+    /// row `top` on, on the calling thread. Returns the rays traced.
+    pub fn run_rows(&self, top: u32, buffer: &mut [u8]) -> Result<RayCounts, Cancelled> {
+        if self.width == 0 {
+            return Ok(RayCounts::default());
+        }
+        self.band(top, buffer, None, &mut vec![(); buffer.len() / 3])
+    }
+
     /// Renders the band of rows starting at row `top` into `pixels` (its
     /// RGB bytes), tile by tile: the pixels `flags` marks (the band's share
     /// of them), each watched by its observer.

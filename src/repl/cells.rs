@@ -7,9 +7,13 @@
 //! Beside running, the questions an editor of cells asks: whether a cell
 //! is complete, what may be typed at a place, what the word at a place is.
 
+use std::ops::Range;
 use std::path::Path;
 
+use image::RgbImage;
+
 use crate::lang::{Entry, EntryState, SourceId, SourceMap, parse_items};
+use crate::render::{OutOfMemory, RenderControl, SceneGeometry, render_rows, reserve_for};
 
 use super::cancel::CancelSwitch;
 use super::commands::{self, is_command};
@@ -17,6 +21,7 @@ use super::completion::{self, Candidate};
 use super::file_commands::load_text_reporting;
 use super::options::{SessionOptions, new_session};
 use super::outputs::{Collected, FrontEnd, Output};
+use super::rendering::{Size, render_options};
 use super::report::show_printed;
 use super::script::{Named, TextRan, run_text};
 use super::shell::Shell;
@@ -114,6 +119,27 @@ impl CellSession {
         let loaded = load_text_reporting(&mut self.shell, path, text, front);
         show_printed(&self.shell.session, front);
         if loaded.is_ok() { CellEnd::Done } else { CellEnd::Failed }
+    }
+
+    /// Rows `rows` of the picture `:render` makes of the session's scene
+    /// at the session's size and settings, the same bytes: for a front-end
+    /// that renders the bands of one picture in sessions of its own, one
+    /// per worker, each loaded with the same text and settings (the
+    /// browser page). Fails, as `:render` does, when the memory the render
+    /// needs cannot be had.
+    ///
+    /// # Panics
+    ///
+    /// If the session's settings ask for adaptive anti-aliasing (see
+    /// [`render_rows`]).
+    pub fn render_rows(&self, rows: Range<u32>) -> Result<RgbImage, OutOfMemory> {
+        let session = &self.shell.session;
+        let settings = session.settings();
+        let options = render_options(Size { width: settings.width, height: settings.height }, settings);
+        reserve_for(session.scene(), &options)?;
+        let scene = session.scene();
+        let rendered = render_rows(scene, &SceneGeometry::new(scene), &options, rows, &RenderControl::default());
+        Ok(rendered.expect("a render without a cancel switch runs to its end"))
     }
 
     /// The texts the session's diagnostics point into.

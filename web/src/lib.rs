@@ -129,6 +129,15 @@ impl Playground {
         Reply::new(end, front.outputs, self.session.sources())
     }
 
+    /// Rows `top..bottom` of the picture `:render` makes of the session's
+    /// scene, as RGBA bytes (see [`rgba_of`]): the page renders the bands of
+    /// one picture in several workers, each with a playground loaded with
+    /// the same scene and settings, and puts them together on its canvas.
+    pub fn render_rows(&self, top: u32, bottom: u32) -> Result<Vec<u8>, JsError> {
+        let band = self.session.render_rows(top..bottom).map_err(|e| JsError::new(&e.to_string()))?;
+        Ok(rgba_of(&band))
+    }
+
     /// Runs `text` as the scene file `name` (`scene.ray`), as `:load`
     /// would run it: the whole file, its camera first.
     pub fn load(&mut self, name: &str, text: &str) -> Reply {
@@ -170,8 +179,7 @@ impl Reply {
     /// Picture `index` as RGBA bytes, the canvas's `ImageData`: the RGB
     /// bytes the batch renderer writes, each pixel opaque.
     pub fn rgba(&self, index: usize) -> Result<Vec<u8>, JsError> {
-        let image = self.image(index)?;
-        Ok(image.pixels().flat_map(|pixel| [pixel[0], pixel[1], pixel[2], u8::MAX]).collect())
+        Ok(rgba_of(self.image(index)?))
     }
 
     /// The animation `:play N FPS` showed as an APNG file, the bytes
@@ -184,10 +192,7 @@ impl Reply {
 
     /// Picture `index` as a PNG file, the bytes `rayrepl -o out.png` writes.
     pub fn png(&self, index: usize) -> Result<Vec<u8>, JsError> {
-        let image = self.image(index)?;
-        let mut bytes = Vec::new();
-        rayrepl::output::write_png(&mut bytes, image).map_err(|e| JsError::new(&e.to_string()))?;
-        Ok(bytes)
+        png_bytes(self.image(index)?)
     }
 }
 
@@ -222,6 +227,30 @@ impl Reply {
         }
         Reply { end, outputs: Value::from(listed).to_string(), images, animation }
     }
+}
+
+/// `image` as RGBA bytes, the canvas's `ImageData`: the RGB bytes the
+/// batch renderer writes, each pixel opaque.
+fn rgba_of(image: &RgbImage) -> Vec<u8> {
+    image.pixels().flat_map(|pixel| [pixel[0], pixel[1], pixel[2], u8::MAX]).collect()
+}
+
+/// The PNG file of the picture of `width` x `height` pixels whose RGBA
+/// bytes are `rgba` (the bands the page put together), the bytes
+/// `rayrepl -o out.png` writes of it (the alpha bytes are left out).
+#[wasm_bindgen]
+pub fn png_of_rgba(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>, JsError> {
+    let rgb = rgba.chunks_exact(4).flat_map(|pixel| [pixel[0], pixel[1], pixel[2]]).collect();
+    let image = RgbImage::from_raw(width, height, rgb)
+        .ok_or_else(|| JsError::new("the bytes are not a picture of that size"))?;
+    png_bytes(&image)
+}
+
+/// `image` as a PNG file, the bytes `rayrepl -o out.png` writes.
+fn png_bytes(image: &RgbImage) -> Result<Vec<u8>, JsError> {
+    let mut bytes = Vec::new();
+    rayrepl::output::write_png(&mut bytes, image).map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(bytes)
 }
 
 /// `output` as a JSON object, its pictures moved to the end of `images`

@@ -30,20 +30,26 @@ const status = $("#status");
 const settings = { width: 640, height: 480, depth: 5, samples: 1, time: 0 };
 const controls = ["width", "height", "depth", "samples", "time"];
 
-// Two workers from one compiled module: pictures (a new render abandons
-// the one running) and the lesson's session (its checks wait their turn).
+// Workers from one compiled module: those of pictures (a new render
+// abandons the ones running), each rendering a band of rows of the
+// picture (the first also picks pixels and plays), and the lesson's
+// session (its checks wait their turn; it also writes PNG files).
 // (Compiled from its bytes, whatever type the server gives the file.)
 const module = fetch(new URL("rayrepl_web_bg.wasm", import.meta.url))
   .then((response) => response.arrayBuffer())
   .then((bytes) => WebAssembly.compile(bytes));
 const workerUrl = new URL("worker.js", import.meta.url);
-const renderer = new Renderer(module, workerUrl, { supersede: true });
+/** Workers rendering the bands of a picture: one a core, at most 8, or
+ * the `workers` of the page's query (`?workers=1`, to compare). */
+const bandWorkers = Math.min(Math.max(Number(new URLSearchParams(location.search).get("workers")) || navigator.hardwareConcurrency || 1, 1), 8);
+const renderers = Array.from({ length: bandWorkers }, () => new Renderer(module, workerUrl, { supersede: true }));
+const renderer = renderers[0];
 const tutor = new Renderer(module, workerUrl, { supersede: false });
 
 /** The scene of the picture shown, to pick its pixels. */
 let shown = null;
-/** The PNG file of the picture shown, for its download. */
-let shownPng = null;
+/** The picture shown (`{ width, height, rgba }`), for its PNG file. */
+let shownPicture = null;
 /** The APNG file of the animation last played, for its download. */
 let shownAnimation = null;
 
@@ -166,10 +172,15 @@ function paint(image) {
   canvas.getContext("2d").putImageData(pixels, 0, 0);
 }
 
-/** The picture of a reply, if it has one. */
-function pictureOf(reply) {
-  const picture = reply.outputs.findLast((output) => output.kind === "picture");
-  return picture && reply.images[picture.image.index];
+/** The bands of the workers' `replies`, top to bottom, as one picture. */
+function stitch(width, height, replies) {
+  const rgba = new Uint8Array(width * height * 4);
+  let offset = 0;
+  for (const { band } of replies) {
+    rgba.set(band, offset);
+    offset += band.length;
+  }
+  return { width, height, rgba };
 }
 
 // Rendering.
@@ -180,22 +191,30 @@ async function render() {
   const asked = { ...settings };
   $("#time-controls").hidden = !readsTime(scene);
   setState("rendering", "rendering…");
-  const reply = await renderer.request({ kind: "render", scene, settings: asked });
-  if (reply.superseded) return;
+  const started = performance.now();
+  // Band k of n is rows [k h / n, (k + 1) h / n): every pixel is computed
+  // on its own, so the bands put together are the bytes of one render.
+  const edge = (k) => Math.round((k * asked.height) / renderers.length);
+  const replies = await Promise.all(
+    renderers.map((worker, k) => worker.request({ kind: "band", scene, settings: asked, top: edge(k), bottom: edge(k + 1) })),
+  );
+  if (replies.some((reply) => reply.superseded)) return;
+  const reply = replies.find((reply) => reply.end !== "done") ?? replies[0];
   showDiagnostics(reply.outputs);
   showMessages(reply.outputs);
-  const image = pictureOf(reply);
-  if (reply.end !== "done" || !image) {
+  if (reply.end !== "done") {
     // The last good picture stays; a setting refused says why.
     const refused = textsOf(reply.outputs).find(({ role }) => role === "error");
     setState("error", reply.stopped ?? refused?.text ?? "the scene has an error: the picture is the last one that rendered");
     return;
   }
+  const image = stitch(asked.width, asked.height, replies);
   paint(image);
   $("#mark").hidden = true;
   shown = { scene, settings: asked };
-  shownPng = image.png;
-  setState("done", `${image.width}×${image.height} in ${Math.round(reply.took)} ms`);
+  shownPicture = image;
+  const workers = renderers.length === 1 ? "" : ` (${renderers.length} workers)`;
+  setState("done", `${image.width}×${image.height} in ${Math.round(performance.now() - started)} ms${workers}`);
 }
 
 /** Why pixel (x, y) of the picture shown has its colour (`:pick X Y`). */
@@ -235,7 +254,7 @@ canvas.addEventListener("click", (event) => {
 
 $("#stop").addEventListener("click", () => {
   const reason = "stopped: the work was abandoned (its worker ended and started again)";
-  renderer.stop(reason);
+  for (const worker of renderers) worker.stop(reason);
   tutor.stop(reason);
   stopPlaying();
 });
@@ -320,8 +339,15 @@ function download(bytes, name, type) {
   setTimeout(() => URL.revokeObjectURL(link.href), 1000);
 }
 
-$("#download").addEventListener("click", () => {
-  if (shownPng) download(shownPng, "scene.png", "image/png");
+$("#download").addEventListener("click", async () => {
+  const picture = shownPicture;
+  if (!picture) return;
+  // Written by the lesson's worker, which a render never abandons; a
+  // lesson's check that comes while it waits takes its turn: ask again.
+  let reply;
+  do reply = await tutor.request({ kind: "png", ...picture, rgba: picture.rgba.slice() });
+  while (reply.superseded);
+  if (reply.png) download(reply.png, "scene.png", "image/png");
 });
 $("#download-animation").addEventListener("click", () => {
   if (shownAnimation) download(shownAnimation, "scene.apng", "image/apng");

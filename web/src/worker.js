@@ -4,7 +4,7 @@
 // abandons one it no longer needs by ending this worker and starting
 // another (the module is compiled once, so that is quick).
 
-import { initSync, Playground, Settings } from "rayrepl-web";
+import { initSync, Playground, Settings, png_of_rgba } from "rayrepl-web";
 import { replyOf } from "./replies.js";
 
 /** The playground of the last scene, its text and settings, to pick its pixels. */
@@ -39,6 +39,26 @@ function render(scene, settings) {
   if (loaded.end !== "done") return loaded;
   const rendered = replyOf(current.playground.run(":render"));
   return { ...rendered, outputs: [...loaded.outputs, ...rendered.outputs] };
+}
+
+/** Rows `top..bottom` of the picture of `scene` with `settings`, as RGBA
+ * bytes (`band`): this worker's band of a picture that several workers
+ * render, each in a playground of its own loaded with the same text. */
+function band({ scene, settings, top, bottom }) {
+  const made = playground(settings);
+  if (made.refused) return made.refused;
+  try {
+    const loaded = replyOf(made.playground.load("scene.ray", scene));
+    if (loaded.end !== "done") return loaded;
+    try {
+      return { ...loaded, band: made.playground.render_rows(top, bottom) };
+    } catch (error) {
+      const refused = { kind: "text", role: "error", text: String(error.message ?? error) };
+      return { ...loaded, end: "failed", outputs: [...loaded.outputs, refused] };
+    }
+  } finally {
+    made.playground.free();
+  }
 }
 
 /** Runs `cell` (a command) in the playground of `scene`, rendering it first if this worker has not. */
@@ -93,9 +113,10 @@ function lessonCell({ number, settings, scene }) {
 }
 
 const handlers = {
-  render: (request) => render(request.scene, request.settings),
   run: (request) => runOn(request.scene, request.settings, request.cell),
   lesson: lessonCell,
+  band,
+  png: ({ width, height, rgba }) => ({ end: "done", outputs: [], images: [], png: png_of_rgba(width, height, rgba) }),
 };
 
 self.onmessage = ({ data }) => {
@@ -107,6 +128,6 @@ self.onmessage = ({ data }) => {
   const started = performance.now();
   const reply = handlers[data.kind](data);
   const transfer = reply.images.flatMap((image) => [image.rgba.buffer, image.png.buffer]);
-  if (reply.animation) transfer.push(reply.animation.buffer);
+  for (const bytes of [reply.animation, reply.band, reply.png]) if (bytes) transfer.push(bytes.buffer);
   self.postMessage({ id: data.id, took: performance.now() - started, ...reply }, transfer);
 };

@@ -132,6 +132,15 @@ test("the page opens with a first picture, the native bytes, within 2 s", async 
   await page.close();
 });
 
+test("three workers render the bands of a picture, put together to the native bytes", async () => {
+  const page = await openPage("?workers=3");
+  for (const [text, settings] of [[readFileSync(join(root, "scenarios/solar.ray"), "utf8"), PAGE], [unseenScenes[1].text, unseenScenes[1].settings]]) {
+    await checkScene(page, text, settings);
+    assert.match(await page.$eval("#status", (element) => element.textContent), /\(3 workers\)$/);
+  }
+  await page.close();
+});
+
 test("a scene typed into the editor renders to the native bytes", async () => {
   const page = await openPage();
   const typed = "camera distance 9 angle 0.9 end\nambient 0.25\nlight vector 0.4, 0, 0.6 intensity 0.8 end\n" +

@@ -44,6 +44,28 @@ function renderInWasm(text, settings) {
   }
 }
 
+/** The PNG file of `text` rendered in bands, as the page's workers
+ * render them: rows [edge k, edge k + 1) each in a playground of its own,
+ * put together and written by `png_of_rgba`. The edges fall inside the
+ * renderer's bands of 16 rows, to show that no split changes a byte. */
+function renderInWasmBands(text, settings) {
+  const edges = [0, 1, 37, Math.floor(settings.height / 2) + 3, settings.height];
+  const rgba = new Uint8Array(settings.width * settings.height * 4);
+  for (let k = 0; k + 1 < edges.length; k++) {
+    const playground = new glue.Playground(Object.assign(new glue.Settings(), settings));
+    try {
+      const loaded = replyOf(playground.load("scene.ray", text));
+      assert.equal(loaded.end, "done", JSON.stringify(loaded.outputs));
+      const band = playground.render_rows(edges[k], edges[k + 1]);
+      assert.equal(band.length, (edges[k + 1] - edges[k]) * settings.width * 4);
+      rgba.set(band, edges[k] * settings.width * 4);
+    } finally {
+      playground.free();
+    }
+  }
+  return Buffer.from(glue.png_of_rgba(settings.width, settings.height, rgba));
+}
+
 /** The PNG file the native binary writes for the scene file `path` with `settings`. */
 function renderNatively(path, { width, height, depth, samples, time }, name) {
   const out = join(scratch, `${name}.png`);
@@ -87,6 +109,18 @@ for (const scene of unseenScenes) {
     const path = join(scratch, `${scene.name}.ray`);
     writeFileSync(path, scene.text);
     sameBytes(`unseen-${scene.name}`, path, scene.text, scene.settings);
+  });
+}
+
+for (const { name, text, settings } of [
+  ...scenarios.map((file) => ({ name: file, text: readFileSync(join(root, "scenarios", file), "utf8"), settings: PAGE })),
+  ...unseenScenes,
+]) {
+  test(`${name} rendered in bands, put together, gives the native bytes`, () => {
+    writeFileSync(join(scratch, `bands-${name}`), text);
+    const bands = renderInWasmBands(text, settings);
+    const expected = renderNatively(join(scratch, `bands-${name}`), settings, `bands-${name}`);
+    assert.ok(bands.equals(expected), `${name}: the bands' PNG (${bands.length} bytes) differs from the native one (${expected.length} bytes)`);
   });
 }
 
