@@ -21,8 +21,9 @@ use super::completion::{self, Candidate};
 use super::file_commands::load_text_reporting;
 use super::options::{SessionOptions, new_session};
 use super::outputs::{Collected, FrontEnd, Output};
+use super::render_steps::explain_defaults;
 use super::rendering::{Size, render_options};
-use super::report::show_printed;
+use super::report::{show_printed, show_scene_warnings};
 use super::script::{Named, TextRan, run_text};
 use super::shell::Shell;
 use super::syntax::{is_word_char, open_constructs};
@@ -122,20 +123,25 @@ impl CellSession {
     }
 
     /// Rows `rows` of the picture `:render` makes of the session's scene
-    /// at the session's size and settings, the same bytes: for a front-end
-    /// that renders the bands of one picture in sessions of its own, one
-    /// per worker, each loaded with the same text and settings (the
-    /// browser page). Fails, as `:render` does, when the memory the render
-    /// needs cannot be had.
+    /// at the session's size and settings, the same bytes, with the notes
+    /// `:render` gives before it (the defaults the scene falls back on,
+    /// the warnings about it) shown on `front`: for a front-end that
+    /// renders the bands of one picture in sessions of its own, one per
+    /// worker, each loaded with the same text and settings (the browser
+    /// page). Fails, as `:render` does, when the memory the render needs
+    /// cannot be had.
     ///
     /// # Panics
     ///
     /// If the session's settings ask for adaptive anti-aliasing (see
     /// [`render_rows`]).
-    pub fn render_rows(&self, rows: Range<u32>) -> Result<RgbImage, OutOfMemory> {
+    pub fn render_rows(&mut self, rows: Range<u32>, front: &mut dyn FrontEnd) -> Result<RgbImage, OutOfMemory> {
         let session = &self.shell.session;
         let settings = session.settings();
-        let options = render_options(Size { width: settings.width, height: settings.height }, settings);
+        let size = Size { width: settings.width, height: settings.height };
+        explain_defaults(session, front);
+        show_scene_warnings(session, &mut self.shell.warned, front, size, false);
+        let options = render_options(size, settings);
         reserve_for(session.scene(), &options)?;
         let scene = session.scene();
         let rendered = render_rows(scene, &SceneGeometry::new(scene), &options, rows, &RenderControl::default());
@@ -281,6 +287,41 @@ mod tests {
         );
         assert_eq!(cells.run("<cell 2>", "ball(3)", &mut front), CellEnd::Done);
         assert_eq!(messages(&front).last(), Some(&"put 1 sphere (1 object in the scene)"));
+    }
+
+    /// The bands a front-end renders in sessions of its own, put together,
+    /// are the picture `:render` shows, with the notes it gives first.
+    #[test]
+    fn bands_of_rows_are_the_picture_render_shows_with_its_notes() {
+        let scene = ":size 40 30\nput sphere center 0, 0, 0 radius 2 kd 1 ks 0 phong 1 color 9, 9, 9 end";
+        let notes = |front: &Collected| -> Vec<String> {
+            let texts = front.outputs.iter().filter_map(|output| match output {
+                Output::Text { role: TextRole::Note, text } => Some(text.clone()),
+                _ => None,
+            });
+            texts.collect()
+        };
+        let mut whole = session();
+        let mut rendered = Collected::default();
+        assert_eq!(whole.run("<cell 1>", &format!("{scene}\n:render"), &mut rendered), CellEnd::Done);
+        let Some(Output::Picture(picture)) =
+            rendered.outputs.iter().find(|output| matches!(output, Output::Picture(_)))
+        else {
+            panic!("{:?}", rendered.outputs)
+        };
+        let mut bands = Vec::new();
+        let mut band_notes = Vec::new();
+        for rows in [0..1, 1..17, 17..30] {
+            let mut cells = session();
+            let mut front = Collected::default();
+            assert_eq!(cells.run("<cell 1>", scene, &mut front), CellEnd::Done);
+            let mut shown = Collected::default();
+            bands.extend_from_slice(&cells.render_rows(rows, &mut shown).expect("memory"));
+            band_notes = notes(&shown);
+        }
+        assert!(bands == *picture.image.as_raw());
+        assert_eq!(band_notes, notes(&rendered));
+        assert!(band_notes.iter().any(|note| note.contains("no light yet")), "{band_notes:?}");
     }
 
     #[test]

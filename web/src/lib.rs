@@ -130,12 +130,21 @@ impl Playground {
     }
 
     /// Rows `top..bottom` of the picture `:render` makes of the session's
-    /// scene, as RGBA bytes (see [`rgba_of`]): the page renders the bands of
-    /// one picture in several workers, each with a playground loaded with
-    /// the same scene and settings, and puts them together on its canvas.
-    pub fn render_rows(&self, top: u32, bottom: u32) -> Result<Vec<u8>, JsError> {
-        let band = self.session.render_rows(top..bottom).map_err(|e| JsError::new(&e.to_string()))?;
-        Ok(rgba_of(&band))
+    /// scene, as RGBA bytes (the reply's `band`, see [`rgba_of`]), with the
+    /// notes `:render` gives: the page renders the bands of one picture in
+    /// several workers, each with a playground loaded with the same scene
+    /// and settings, and puts them together on its canvas. When the memory
+    /// the render needs cannot be had, the reply fails and says so.
+    pub fn render_rows(&mut self, top: u32, bottom: u32) -> Reply {
+        let mut front = Collected::default();
+        let (end, band) = match self.session.render_rows(top..bottom, &mut front) {
+            Ok(band) => (CellEnd::Done, rgba_of(&band)),
+            Err(refusal) => {
+                front.outputs.push(Output::Text { role: TextRole::Error, text: refusal.to_string() });
+                (CellEnd::Failed, Vec::new())
+            }
+        };
+        Reply { band, ..Reply::new(end, front.outputs, self.session.sources()) }
     }
 
     /// Runs `text` as the scene file `name` (`scene.ray`), as `:load`
@@ -159,6 +168,9 @@ pub struct Reply {
     /// The frames of the animation `:play` showed, if it did: where they
     /// are in `images`, and the frames a second.
     animation: Option<(Range<usize>, u32)>,
+    /// The RGBA bytes of the rows [`Playground::render_rows`] rendered;
+    /// empty in the reply of anything else.
+    band: Vec<u8>,
 }
 
 #[wasm_bindgen]
@@ -174,6 +186,13 @@ impl Reply {
     #[wasm_bindgen(getter)]
     pub fn outputs(&self) -> String {
         self.outputs.clone()
+    }
+
+    /// The RGBA bytes of the rows [`Playground::render_rows`] rendered
+    /// (empty in the reply of anything else), handed over: a second call
+    /// gives none.
+    pub fn band(&mut self) -> Vec<u8> {
+        std::mem::take(&mut self.band)
     }
 
     /// Picture `index` as RGBA bytes, the canvas's `ImageData`: the RGB
@@ -225,7 +244,7 @@ impl Reply {
                 animation = Some((first..images.len(), fps));
             }
         }
-        Reply { end, outputs: Value::from(listed).to_string(), images, animation }
+        Reply { end, outputs: Value::from(listed).to_string(), images, animation, band: Vec::new() }
     }
 }
 

@@ -3,8 +3,9 @@
 // file the command line writes, an animation as its APNG file. The worker and the Node test read replies
 // this way.
 
-/** `reply` as `{ end, outputs, images, animation }` (the APNG file of
- * the frames `:play` showed, or `null`), the Reply freed. */
+/** `reply` as `{ end, outputs, images, animation, band }` (the APNG file
+ * of the frames `:play` showed, or `null`; the RGBA bytes of the rows
+ * `render_rows` rendered, or `null`), the Reply freed. */
 export function replyOf(reply) {
   try {
     const outputs = JSON.parse(reply.outputs);
@@ -17,7 +18,8 @@ export function replyOf(reply) {
       for (const frame of output.frames ?? []) keep(frame);
     }
     const animation = outputs.some((output) => output.kind === "frames") ? reply.apng() : null;
-    return { end: reply.end, outputs, images, animation };
+    const band = reply.band();
+    return { end: reply.end, outputs, images, animation, band: band.length ? band : null };
   } finally {
     reply.free();
   }

@@ -50,12 +50,8 @@ function band({ scene, settings, top, bottom }) {
   try {
     const loaded = replyOf(made.playground.load("scene.ray", scene));
     if (loaded.end !== "done") return loaded;
-    try {
-      return { ...loaded, band: made.playground.render_rows(top, bottom) };
-    } catch (error) {
-      const refused = { kind: "text", role: "error", text: String(error.message ?? error) };
-      return { ...loaded, end: "failed", outputs: [...loaded.outputs, refused] };
-    }
+    const rendered = replyOf(made.playground.render_rows(top, bottom));
+    return { ...rendered, outputs: [...loaded.outputs, ...rendered.outputs] };
   } finally {
     made.playground.free();
   }

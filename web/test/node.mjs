@@ -56,7 +56,8 @@ function renderInWasmBands(text, settings) {
     try {
       const loaded = replyOf(playground.load("scene.ray", text));
       assert.equal(loaded.end, "done", JSON.stringify(loaded.outputs));
-      const band = playground.render_rows(edges[k], edges[k + 1]);
+      const { end, outputs, band } = replyOf(playground.render_rows(edges[k], edges[k + 1]));
+      assert.equal(end, "done", JSON.stringify(outputs));
       assert.equal(band.length, (edges[k + 1] - edges[k]) * settings.width * 4);
       rgba.set(band, edges[k] * settings.width * 4);
     } finally {
@@ -133,6 +134,20 @@ test("a scene that does not parse gives its diagnostic with its line", () => {
     assert.ok(diagnostic, JSON.stringify(loaded.outputs));
     assert.equal(diagnostic.data.place.line, 2);
     assert.match(diagnostic.rendered, /scene\.ray:2:/);
+  } finally {
+    playground.free();
+  }
+});
+
+test("a band's reply gives the notes :render gives", () => {
+  const playground = new glue.Playground(Object.assign(new glue.Settings(), PAGE));
+  try {
+    assert.equal(replyOf(playground.load("scene.ray", "camera distance 8 angle 1 end\nput sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end\n")).end, "done");
+    const notes = (reply) => reply.outputs.filter((output) => output.kind === "text" && output.role === "note").map((output) => output.text);
+    const band = replyOf(playground.render_rows(0, 16));
+    const rendered = replyOf(playground.run(":render"));
+    assert.deepEqual(notes(band), notes(rendered));
+    assert.match(notes(band).join("\n"), /default ambient light.*\n.*no light yet/);
   } finally {
     playground.free();
   }
