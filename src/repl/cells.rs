@@ -19,6 +19,7 @@ use super::cancel::CancelSwitch;
 use super::commands::{self, is_command};
 use super::completion::{self, Candidate};
 use super::file_commands::load_text_reporting;
+use super::lessons::check_scene;
 use super::options::{SessionOptions, new_session};
 use super::outputs::{Collected, FrontEnd, Output};
 use super::render_steps::explain_defaults;
@@ -111,6 +112,26 @@ impl CellSession {
                 CellEnd::Interrupted
             }
         }
+    }
+
+    /// Runs `text` as the whole of the learner's scene, in place of the
+    /// session's program (as `:reset` then the cell would), and checks the
+    /// lesson followed once, after it, as the terminal checks an input
+    /// typed at its prompt: for a front-end whose editor holds the whole
+    /// scene and runs it again at each pause in typing (the browser page's
+    /// lessons). Checked after each of its inputs, as a cell is, every one
+    /// that comes before the step's would count as a wrong try. A scene
+    /// that fails or is interrupted is not checked: the terminal checks
+    /// only what it accepted.
+    pub fn run_scene(&mut self, name: &str, text: &str, front: &mut dyn FrontEnd) -> CellEnd {
+        self.shell.session.reset();
+        self.shell.tutor.checks_held = true;
+        let end = self.run(name, text, front);
+        self.shell.tutor.checks_held = false;
+        if end == CellEnd::Done {
+            check_scene(&mut self.shell, front);
+        }
+        end
     }
 
     /// Runs `text` as `:load` runs the file at `path` (all of it one
@@ -245,7 +266,7 @@ fn floor_char_boundary(text: &str, at: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::repl::TextRole;
+    use crate::repl::{LessonVerdict, TextRole};
 
     fn session() -> CellSession {
         CellSession::new(&SessionOptions::default())
@@ -322,6 +343,51 @@ mod tests {
         assert!(bands == *picture.image.as_raw());
         assert_eq!(band_notes, notes(&rendered));
         assert!(band_notes.iter().any(|note| note.contains("no light yet")), "{band_notes:?}");
+    }
+
+    /// A whole scene run again in place of the last is one try of the
+    /// lesson's step, however many inputs come before the step's, and it
+    /// offers no `:undo`; the step done moves the lesson on.
+    #[test]
+    fn a_whole_scene_is_checked_once_against_the_lessons_step() {
+        let folder = tempfile::tempdir().expect("a temporary folder");
+        let path = folder.path().join("first-sphere.md");
+        std::fs::write(&path, include_str!("../../lessons/1-first-sphere.md")).expect("written");
+        let mut cells = session();
+        assert_eq!(
+            cells.run("<cell 1>", &format!(":lesson {}", path.display()), &mut Collected::default()),
+            CellEnd::Done
+        );
+        let verdicts = |front: &Collected| -> Vec<LessonVerdict> {
+            let verdicts = front.outputs.iter().filter_map(|output| match output {
+                Output::LessonVerdict(verdict) => Some(verdict.clone()),
+                _ => None,
+            });
+            verdicts.collect()
+        };
+        let wrong_tries = |cells: &CellSession| cells.shell.tutor.following.as_ref().map(|f| (f.step, f.wrong_tries));
+        let mut front = Collected::default();
+        let short = "let a = 1\nlet b = 2\ncamera distance 8 angle 0.8 end";
+        assert_eq!(cells.run_scene("<scene 1>", short, &mut front), CellEnd::Done);
+        let [LessonVerdict::NotYet { missing, undo: false, .. }] = &verdicts(&front)[..] else {
+            panic!("{:?}", front.outputs)
+        };
+        assert!(missing.contains("distance 8"), "{missing}");
+        assert_eq!(wrong_tries(&cells), Some((0, 1)));
+        let mut front = Collected::default();
+        assert_eq!(cells.run_scene("<scene 2>", "let d = 5\nput box", &mut front), CellEnd::Failed);
+        assert!(verdicts(&front).is_empty(), "a scene with an error is not a try");
+        assert_eq!(wrong_tries(&cells), Some((0, 1)));
+        let mut front = Collected::default();
+        let camera = "let d = 5\ncamera distance 2 * d angle 0.8 end";
+        assert_eq!(cells.run_scene("<scene 3>", camera, &mut front), CellEnd::Done);
+        assert!(
+            matches!(verdicts(&front)[..], [LessonVerdict::Done { number: 1, already: false }]),
+            "{:?}",
+            front.outputs
+        );
+        assert_eq!(wrong_tries(&cells), Some((1, 0)));
+        assert_eq!(cells.shell.session.global_number("a"), None, "the scene replaced the last one");
     }
 
     #[test]

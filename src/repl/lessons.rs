@@ -30,7 +30,7 @@ use super::shell::Shell;
 use crate::render::SceneGeometry;
 pub(crate) use file::Lesson;
 use progress::Progress;
-use tutor::{Following, Tutor};
+use tutor::Following;
 
 /// Wrong tries of a step after which its example is shown with the hint.
 const TRIES_BEFORE_EXAMPLE: u32 = 2;
@@ -68,7 +68,7 @@ pub(crate) fn lesson(shell: &mut Shell, arguments: &[String], front: &mut dyn Fr
     match arguments {
         [] => list(shell, front),
         [word] if word == "stop" => {
-            shell.tutor = Tutor::default();
+            shell.tutor.following = None;
             front.say("left the lesson; `:lesson` lists them all");
         }
         [number] if number.parse::<usize>().is_ok() => {
@@ -104,8 +104,23 @@ fn read_lesson_file(shell: &mut Shell, path: &Path, front: &mut dyn FrontEnd) ->
 }
 
 /// After an accepted input: checks the scene against the current step, and
-/// moves on or says what is missing.
+/// moves on or says what is missing (and that `:undo` takes the input back
+/// if it made the problem). Nothing while checks are held.
 pub(crate) fn check_input(shell: &mut Shell, front: &mut dyn FrontEnd) {
+    if !shell.tutor.checks_held {
+        check(shell, front, true);
+    }
+}
+
+/// After a whole scene ran in place of the session's program: checks it
+/// against the current step once, as [`check_input`] checks an input,
+/// one wrong try at most; no `:undo` is offered, the scene being all the
+/// learner's text.
+pub(crate) fn check_scene(shell: &mut Shell, front: &mut dyn FrontEnd) {
+    check(shell, front, false);
+}
+
+fn check(shell: &mut Shell, front: &mut dyn FrontEnd, undo_offered: bool) {
     let Some(following) = shell.tutor.following.clone() else {
         return;
     };
@@ -126,7 +141,7 @@ pub(crate) fn check_input(shell: &mut Shell, front: &mut dyn FrontEnd) {
             let newest = shell.session.last_input_source();
             let verdict = LessonVerdict::NotYet {
                 missing: shortfall.text,
-                undo: shortfall.made_at.is_some_and(|span: Span| Some(span.source) == newest),
+                undo: undo_offered && shortfall.made_at.is_some_and(|span: Span| Some(span.source) == newest),
                 hint: step.hint.clone(),
                 example: show_example.then(|| step.example.clone()),
             };
@@ -239,7 +254,7 @@ fn advance(shell: &mut Shell, front: &mut dyn FrontEnd, following: Following) {
         return;
     }
     show_pictures(&shell.session, front, &following);
-    shell.tutor = Tutor::default();
+    shell.tutor.following = None;
     let Some(number) = following.number else {
         front.say(format!("✓ lesson done: {}", following.lesson.title));
         return;

@@ -15,7 +15,9 @@ use std::time::Duration;
 use image::RgbImage;
 use rayrepl::lang::{Limits, SourceMap};
 use rayrepl::playback::Playback;
-use rayrepl::repl::{CellEnd, CellSession, Collected, LessonVerdict, Output, RenderSettings, SessionOptions, TextRole};
+use rayrepl::repl::{
+    CellEnd, CellSession, Collected, FrontEnd, LessonVerdict, Output, RenderSettings, SessionOptions, TextRole,
+};
 use serde_json::{Value, json};
 use wasm_bindgen::prelude::*;
 
@@ -122,11 +124,16 @@ impl Playground {
     /// Runs `text` as a cell: items and `:` commands, stopping at the
     /// first error; its diagnostics name it `<cell N>`.
     pub fn run(&mut self, text: &str) -> Reply {
-        self.cells += 1;
-        let name = format!("<cell {}>", self.cells);
-        let mut front = Collected::default();
-        let end = self.session.run(&name, text, &mut front);
-        Reply::new(end, front.outputs, self.session.sources())
+        self.run_as("cell", text, CellSession::run)
+    }
+
+    /// Runs `text` as the whole of the learner's scene, in place of the
+    /// session's program, and checks the lesson followed once, after it
+    /// (`CellSession::run_scene`): a pause in typing is one try of the
+    /// step, however many inputs the scene holds. Its diagnostics name it
+    /// `<scene N>`.
+    pub fn run_scene(&mut self, text: &str) -> Reply {
+        self.run_as("scene", text, CellSession::run_scene)
     }
 
     /// Rows `top..bottom` of the picture `:render` makes of the session's
@@ -152,6 +159,23 @@ impl Playground {
     pub fn load(&mut self, name: &str, text: &str) -> Reply {
         let mut front = Collected::default();
         let end = self.session.load_text(Path::new(name), text, &mut front);
+        Reply::new(end, front.outputs, self.session.sources())
+    }
+}
+
+impl Playground {
+    /// Runs `text` with `run`, named `<NOUN N>` (N counting what has run),
+    /// and gives what it showed.
+    fn run_as(
+        &mut self,
+        noun: &str,
+        text: &str,
+        run: fn(&mut CellSession, &str, &str, &mut dyn FrontEnd) -> CellEnd,
+    ) -> Reply {
+        self.cells += 1;
+        let name = format!("<{noun} {}>", self.cells);
+        let mut front = Collected::default();
+        let end = run(&mut self.session, &name, text, &mut front);
         Reply::new(end, front.outputs, self.session.sources())
     }
 }

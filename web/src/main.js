@@ -15,6 +15,11 @@ import examples from "rayrepl-examples";
 
 /** How long the page waits after a keystroke before rendering. */
 const TYPING_PAUSE_MS = 300;
+/** How long the page waits after a keystroke before checking the lesson's
+ * step: each check of a scene that runs is a try, as an input typed at the
+ * terminal is (wrong ones bring the example), so a check waits for the
+ * learner to stop typing, not for a pause between two words. */
+const LESSON_PAUSE_MS = 1200;
 /** The time slider's range: the frames of `:anim 100`. */
 const MOST_TIME = 100;
 /** Frames of the animation that the play button plays (`:play FRAMES FPS`): the session's two seconds. */
@@ -55,7 +60,7 @@ let shownAnimation = null;
 
 // The editor.
 const renderSoon = debounce(render, TYPING_PAUSE_MS);
-const checkLessonSoon = debounce(checkLesson, TYPING_PAUSE_MS);
+const checkLessonSoon = debounce(checkLesson, LESSON_PAUSE_MS);
 const editor = new EditorView({
   parent: $("#editor"),
   state: EditorState.create({
@@ -389,8 +394,8 @@ async function openLink() {
 
 window.addEventListener("hashchange", openLink);
 
-// Lessons: `:lesson N` in a session of their own; at each edit, the
-// learner's scene is run there again from scratch and checked.
+// Lessons: `:lesson N` in a session of their own; when the learner stops
+// typing, the scene is run there in place of the last one and checked once.
 
 const lessonPanel = $("#lesson");
 let lessonNumber = null;

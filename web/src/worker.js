@@ -98,13 +98,12 @@ function listedScene(reply) {
 }
 
 /** Lesson `number`'s step, or, with `scene`, the verdict on it: the
- * session emptied, then the scene run as a cell, each of its inputs
- * checked as the terminal checks them (so its lines are the editor's). */
+ * scene run in place of the last one and checked once, as the terminal
+ * checks an input (its lines are the editor's). */
 function lessonCell({ number, settings, scene }) {
   const started = follow(number, settings);
   if (scene === undefined || started?.end === "failed") return started ?? { end: "done", outputs: [], images: [] };
-  replyOf(lesson.playground.run(":reset"));
-  const checked = replyOf(lesson.playground.run(scene));
+  const checked = replyOf(lesson.playground.run_scene(scene));
   return started ? { ...checked, outputs: [...started.outputs, ...checked.outputs] } : checked;
 }
 

@@ -280,6 +280,28 @@ test("a lesson shows its step, checks each edit and shows the goal beside the le
   await page.close();
 });
 
+test("a pause in typing is one try of a lesson's step, however many inputs the scene holds", async () => {
+  const page = await openPage();
+  await page.selectOption("#lessons", "2");
+  await page.waitForFunction(() => document.querySelector("#lesson-task").textContent.startsWith("step 1 of"));
+  const setup = "camera distance 12 angle 0.8 end\n" +
+    "put sphere center 0, 0, 0 radius 1 kd 0.8 ks 0.2 phong 20 color 255, 120, 40 end\n" +
+    "put plane rotation 0, 0, 0 shift -1 kd 0.8 ks 0 phong 1 color 200, 200, 200 end\n" +
+    "light vector 0, 0, -0.9 intensity 0.8 end\nambient 0.05\n";
+  // Steps 1 and 2 done at once; step 3 asks for a weaker second light.
+  await page.evaluate((text) => window.rayrepl.load(text), setup);
+  await page.waitForFunction(() => document.querySelector("#lesson-task").textContent.startsWith("step 3 of"));
+  const verdict = () => page.$eval("#lesson-verdict", (element) => element.textContent);
+  // Two wrong tries bring the example: the first scene, of six inputs, is one.
+  await page.evaluate((text) => window.rayrepl.load(text), `${setup}light vector 0, 0, 0.9 intensity 0.8 end\n`);
+  await page.waitForFunction(() => document.querySelector("#lesson-verdict").textContent.startsWith("not yet"));
+  assert.doesNotMatch(await verdict(), /for example/);
+  assert.doesNotMatch(await verdict(), /:undo/, "the page has no :undo to offer");
+  await page.evaluate((text) => window.rayrepl.load(text), `${setup}light vector 0, 0, 0.9 intensity 0.9 end\n`);
+  await page.waitForFunction(() => document.querySelector("#lesson-verdict").textContent.includes("for example"));
+  await page.close();
+});
+
 test("a scene that reads time has a slider and play; the downloads are the native files", async () => {
   const page = await openPage();
   assert.equal(await page.$eval("#time-controls", (element) => element.hidden), true, "hello.ray does not read time");

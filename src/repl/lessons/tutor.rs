@@ -8,6 +8,10 @@ use super::file::Lesson;
 #[derive(Debug, Default)]
 pub(crate) struct Tutor {
     pub following: Option<Following>,
+    /// Whether the scene is checked after each input accepted (the
+    /// terminal, a cell), or only once a whole scene has run
+    /// (`CellSession::run_scene`, which holds them while it runs).
+    pub checks_held: bool,
 }
 
 /// A lesson being followed, and where the learner is in it.
