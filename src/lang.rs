@@ -22,5 +22,5 @@ pub use diagnostic::{Diagnostic, Note, Severity};
 pub use eval::{Interpreter, Limits, RaisedWith};
 pub use nesting::MAX_NESTING;
 pub use parser::{Entry, EntryState, entry_state, is_incomplete, parse_entries, parse_file, parse_items};
-pub(crate) use parser::{parse_file_interruptible, parse_items_interruptible};
+pub(crate) use parser::{parse_file_interruptible, parse_items_apart, stopped_reading};
 pub use source::{SourceFile, SourceId, SourceMap, Span};

@@ -13,7 +13,7 @@ mod context;
 mod errors;
 mod order;
 
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, AtomicUsize};
 
 use lalrpop_util::{ParseError, lalrpop_mod};
 
@@ -55,13 +55,46 @@ pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> 
     parse(source, text, Mode::Session, None)
 }
 
-/// [`parse_items`], stopped with an error once `interrupt` is raised (Ctrl-C).
-pub(crate) fn parse_items_interruptible(
-    source: SourceId,
-    text: &str,
-    interrupt: Option<&'static AtomicBool>,
-) -> Result<Program, Diagnostic> {
-    parse(source, text, Mode::Session, interrupt)
+/// A parse of [`parse_items_apart`]: made on one thread, to be run on
+/// another.
+pub(crate) struct ParsedApart(Result<Program, Diagnostic>);
+
+// SAFETY: a syntax tree is not `Send` only because its names are
+// `Rc<str>` and its procedures `Rc<ProcDef>`: a clone left on one thread
+// would share its count with one moved to another. Every clone of each of
+// those `Rc`s that a parse makes is in its tree, except those of the
+// lexer's table of names and of the tokens, which are dropped before the
+// parse returns; a `ParsedApart` is made only from the result of a parse
+// that has returned, and nothing else is cloned from it before it moves,
+// so moving it moves every clone.
+unsafe impl Send for ParsedApart {}
+
+impl ParsedApart {
+    /// The program, or the error that stopped the parse.
+    pub(crate) fn into_result(self) -> Result<Program, Diagnostic> {
+        self.0
+    }
+}
+
+/// [`parse_items`] of `text`, made on a thread of its own for another to
+/// run: a long `:load` is parsed on a thread that Ctrl-C abandons, so that
+/// the partial tree of a parse it stops (seconds of text) is freed there,
+/// not while the session waits. The parse stops once `stop` is raised;
+/// `reached` follows where the line being read starts, for the error the
+/// waiting thread gives then ([`stopped_reading`]).
+pub(crate) fn parse_items_apart(source: SourceId, text: &str, stop: &AtomicBool, reached: &AtomicUsize) -> ParsedApart {
+    let mut tokens = Tracked::new(source, text);
+    tokens.interrupt = Some(stop);
+    tokens.reached = Some(reached);
+    ParsedApart(parse_tracked(source, text, Mode::Session, tokens))
+}
+
+/// The error of a parse of `source` stopped by Ctrl-C while it read the
+/// line that starts at byte `line_start`.
+pub(crate) fn stopped_reading(source: SourceId, line_start: usize) -> Diagnostic {
+    let at = Span::new(source, line_start, line_start);
+    let stopped = Diagnostic::error(at, "stopped by Ctrl-C while reading").with_code("interrupted");
+    stopped.with_note("nothing of this input was kept")
 }
 
 /// Runs the generated parser over the tokens, recording what they open so
@@ -74,6 +107,11 @@ fn parse(
 ) -> Result<Program, Diagnostic> {
     let mut tokens = Tracked::new(source, text);
     tokens.interrupt = interrupt;
+    parse_tracked(source, text, mode, tokens)
+}
+
+/// Runs the generated parser over `tokens`, the tokens of `text`.
+fn parse_tracked(source: SourceId, text: &str, mode: Mode, mut tokens: Tracked<'_>) -> Result<Program, Diagnostic> {
     let parsed = grammar::ItemsParser::new().parse(&Sources::One(source), &mut tokens);
     match parsed {
         Ok(items) => Ok(Program { items }),
@@ -360,6 +398,22 @@ fn needs_more(token: &Token) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A parse made apart crosses to another thread whole; raised, its
+    /// stop flag ends it with the error of Ctrl-C at the line it was
+    /// reading, which `reached` follows.
+    #[test]
+    fn a_parse_made_apart_is_run_elsewhere_or_stopped_at_its_line() {
+        let text = "let a = 1\nproc p(x)\n  let y = x\nend\np(a)\n";
+        let (stop, reached) = (AtomicBool::new(false), AtomicUsize::new(0));
+        let parsed = parse_items_apart(SourceId(0), text, &stop, &reached);
+        let program = std::thread::spawn(move || parsed).join().expect("parsed").into_result().expect("a program");
+        assert_eq!(program, parse_items(SourceId(0), text).expect("a program"));
+        assert_eq!(reached.load(std::sync::atomic::Ordering::Relaxed), text.find("p(a)").expect("there"));
+        stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        let stopped = parse_items_apart(SourceId(0), text, &stop, &reached).into_result().expect_err("stopped");
+        assert_eq!(stopped.code, "interrupted");
+    }
 
     #[test]
     fn open_constructs_are_incomplete() {

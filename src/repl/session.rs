@@ -6,14 +6,17 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
-use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items, parse_items_interruptible};
+use crate::lang::{
+    Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items, parse_items_apart, stopped_reading,
+};
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::scene::{Counts, Primitive, Scene};
 
+use super::cancel::{Stopped, off_thread};
 use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
 
@@ -241,9 +244,35 @@ impl Session {
         }
         let name = path.display().to_string();
         let source = self.sources.add(name.as_str(), text, 0);
-        let program = parse_items_interruptible(source, text, self.interrupt)?;
+        let program = match self.interrupt {
+            Some(interrupt) => self.parse_apart(source, interrupt)?,
+            None => parse_items(source, text)?,
+        };
         let text = format!(":load {name}").into();
         Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Rc::new(program) })
+    }
+
+    /// The program of the text `source`, parsed on a thread that
+    /// `interrupt` abandons: a parse that Ctrl-C stops frees its partial
+    /// tree there (for a file of 100 MB, a tenth of a second or more)
+    /// while the session goes on.
+    fn parse_apart(&self, source: SourceId, interrupt: &'static AtomicBool) -> Result<Program, Diagnostic> {
+        let text = Arc::clone(&self.sources.get(source).text);
+        let (stop, reached) = (Arc::new(AtomicBool::new(false)), Arc::new(AtomicUsize::new(0)));
+        let (stopping, reading) = (Arc::clone(&stop), Arc::clone(&reached));
+        let parsed = off_thread("parse", interrupt, move || parse_items_apart(source, &text, &stopping, &reading));
+        match parsed {
+            Ok(parsed) => parsed.into_result(),
+            Err(stopped) => {
+                stop.store(true, Ordering::Relaxed);
+                let at = reached.load(Ordering::Relaxed);
+                Err(match stopped {
+                    Stopped::Cancelled => stopped_reading(source, at),
+                    Stopped::Failed => Diagnostic::error(Span::new(source, at, at), "internal error while reading")
+                        .with_note("the parser stopped here; nothing of this input was kept"),
+                })
+            }
+        }
     }
 
     /// Runs a parsed input and records it in the history.

@@ -9,7 +9,7 @@
 //! probably meant for that one, so the construct it closed instead is the
 //! one whose `end` is missing.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::lang::diagnostic::Diagnostic;
 use crate::lang::lexer::{Lexer, Spanned};
@@ -292,13 +292,16 @@ pub(super) struct Tracked<'t> {
     source: SourceId,
     context: Context,
     /// Raised by Ctrl-C: the tokens end in an error (a long file stops).
-    pub(super) interrupt: Option<&'static AtomicBool>,
+    pub(super) interrupt: Option<&'t AtomicBool>,
+    /// Where the line of the last token starts, for a thread that waits
+    /// for this parse ([`super::parse_items_apart`]).
+    pub(super) reached: Option<&'t AtomicUsize>,
 }
 
 impl<'t> Tracked<'t> {
     /// The tokens of `text`, whose spans name `source`.
     pub(super) fn new(source: SourceId, text: &'t str) -> Tracked<'t> {
-        Tracked { lexer: Lexer::new(source, text), source, context: Context::default(), interrupt: None }
+        Tracked { lexer: Lexer::new(source, text), source, context: Context::default(), interrupt: None, reached: None }
     }
 
     /// What the tokens before the last one handed out leave open (all of
@@ -314,9 +317,10 @@ impl Iterator for Tracked<'_> {
     fn next(&mut self) -> Option<Self::Item> {
         self.context.count_handed();
         if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
-            let at = Span::new(self.source, self.lexer.line_start(), self.lexer.line_start());
-            let stopped = Diagnostic::error(at, "stopped by Ctrl-C while reading").with_code("interrupted");
-            return Some(Err(Box::new(stopped.with_note("nothing of this input was kept"))));
+            return Some(Err(Box::new(super::stopped_reading(self.source, self.lexer.line_start()))));
+        }
+        if let Some(reached) = self.reached {
+            reached.store(self.lexer.line_start(), Ordering::Relaxed);
         }
         let result = match self.lexer.next_word()? {
             Ok(((start, token, end), word)) => {
