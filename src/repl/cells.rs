@@ -169,6 +169,15 @@ impl CellSession {
         Ok(rendered.expect("a render without a cancel switch runs to its end"))
     }
 
+    /// Makes `image` the session's last picture, as if `:render` had
+    /// shown it: for a front-end that put it together from bands rendered
+    /// in sessions of its own ([`CellSession::render_rows`]), so that
+    /// `:pick` explains its pixels without rendering it again (and notes,
+    /// as it does for any picture, a pixel the scene no longer gives).
+    pub fn adopt_picture(&mut self, image: RgbImage) {
+        self.shell.last_picture = Some(image);
+    }
+
     /// The texts the session's diagnostics point into.
     pub fn sources(&self) -> &SourceMap {
         self.shell.session.sources()

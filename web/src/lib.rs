@@ -154,6 +154,15 @@ impl Playground {
         Reply { band, ..Reply::new(end, front.outputs, self.session.sources()) }
     }
 
+    /// Makes the picture of `width` x `height` pixels whose RGBA bytes are
+    /// `rgba` (the bands the page put together) the session's last
+    /// picture, as `:render` would have made it, so that `:pick` explains
+    /// its pixels without rendering it again.
+    pub fn adopt_picture(&mut self, width: u32, height: u32, rgba: &[u8]) -> Result<(), JsError> {
+        self.session.adopt_picture(rgb_of(width, height, rgba)?);
+        Ok(())
+    }
+
     /// Runs `text` as the scene file `name` (`scene.ray`), as `:load`
     /// would run it: the whole file, its camera first.
     pub fn load(&mut self, name: &str, text: &str) -> Reply {
@@ -283,10 +292,14 @@ fn rgba_of(image: &RgbImage) -> Vec<u8> {
 /// `rayrepl -o out.png` writes of it (the alpha bytes are left out).
 #[wasm_bindgen]
 pub fn png_of_rgba(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>, JsError> {
+    png_bytes(&rgb_of(width, height, rgba)?)
+}
+
+/// The picture of `width` x `height` pixels whose RGBA bytes are `rgba`
+/// (the alpha bytes left out).
+fn rgb_of(width: u32, height: u32, rgba: &[u8]) -> Result<RgbImage, JsError> {
     let rgb = rgba.chunks_exact(4).flat_map(|pixel| [pixel[0], pixel[1], pixel[2]]).collect();
-    let image = RgbImage::from_raw(width, height, rgb)
-        .ok_or_else(|| JsError::new("the bytes are not a picture of that size"))?;
-    png_bytes(&image)
+    RgbImage::from_raw(width, height, rgb).ok_or_else(|| JsError::new("the bytes are not a picture of that size"))
 }
 
 /// `image` as a PNG file, the bytes `rayrepl -o out.png` writes.

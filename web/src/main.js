@@ -227,7 +227,8 @@ async function pick(x, y) {
   if (!shown) return;
   const explanation = $("#explanation");
   explanation.textContent = `why pixel (${x}, ${y})…`;
-  const reply = await renderer.request({ kind: "run", ...shown, cell: `:pick ${x} ${y}` });
+  // With the picture the bands made: the worker need not render it again.
+  const reply = await renderer.request({ kind: "run", ...shown, cell: `:pick ${x} ${y}`, picture: shownPicture });
   if (reply.superseded) return;
   resumeRendering();
   const found = reply.outputs.find((output) => output.kind === "explanation");

@@ -28,8 +28,10 @@ function playground(settings) {
   }
 }
 
-/** Loads `scene` into a new playground with `settings` and renders it. */
-function render(scene, settings) {
+/** Loads `scene` into a new playground with `settings` and renders it,
+ * or, given its `picture` (`{ width, height, rgba }`, put together from
+ * the bands), takes that as its last picture. */
+function render(scene, settings, picture) {
   current?.playground.free();
   current = null;
   const made = playground(settings);
@@ -37,6 +39,10 @@ function render(scene, settings) {
   const loaded = replyOf(made.playground.load("scene.ray", scene));
   current = { playground: made.playground, scene, settings: JSON.stringify(settings) };
   if (loaded.end !== "done") return loaded;
+  if (picture) {
+    current.playground.adopt_picture(picture.width, picture.height, picture.rgba);
+    return loaded;
+  }
   const rendered = replyOf(current.playground.run(":render"));
   return { ...rendered, outputs: [...loaded.outputs, ...rendered.outputs] };
 }
@@ -57,10 +63,11 @@ function band({ scene, settings, top, bottom }) {
   }
 }
 
-/** Runs `cell` (a command) in the playground of `scene`, rendering it first if this worker has not. */
-function runOn(scene, settings, cell) {
+/** Runs `cell` (a command) in the playground of `scene`, rendering it
+ * first if this worker has not (unless the request brings its `picture`). */
+function runOn({ scene, settings, cell, picture }) {
   if (!current || current.scene !== scene || current.settings !== JSON.stringify(settings)) {
-    const rendered = render(scene, settings);
+    const rendered = render(scene, settings, picture);
     if (rendered.end !== "done") return rendered;
   }
   return replyOf(current.playground.run(cell));
@@ -108,7 +115,7 @@ function lessonCell({ number, settings, scene }) {
 }
 
 const handlers = {
-  run: (request) => runOn(request.scene, request.settings, request.cell),
+  run: runOn,
   lesson: lessonCell,
   band,
   png: ({ width, height, rgba }) => ({ end: "done", outputs: [], images: [], png: png_of_rgba(width, height, rgba) }),

@@ -153,6 +153,30 @@ test("a band's reply gives the notes :render gives", () => {
   }
 });
 
+test(":pick of a picture put together from bands explains the pixel as after :render", () => {
+  const text = readFileSync(join(root, "scenarios/solar.ray"), "utf8");
+  const settings = { width: 64, height: 48, depth: 5, samples: 1, time: 0 };
+  const explained = (prepare) => {
+    const playground = new glue.Playground(Object.assign(new glue.Settings(), settings));
+    try {
+      assert.equal(replyOf(playground.load("scene.ray", text)).end, "done");
+      prepare(playground);
+      const picked = replyOf(playground.run(":pick 31 20"));
+      assert.equal(picked.end, "done", JSON.stringify(picked.outputs));
+      return picked.outputs.filter((output) => output.kind !== "picture");
+    } finally {
+      playground.free();
+    }
+  };
+  const rendered = explained((playground) => replyOf(playground.run(":render")));
+  const adopted = explained((playground) => {
+    const { band } = replyOf(playground.render_rows(0, settings.height));
+    playground.adopt_picture(settings.width, settings.height, band);
+  });
+  assert.ok(rendered.some((output) => output.kind === "explanation"), JSON.stringify(rendered));
+  assert.deepEqual(adopted, rendered);
+});
+
 test("the frames :play shows, as an APNG file, are the bytes of --anim", () => {
   const path = join(root, "scenarios/spiral.ray");
   const settings = { width: 64, height: 48, depth: 5, samples: 1, time: 0 };
