@@ -233,9 +233,9 @@ fn step_markdown(step: &LessonStep) -> String {
 fn verdict_markdown(verdict: &LessonVerdict) -> String {
     match verdict {
         LessonVerdict::Done { .. } => verdict.to_text(),
-        LessonVerdict::NotYet { missing, undo, hint, example } => {
-            let undo = if *undo { " (`:undo` takes your last input back)" } else { "" };
-            let mut markdown = format!("**Not yet:** {missing}{undo}\n\n**Hint:** {hint}");
+        LessonVerdict::NotYet { hint, example, .. } => {
+            let shortfall = verdict.shortfall().unwrap_or_default();
+            let mut markdown = format!("**Not yet:** {shortfall}\n\n**Hint:** {hint}");
             if let Some(example) = example {
                 markdown.push_str(&format!("\n\nFor example:\n\n```ray\n{example}\n```"));
             }

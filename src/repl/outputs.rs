@@ -147,6 +147,14 @@ impl LessonStep {
 }
 
 impl LessonVerdict {
+    /// What the scene still lacks, with the advice to take the last input
+    /// back when it made that; `None` for a step done.
+    pub fn shortfall(&self) -> Option<String> {
+        let LessonVerdict::NotYet { missing, undo, .. } = self else { return None };
+        let undo = if *undo { " (`:undo` takes your last input back)" } else { "" };
+        Some(format!("{missing}{undo}"))
+    }
+
     /// The verdict as the terminal shows it.
     pub fn to_text(&self) -> String {
         match self {
@@ -154,9 +162,9 @@ impl LessonVerdict {
             LessonVerdict::Done { number, already: true } => {
                 format!("✓ step {number} done: your scene already does it")
             }
-            LessonVerdict::NotYet { missing, undo, hint, example } => {
-                let undo = if *undo { " (`:undo` takes your last input back)" } else { "" };
-                let mut text = format!("{}\n{}", wrap(&format!("{missing}{undo}"), "not yet: "), wrap(hint, "hint: "));
+            LessonVerdict::NotYet { hint, example, .. } => {
+                let shortfall = self.shortfall().unwrap_or_default();
+                let mut text = format!("{}\n{}", wrap(&shortfall, "not yet: "), wrap(hint, "hint: "));
                 if let Some(example) = example {
                     text.push_str(&format!("\nfor example:\n{}", indent(example)));
                 }
