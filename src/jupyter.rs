@@ -23,7 +23,7 @@ use jupyter_protocol::{
     CodeMirrorMode, CommInfoReply, CompleteReply, CompleteRequest, ConnectionInfo, ExecuteInput, ExecuteReply,
     ExecuteRequest, ExecutionCount, HistoryEntry, HistoryReply, HistoryRequest, InspectReply, InspectRequest,
     InterruptReply, IsCompleteReply, IsCompleteRequest, JupyterMessage, JupyterMessageContent, KernelInfoReply,
-    LanguageInfo, Media, MediaType, ReplyError, ReplyStatus, ShutdownReply, Status,
+    LanguageInfo, Media, MediaType, ReplyError, ReplyStatus, ShutdownReply, ShutdownRequest, Status,
 };
 
 use crate::clock::Stopwatch;
@@ -80,9 +80,7 @@ fn control(request: &JupyterMessage, outgoing: &Outgoing, switch: &'static Cance
             Control::Reply(reply(InterruptReply::new().into()))
         }
         JupyterMessageContent::ShutdownRequest(shutdown) => {
-            let content = ShutdownReply { restart: shutdown.restart, status: ReplyStatus::Ok, error: None };
-            outgoing.iopub(reply(content.clone().into()));
-            Control::ReplyAndEnd(reply(content.into()))
+            Control::ReplyAndEnd(shutdown_reply(shutdown, request, outgoing))
         }
         JupyterMessageContent::KernelInfoRequest(_) => Control::Reply(reply(kernel_info().into())),
         other => {
@@ -92,6 +90,14 @@ fn control(request: &JupyterMessage, outgoing: &Outgoing, switch: &'static Cance
     };
     outgoing.iopub(JupyterMessage::new(Status::idle(), Some(request)));
     answer
+}
+
+/// The reply to `shutdown` (the content of `request`, on the control or
+/// the shell channel), also published on IOPub, as the protocol asks.
+fn shutdown_reply(shutdown: &ShutdownRequest, request: &JupyterMessage, outgoing: &Outgoing) -> JupyterMessage {
+    let content = ShutdownReply { restart: shutdown.restart, status: ReplyStatus::Ok, error: None };
+    outgoing.iopub(JupyterMessage::new(content.clone(), Some(request)));
+    JupyterMessage::new(content, Some(request))
 }
 
 /// Logs a request of a type the kernel does not answer.
@@ -175,8 +181,7 @@ impl Kernel {
             JupyterMessageContent::HistoryRequest(history) => Some(self.history(history).into()),
             JupyterMessageContent::CommInfoRequest(_) => Some(CommInfoReply::default().into()),
             JupyterMessageContent::ShutdownRequest(shutdown) => {
-                let content = ShutdownReply { restart: shutdown.restart, status: ReplyStatus::Ok, error: None };
-                self.outgoing.reply(JupyterMessage::new(content, Some(request)));
+                self.outgoing.reply(shutdown_reply(shutdown, request, &self.outgoing));
                 // The reply goes out before the process ends.
                 std::thread::sleep(std::time::Duration::from_millis(100));
                 std::process::exit(0);
