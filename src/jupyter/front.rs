@@ -12,6 +12,7 @@ use jupyter_protocol::{
     DisplayData, ErrorOutput, JupyterMessage, JupyterMessageContent, Media, MediaType, ReplyError, StreamContent,
 };
 
+use crate::interruption::Signal;
 use crate::lang::{Diagnostic, Severity, SourceMap};
 use crate::playback::Playback;
 use crate::repl::{
@@ -206,6 +207,16 @@ impl FrontEnd for KernelFront<'_> {
 
     fn cancel(&self) -> Option<&'static CancelSwitch> {
         Some(self.switch)
+    }
+
+    /// A notebook stops a cell with its interrupt (the ■ button, or
+    /// `interrupt_request`), which reaches the kernel as SIGINT or as a
+    /// message: not Ctrl-C.
+    fn interrupt_name(&self, signal: Signal) -> String {
+        match signal {
+            Signal::Interrupt => "the kernel's interrupt".to_string(),
+            other => other.to_string(),
+        }
     }
 
     /// No progress is drawn; what was said before the work shows while it runs.

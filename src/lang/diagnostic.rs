@@ -33,6 +33,12 @@ pub enum Severity {
     Warning,
 }
 
+/// What the language's messages say stopped a run (`stopped by Ctrl-C`),
+/// with the code `interrupted`: what stops a run at a terminal's prompt. A
+/// front-end that knows another signal did names it
+/// ([`Diagnostic::stopped_by`]).
+pub(crate) const STOPPED_BY: &str = "Ctrl-C";
+
 /// One error or warning about the program, with where it happened.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Diagnostic {
@@ -69,6 +75,17 @@ pub struct Replacement {
 }
 
 impl Diagnostic {
+    /// This diagnostic naming `by` as what stopped the run, when it says a
+    /// run was stopped (its code is `interrupted`): SIGTERM, SIGHUP or a
+    /// notebook's interrupt rather than the [`STOPPED_BY`] it is written
+    /// with. Any other diagnostic is left as it is.
+    pub fn stopped_by(mut self, by: &str) -> Diagnostic {
+        if self.code == "interrupted" {
+            self.message = self.message.replacen(STOPPED_BY, by, 1);
+        }
+        self
+    }
+
     /// An error at `span`.
     #[inline(never)]
     pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {

@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize};
 use lalrpop_util::{ParseError, lalrpop_mod};
 
 use super::ast::{Cond, Instr, InstrKind, Item, Program};
-use super::diagnostic::Diagnostic;
+use super::diagnostic::{Diagnostic, STOPPED_BY};
 use super::lexer::{Lexer, Spanned};
 use super::nesting::Nesting;
 use super::source::{SourceId, Span};
@@ -93,7 +93,7 @@ pub(crate) fn parse_items_apart(source: SourceId, text: &str, stop: &AtomicBool,
 /// line that starts at byte `line_start`.
 pub(crate) fn stopped_reading(source: SourceId, line_start: usize) -> Diagnostic {
     let at = Span::new(source, line_start, line_start);
-    let stopped = Diagnostic::error(at, "stopped by Ctrl-C while reading").with_code("interrupted");
+    let stopped = Diagnostic::error(at, format!("stopped by {STOPPED_BY} while reading")).with_code("interrupted");
     stopped.with_note("nothing of this input was kept")
 }
 

@@ -49,6 +49,12 @@ impl CancelSwitch {
         ArmedSwitch { switch: self }
     }
 
+    /// The signal that raised the flag last, if one has: what stopped the
+    /// last job stopped, until another signal stops one.
+    pub(crate) fn last_signal(&self) -> Option<Signal> {
+        Signal::from_code(self.signal.load(Ordering::SeqCst))
+    }
+
     /// The flag Ctrl-C raises while the switch is armed.
     pub(crate) fn flag(&'static self) -> &'static AtomicBool {
         &self.cancel

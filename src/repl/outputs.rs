@@ -19,6 +19,7 @@ use crate::lang::{Diagnostic, SourceMap};
 
 use super::cancel::CancelSwitch;
 use super::rendering::Size;
+use crate::interruption::Signal;
 
 /// One thing an input or a command shows.
 #[derive(Debug, Clone, PartialEq)]
@@ -245,6 +246,12 @@ pub trait FrontEnd {
         None
     }
 
+    /// How this front-end's messages name `signal` when it stopped a run
+    /// ("stopped by SIGTERM"): Ctrl-C for SIGINT at a terminal.
+    fn interrupt_name(&self, signal: Signal) -> String {
+        signal.to_string()
+    }
+
     /// The lines typed in this front-end, oldest first, as `:history`
     /// lists them (none where nothing is typed).
     fn history(&self) -> Vec<String> {
@@ -357,9 +364,15 @@ impl dyn FrontEnd + '_ {
         self.text(TextRole::PrintedNote, text);
     }
 
-    /// Shows a diagnostic pointing into `sources`.
+    /// Shows a diagnostic pointing into `sources`; one that says a run was
+    /// stopped names the signal that stopped it, as this front-end names it.
     pub(crate) fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
-        let _ = self.show(Output::Diagnostic(Box::new(diagnostic.clone())), sources);
+        let signal = self.cancel().and_then(CancelSwitch::last_signal);
+        let shown = match signal {
+            Some(signal) => diagnostic.clone().stopped_by(&self.interrupt_name(signal)),
+            None => diagnostic.clone(),
+        };
+        let _ = self.show(Output::Diagnostic(Box::new(shown)), sources);
     }
 
     /// Shows an output that points into no program text; fails with the

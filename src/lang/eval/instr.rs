@@ -10,7 +10,7 @@ use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
 use super::stack::grow;
 use super::value::{Kind, Value};
 use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ObjKind, ProcDef};
-use crate::lang::diagnostic::{Diagnostic, with_names_shortened};
+use crate::lang::diagnostic::{Diagnostic, STOPPED_BY, with_names_shortened};
 use crate::lang::source::Span;
 
 /// How many calls of a failing call chain are shown as "in this call" places.
@@ -239,7 +239,7 @@ impl Interpreter {
     pub(crate) fn stop_if_interrupted(&self, span: Span, label: impl FnOnce() -> String) -> EvalResult<()> {
         if self.interrupt.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
             return fail(
-                Diagnostic::error(span, "stopped by Ctrl-C")
+                Diagnostic::error(span, format!("stopped by {STOPPED_BY}"))
                     .with_code("interrupted")
                     .with_label(label())
                     .with_note("nothing of this input was kept"),
