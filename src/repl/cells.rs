@@ -115,7 +115,8 @@ impl CellSession {
     }
 
     /// Runs `text` as the whole of the learner's scene, in place of the
-    /// session's program (as `:reset` then the cell would), and checks the
+    /// session's program (as `:reset` then the cell would, the inputs it
+    /// replaces forgotten, not kept for `:undo`), and checks the
     /// lesson followed once, after it, as the terminal checks an input
     /// typed at its prompt: for a front-end whose editor holds the whole
     /// scene and runs it again at each pause in typing (the browser page's
@@ -124,7 +125,7 @@ impl CellSession {
     /// that fails or is interrupted is not checked: the terminal checks
     /// only what it accepted.
     pub fn run_scene(&mut self, name: &str, text: &str, front: &mut dyn FrontEnd) -> CellEnd {
-        self.shell.session.reset();
+        self.shell.session.clear();
         self.shell.tutor.checks_held = true;
         let end = self.run(name, text, front);
         self.shell.tutor.checks_held = false;
@@ -397,6 +398,13 @@ mod tests {
         );
         assert_eq!(wrong_tries(&cells), Some((1, 0)));
         assert_eq!(cells.shell.session.global_number("a"), None, "the scene replaced the last one");
+        // The scenes it replaced are forgotten: `:undo` reaches back to the start of the last.
+        let mut front = Collected::default();
+        assert_eq!(cells.run("<cell 2>", ":undo\n:undo\n:undo", &mut front), CellEnd::Done);
+        let said = messages(&front);
+        assert_eq!(said.iter().filter(|text| text.starts_with("took back")).count(), 2, "{said:?}");
+        assert!(said.contains(&"nothing to undo"), "{said:?}");
+        assert_eq!(cells.shell.session.global_number("d"), None);
     }
 
     #[test]

@@ -427,6 +427,15 @@ impl Session {
         Ok(())
     }
 
+    /// Forgets every input, and the undo steps with them: for a front-end
+    /// that runs a whole scene again in place of the last at every pause
+    /// in typing (`CellSession::run_scene`), which never takes one back,
+    /// so that what it keeps does not grow with the pauses.
+    pub(crate) fn clear(&mut self) {
+        self.reset();
+        self.undo_steps.clear();
+    }
+
     /// Forgets every input; `:undo` brings them back.
     pub(crate) fn reset(&mut self) {
         let cleared = std::mem::take(&mut self.history);
