@@ -13,9 +13,11 @@ use crate::settings::FRAMES;
 use super::cancel::cancel_flag;
 use super::outcome::{CommandError, CommandResult, Flow, parse_count, parse_size, usage};
 use super::outputs::{FrontEnd, Output, Picture, PixelExplanation, PreviewSize};
-use super::render_steps::{duration, explain_defaults, out_of_memory, render_frames, render_scene, write_failure};
+use super::render_steps::{
+    duration, notes_before_rendering, out_of_memory, render_frames, render_scene, write_failure,
+};
 use super::rendering::{Size, render_options};
-use super::report::{counted, show_scene_warnings};
+use super::report::counted;
 use super::session::Session;
 use super::shell::Shell;
 
@@ -30,8 +32,7 @@ pub(crate) fn render_command(shell: &mut Shell, arguments: &[String], front: &mu
             return Err(CommandError::Usage("give both a width and a height, or neither".to_string()));
         }
     };
-    explain_defaults(session, front);
-    show_scene_warnings(session, &mut shell.warned, front, size, false);
+    notes_before_rendering(session, &mut shell.warned, front, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), front)?;
     shell.last_picture = Some(image.clone());
     if shown.is_some() {
@@ -112,8 +113,7 @@ pub(crate) fn save(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     let path = PathBuf::from(file);
     not_a_file_read(session, &path, None)?;
     check_output(&path, Content::Still)?;
-    explain_defaults(session, front);
-    show_scene_warnings(session, &mut shell.warned, front, size, false);
+    notes_before_rendering(session, &mut shell.warned, front, size, false);
     let (image, took) = render_scene(session.scene(), size, session.settings(), front)?;
     shell.last_picture = Some(image.clone());
     output::write_image_cancellable(&path, &image, cancel_flag(front.cancel())).map_err(write_failure)?;
@@ -134,9 +134,8 @@ pub(crate) fn anim(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     not_a_file_read(session, &path, None)?;
     let format = output::check_animation_output(&path, &animation).map_err(|e| CommandError::Failed(e.to_string()))?;
     not_a_file_read(session, &path, Some((format, frames)))?;
-    explain_defaults(session, front);
     let size = Size { width: session.settings().width, height: session.settings().height };
-    show_scene_warnings(session, &mut shell.warned, front, size, true);
+    notes_before_rendering(session, &mut shell.warned, front, size, true);
     let started = Stopwatch::start();
     let mut sink = FrameSink::new(&path, format, frames as usize, animation.playback, cancel_flag(front.cancel()));
     let rendered = render_frames(session, frames, animation.timeline, size, front, &mut |frame, image| {

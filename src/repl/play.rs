@@ -9,9 +9,8 @@ use crate::settings::Limit;
 
 use super::outcome::{CommandError, CommandResult, Flow, parse_count};
 use super::outputs::{FrontEnd, Output};
-use super::render_steps::{explain_defaults, render_frames};
+use super::render_steps::{notes_before_rendering, render_frames};
 use super::rendering::Size;
-use super::report::show_scene_warnings;
 use super::shell::Shell;
 
 /// Frames played when none are asked for: two seconds at the default rate.
@@ -52,8 +51,7 @@ pub(crate) fn play(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
             PLAY_BYTES >> 20
         )));
     }
-    explain_defaults(session, front);
-    show_scene_warnings(session, &mut shell.warned, front, size, true);
+    notes_before_rendering(session, &mut shell.warned, front, size, true);
     if !session.depends_on_time() {
         front.note("nothing in the scene depends on `time`: every frame is the same (see `:help time`)");
     }

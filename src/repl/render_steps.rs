@@ -17,12 +17,28 @@ use crate::scene::Scene;
 use super::outcome::CommandError;
 use super::outputs::FrontEnd;
 use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
-use super::report::number;
+use super::report::{number, show_scene_warnings};
 use super::session::Session;
+use crate::warned::Warned;
+
+/// What every command that makes pictures of `size` (frames of an
+/// animation if `animation`) shows before it renders: the note about the
+/// defaults the scene falls back on, then the warnings about the scene not
+/// shown yet.
+pub(crate) fn notes_before_rendering(
+    session: &Session,
+    warned: &mut Warned,
+    front: &mut dyn FrontEnd,
+    size: Size,
+    animation: bool,
+) {
+    explain_defaults(session, front);
+    show_scene_warnings(session, warned, front, size, animation);
+}
 
 /// Prints one note about the defaults a render falls back on, and about
 /// an empty or unlit scene.
-pub(crate) fn explain_defaults(session: &Session, front: &mut dyn FrontEnd) {
+fn explain_defaults(session: &Session, front: &mut dyn FrontEnd) {
     let scene = session.scene();
     let camera = format!("camera (distance {}, angle {})", number(scene.camera.distance), number(scene.camera.angle));
     let ambient = format!("ambient light ({})", number(scene.ambient));
