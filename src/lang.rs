@@ -8,6 +8,7 @@ pub mod eval;
 pub(crate) mod fast_hash;
 pub mod format;
 pub mod lexer;
+pub mod name;
 pub mod names;
 pub mod nesting;
 pub mod number;

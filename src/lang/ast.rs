@@ -11,15 +11,16 @@
 //! such leaves, and skipping the walk for them frees the tree of 100 MB of
 //! spheres a fifth faster (`BENCHMARKS.md`).
 
-use std::rc::Rc;
+use std::sync::Arc;
 
+use super::name::Name;
 use super::source::Span;
 
 /// A name as written in the source, with its position.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ident {
     /// The name itself.
-    pub name: Rc<str>,
+    pub name: Name,
     /// Where it was written.
     pub span: Span,
 }
@@ -39,7 +40,7 @@ pub enum ExprKind {
     /// A literal such as `3` or `0.75`.
     Number(f64),
     /// A variable reference (a `let` or a parameter; `time` is predefined).
-    Var(Rc<str>),
+    Var(Name),
     /// The constant `pi`.
     Pi,
     /// Unary minus.
@@ -187,7 +188,7 @@ pub struct Obj {
 #[derive(Debug, Clone, PartialEq)]
 pub enum ObjKind {
     /// A variable bound by `object`.
-    Var(Rc<str>),
+    Var(Name),
     /// `sphere center c radius r texture end`
     Sphere {
         /// Centre.
@@ -308,7 +309,7 @@ pub enum Item {
     /// A directional light (adds one).
     Light(LightDef),
     /// A procedure definition.
-    Proc(Rc<ProcDef>),
+    Proc(Arc<ProcDef>),
     /// An instruction run at top level.
     Instr(Instr),
 }

@@ -29,7 +29,7 @@ mod stack;
 mod value;
 
 use std::collections::HashSet;
-use std::rc::Rc;
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use glam::{DMat3, DVec3};
@@ -46,6 +46,7 @@ pub use print::{PRINT_LIMIT, PrintLine, PrintLog};
 
 use super::ast::{Item, ProcDef, Program};
 use super::diagnostic::{Diagnostic, Note};
+use super::name::Name;
 use super::source::Span;
 use crate::scene::transform::rotated_up;
 use crate::scene::{Camera, Light, Primitive, Scene, TimeUse};
@@ -116,10 +117,10 @@ pub struct Interpreter {
     /// Raised (by Ctrl-C) to stop the evaluation at the next procedure call.
     interrupt: Option<&'static AtomicBool>,
     /// Procedures by name; a redefinition replaces.
-    procs: NameMap<Rc<ProcDef>>,
+    procs: NameMap<Arc<ProcDef>>,
     /// What each procedure name held before each definition of the current
     /// run, oldest first, so that a failed run takes them back.
-    procs_undo: Vec<(Rc<str>, Option<Rc<ProcDef>>)>,
+    procs_undo: Vec<(Name, Option<Arc<ProcDef>>)>,
     /// Where the scene's parts come from.
     origins: Origins,
     /// What `print` wrote and was not yet taken.
@@ -140,7 +141,7 @@ pub struct Interpreter {
     /// The procedure the last call found, to skip the hash lookup when the
     /// same procedure is called again (as recursion does). Cleared whenever
     /// the procedures change.
-    last_proc: Option<Rc<ProcDef>>,
+    last_proc: Option<Arc<ProcDef>>,
     /// The last rotation computed, with its angles (see `rotation`).
     last_rotation: (DVec3, DMat3),
     /// A reusable buffer for building `object` values.
@@ -326,23 +327,23 @@ impl Interpreter {
     }
 
     /// The names of the defined procedures, sorted (for completion and `:help`).
-    pub fn procedure_names(&self) -> Vec<Rc<str>> {
+    pub fn procedure_names(&self) -> Vec<Name> {
         sorted(self.procs.keys())
     }
 
     /// The names of the global variables, sorted (for completion).
-    pub fn global_names(&self) -> Vec<Rc<str>> {
+    pub fn global_names(&self) -> Vec<Name> {
         sorted(self.env.globals.keys())
     }
 
     /// The definition of a procedure, if there is one by that name.
     pub fn procedure(&self, name: &str) -> Option<&ProcDef> {
-        self.procs.get(name).map(|p| &**p)
+        self.procs.get(&Name::find(name)?).map(|p| &**p)
     }
 
     /// The value of a global number variable, if `name` holds a number.
     pub fn global_number(&self, name: &str) -> Option<f64> {
-        match self.env.globals.get(name)?.kind {
+        match self.env.globals.get(&Name::find(name)?)?.kind {
             Kind::Number(value) => Some(value),
             Kind::Object(_) => None,
         }
@@ -350,7 +351,7 @@ impl Interpreter {
 
     /// The primitives of a global object variable, if `name` holds an object.
     pub fn global_object(&self, name: &str) -> Option<&[Primitive]> {
-        match &self.env.globals.get(name)?.kind {
+        match &self.env.globals.get(&Name::find(name)?)?.kind {
             Kind::Object(primitives) => Some(primitives),
             Kind::Number(_) => None,
         }
@@ -383,8 +384,8 @@ impl Interpreter {
                 self.scene.time_use.lights |= rotation_tainted | intensity.tainted | self.context_tainted;
             }
             Item::Proc(def) => {
-                let before = self.procs.insert(def.name.name.clone(), def.clone());
-                self.procs_undo.push((def.name.name.clone(), before));
+                let before = self.procs.insert(def.name.name, def.clone());
+                self.procs_undo.push((def.name.name, before));
                 self.last_proc = None;
             }
             Item::Instr(instr) => self.exec(instr)?,
@@ -454,8 +455,8 @@ impl Interpreter {
 }
 
 /// The names, sorted.
-fn sorted<'a>(names: impl Iterator<Item = &'a Rc<str>>) -> Vec<Rc<str>> {
-    let mut names: Vec<Rc<str>> = names.cloned().collect();
+fn sorted<'a>(names: impl Iterator<Item = &'a Name>) -> Vec<Name> {
+    let mut names: Vec<Name> = names.cloned().collect();
     names.sort();
     names
 }
@@ -490,8 +491,8 @@ mod tests {
         let mut whole = Interpreter::new(1.0, Limits::DEFAULT);
         whole.run(&program).expect("runs");
         let whole = whole.into_scene();
-        let sent = Rc::new(std::cell::RefCell::new((Vec::new(), Vec::new())));
-        let into = Rc::clone(&sent);
+        let sent = std::rc::Rc::new(std::cell::RefCell::new((Vec::new(), Vec::new())));
+        let into = std::rc::Rc::clone(&sent);
         let mut streaming = Interpreter::new(1.0, Limits::DEFAULT).streaming(3, move |timed, batch| {
             assert_eq!(batch.len(), if timed { 1 } else { 3 });
             let mut sent = into.borrow_mut();

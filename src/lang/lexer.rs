@@ -3,16 +3,16 @@
 //! The [`Lexer`] is an iterator of `(start, Token, end)` triples, the shape
 //! lalrpop's external-lexer interface expects; `start` and `end` are byte
 //! offsets into the text. It allocates nothing per token except the first
-//! time a name is seen: names are interned as [`Rc<str>`] because they go
-//! into the AST. Keywords come from the table of [`super::words`].
+//! time a name is seen by the process ([`Name`]); a lexer keeps the names it
+//! has read, so that interning each takes the process's table once. Keywords come from the table of [`super::words`].
 
 use std::collections::HashMap;
-use std::rc::Rc;
 
 use unicode_width::UnicodeWidthChar;
 
 use super::diagnostic::Diagnostic;
 use super::fast_hash::FastHash;
+use super::name::Name;
 use super::nesting::Nesting;
 use super::source::{SourceId, Span};
 use super::token::Token;
@@ -37,7 +37,7 @@ pub struct Lexer<'a> {
     /// The keywords, shared by every lexer of the thread.
     keywords: &'static KeywordTable,
     /// The names read so far, interned.
-    names: HashMap<&'a str, Rc<str>, FastHash>,
+    names: HashMap<&'a str, Name, FastHash>,
     /// Where the line of the last token starts.
     line_start: usize,
     /// How deeply the tokens read so far nest.
@@ -183,7 +183,7 @@ impl<'a> Lexer<'a> {
         let word = &self.text[start..self.pos];
         let (token, row) = match self.keywords.get(word) {
             Some(keyword) => keyword.clone(),
-            None => (Token::Ident(Rc::clone(self.names.entry(word).or_insert_with(|| Rc::from(word)))), None),
+            None => (Token::Ident(*self.names.entry(word).or_insert_with(|| Name::new(word))), None),
         };
         ((start, token, self.pos), row)
     }
@@ -447,7 +447,7 @@ mod tests {
     fn names_are_interned() {
         let spanned = tokenize(SourceId(0), "abc abc").expect("valid");
         match (&spanned[0].1, &spanned[1].1) {
-            (Token::Ident(a), Token::Ident(b)) => assert!(Rc::ptr_eq(a, b)),
+            (Token::Ident(a), Token::Ident(b)) => assert!(std::ptr::eq(a.as_str(), b.as_str())),
             other => panic!("expected two names, got {other:?}"),
         }
     }

@@ -12,9 +12,9 @@
 //! before it.
 
 use std::collections::HashMap;
-use std::rc::Rc;
 
 use super::ast::{Cond, CondKind, Expr, ExprKind, Ident, Instr, InstrKind, Item, Obj, ObjKind, Program, Triple};
+use super::name::Name;
 use super::source::Span;
 
 /// The namespace a name lives in.
@@ -40,7 +40,7 @@ pub enum Scope {
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct Symbol {
     /// The name as written.
-    pub name: Rc<str>,
+    pub name: Name,
     /// Its namespace.
     pub namespace: Namespace,
     /// Its scope.
@@ -116,16 +116,16 @@ impl Collector {
 
     /// Visits `tasks` (the last one first) in `scope`, whose parameters and
     /// locals bound so far are `locals`. Nesting costs no stack.
-    fn visit<'a>(&mut self, mut tasks: Vec<Task<'a>>, scope: Scope, locals: &mut Vec<Rc<str>>) {
-        let value_symbol = |name: &Rc<str>, locals: &[Rc<str>]| {
+    fn visit<'a>(&mut self, mut tasks: Vec<Task<'a>>, scope: Scope, locals: &mut Vec<Name>) {
+        let value_symbol = |name: &Name, locals: &[Name]| {
             let scope = if locals.contains(name) { scope } else { Scope::Global };
-            Symbol { name: name.clone(), namespace: Namespace::Value, scope }
+            Symbol { name: *name, namespace: Namespace::Value, scope }
         };
         while let Some(task) = tasks.pop() {
             match task {
                 Task::Bind(ident, binding, at) => {
                     if scope != Scope::Global && !locals.contains(&ident.name) {
-                        locals.push(ident.name.clone());
+                        locals.push(ident.name);
                     }
                     let symbol = value_symbol(&ident.name, locals);
                     self.occurrence(symbol, ident.span, Some(binding), scope, at);
@@ -140,11 +140,8 @@ impl Collector {
                             tasks.extend([Task::Bind(name, Binding::Object, end), Task::Obj(value)]);
                         }
                         InstrKind::Call(name, arguments) => {
-                            let symbol = Symbol {
-                                name: name.name.clone(),
-                                namespace: Namespace::Procedure,
-                                scope: Scope::Global,
-                            };
+                            let symbol =
+                                Symbol { name: name.name, namespace: Namespace::Procedure, scope: Scope::Global };
                             self.occurrence(symbol, name.span, None, scope, name.span.start);
                             tasks.extend(arguments.iter().rev().map(Task::Expr));
                         }
@@ -235,10 +232,9 @@ impl Names {
                 Item::Proc(procedure) => {
                     let scope = Scope::Procedure(index);
                     let name = &procedure.name;
-                    let symbol =
-                        Symbol { name: name.name.clone(), namespace: Namespace::Procedure, scope: Scope::Global };
+                    let symbol = Symbol { name: name.name, namespace: Namespace::Procedure, scope: Scope::Global };
                     collector.occurrence(symbol, name.span, Some(Binding::Procedure), Scope::Global, name.span.start);
-                    let mut locals: Vec<Rc<str>> = Vec::new();
+                    let mut locals: Vec<Name> = Vec::new();
                     let mut tasks: Vec<Task> = procedure.body.iter().rev().map(Task::Instr).collect();
                     tasks.extend(
                         procedure

@@ -55,38 +55,22 @@ pub fn parse_items(source: SourceId, text: &str) -> Result<Program, Diagnostic> 
     parse(source, text, Mode::Session, None)
 }
 
-/// A parse of [`parse_items_apart`]: made on one thread, to be run on
-/// another.
-pub(crate) struct ParsedApart(Result<Program, Diagnostic>);
-
-// SAFETY: a syntax tree is not `Send` only because its names are
-// `Rc<str>` and its procedures `Rc<ProcDef>`: a clone left on one thread
-// would share its count with one moved to another. Every clone of each of
-// those `Rc`s that a parse makes is in its tree, except those of the
-// lexer's table of names and of the tokens, which are dropped before the
-// parse returns; a `ParsedApart` is made only from the result of a parse
-// that has returned, and nothing else is cloned from it before it moves,
-// so moving it moves every clone.
-unsafe impl Send for ParsedApart {}
-
-impl ParsedApart {
-    /// The program, or the error that stopped the parse.
-    pub(crate) fn into_result(self) -> Result<Program, Diagnostic> {
-        self.0
-    }
-}
-
-/// [`parse_items`] of `text`, made on a thread of its own for another to
-/// run: a long `:load` is parsed on a thread that Ctrl-C abandons, so that
-/// the partial tree of a parse it stops (seconds of text) is freed there,
-/// not while the session waits. The parse stops once `stop` is raised;
-/// `reached` follows where the line being read starts, for the error the
-/// waiting thread gives then ([`stopped_reading`]).
-pub(crate) fn parse_items_apart(source: SourceId, text: &str, stop: &AtomicBool, reached: &AtomicUsize) -> ParsedApart {
+/// [`parse_items`] of `text`, which `stop` ends once raised: a long `:load`
+/// is parsed on a thread that Ctrl-C abandons (a syntax tree can move
+/// between threads, its names being [`super::name::Name`]s), so that the
+/// partial tree of a parse it stops (seconds of text) is freed there, not
+/// while the session waits. `reached` follows where the line being read
+/// starts, for the error the waiting thread gives then ([`stopped_reading`]).
+pub(crate) fn parse_items_apart(
+    source: SourceId,
+    text: &str,
+    stop: &AtomicBool,
+    reached: &AtomicUsize,
+) -> Result<Program, Diagnostic> {
     let mut tokens = Tracked::new(source, text);
     tokens.interrupt = Some(stop);
     tokens.reached = Some(reached);
-    ParsedApart(parse_tracked(source, text, Mode::Session, tokens))
+    parse_tracked(source, text, Mode::Session, tokens)
 }
 
 /// The error of a parse of `source` stopped by Ctrl-C while it read the
@@ -407,11 +391,11 @@ mod tests {
         let text = "let a = 1\nproc p(x)\n  let y = x\nend\np(a)\n";
         let (stop, reached) = (AtomicBool::new(false), AtomicUsize::new(0));
         let parsed = parse_items_apart(SourceId(0), text, &stop, &reached);
-        let program = std::thread::spawn(move || parsed).join().expect("parsed").into_result().expect("a program");
+        let program = std::thread::spawn(move || parsed).join().expect("parsed").expect("a program");
         assert_eq!(program, parse_items(SourceId(0), text).expect("a program"));
         assert_eq!(reached.load(std::sync::atomic::Ordering::Relaxed), text.find("p(a)").expect("there"));
         stop.store(true, std::sync::atomic::Ordering::Relaxed);
-        let stopped = parse_items_apart(SourceId(0), text, &stop, &reached).into_result().expect_err("stopped");
+        let stopped = parse_items_apart(SourceId(0), text, &stop, &reached).expect_err("stopped");
         assert_eq!(stopped.code, "interrupted");
     }
 

@@ -2,7 +2,7 @@
 //! grammar reads. How each keyword is spelt is in the words table
 //! ([`super::words`]), which also says how a token is written.
 
-use std::rc::Rc;
+use super::name::Name;
 
 /// One token of the `.ray` language.
 #[derive(Debug, Clone, PartialEq)]
@@ -10,7 +10,7 @@ pub enum Token {
     /// A number literal: `3`, `0.75`, `.5`, `1e3`.
     Number(f64),
     /// A name that is not a keyword.
-    Ident(Rc<str>),
+    Ident(Name),
     /// `ambient`
     Ambient,
     /// `angle`

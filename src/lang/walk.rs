@@ -3,9 +3,8 @@
 //! may be nested to any depth, so these walk from a list on the heap
 //! rather than by recursion.
 
-use std::rc::Rc;
-
 use super::ast::{Expr, ExprKind, Instr, InstrKind, Item, ObjKind, Program, Texture};
+use super::name::Name;
 
 /// The instructions `instrs` run at their own level: each of them and,
 /// inside an `if`, those of both branches, to any depth, in source order.
@@ -23,7 +22,7 @@ pub fn same_level<'a>(instrs: impl DoubleEndedIterator<Item = &'a Instr>) -> imp
 }
 
 /// The name an instruction binds (`let x = ...`, `object x = ...`), if any.
-pub fn bound_name(instr: &Instr) -> Option<&Rc<str>> {
+pub fn bound_name(instr: &Instr) -> Option<&Name> {
     match &instr.kind {
         InstrKind::Let(name, _) | InstrKind::Object(name, _) => Some(&name.name),
         InstrKind::Call(..) | InstrKind::Put(_) | InstrKind::If(..) | InstrKind::Print(_) => None,
@@ -31,7 +30,7 @@ pub fn bound_name(instr: &Instr) -> Option<&Rc<str>> {
 }
 
 /// The procedure an instruction calls, if it is a call.
-pub fn called_name(instr: &Instr) -> Option<&Rc<str>> {
+pub fn called_name(instr: &Instr) -> Option<&Name> {
     match &instr.kind {
         InstrKind::Call(name, _) => Some(&name.name),
         _ => None,
@@ -39,7 +38,7 @@ pub fn called_name(instr: &Instr) -> Option<&Rc<str>> {
 }
 
 /// The variables `exprs` read, in source order, with repetitions.
-pub fn variables<'a>(exprs: impl DoubleEndedIterator<Item = &'a Expr>) -> Vec<&'a Rc<str>> {
+pub fn variables<'a>(exprs: impl DoubleEndedIterator<Item = &'a Expr>) -> Vec<&'a Name> {
     let mut pending: Vec<&Expr> = exprs.rev().collect();
     let mut names = Vec::new();
     while let Some(expr) = pending.pop() {

@@ -222,9 +222,34 @@ pub(crate) fn off_thread_streaming<P: Send + 'static, T: Send + 'static>(
     }
 }
 
+/// Drops `value` on a thread of its own, for a value whose freeing is long
+/// (the syntax tree of a large file whose run failed or was stopped: a
+/// tenth of a second and more for 100 MB of text), so that the session
+/// does not wait for it. Where no thread can be made (wasm32), it is
+/// dropped here.
+pub(crate) fn drop_apart<T: Send + 'static>(value: T) {
+    // A spawn that fails drops its closure, and `value` with it, here.
+    let _ = std::thread::Builder::new().name("free".to_string()).spawn(move || drop(value));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What [`drop_apart`] is given is dropped, on another thread.
+    #[test]
+    fn a_value_dropped_apart_is_dropped_on_a_thread_of_its_own() {
+        struct Noted(mpsc::Sender<std::thread::ThreadId>);
+        impl Drop for Noted {
+            fn drop(&mut self) {
+                self.0.send(std::thread::current().id()).expect("the test waits");
+            }
+        }
+        let (sent, received) = mpsc::channel();
+        drop_apart(Noted(sent));
+        let dropped_on = received.recv_timeout(Duration::from_secs(10)).expect("dropped");
+        assert_ne!(dropped_on, std::thread::current().id());
+    }
 
     #[test]
     fn work_off_the_thread_answers_or_is_abandoned_when_cancelled() {

@@ -24,8 +24,11 @@ pub(crate) fn env(shell: &mut Shell, arguments: &[String], front: &mut dyn Front
     let numbers: Vec<String> =
         session.numbers().iter().map(|(name, value)| format!("{name} = {}", number(*value))).collect();
     let objects: Vec<String> = session.objects().iter().map(|(name, what)| format!("{name} ({what})")).collect();
-    let procedures: Vec<String> =
-        session.procedures().iter().map(|(name, params)| format!("{name}({})", params.join(", "))).collect();
+    let procedures: Vec<String> = session
+        .procedures()
+        .iter()
+        .map(|(name, params)| format!("{name}({})", params.iter().map(|p| p.as_str()).collect::<Vec<_>>().join(", ")))
+        .collect();
     front.say(format!("numbers:    {}", numbers.join(", ")));
     let no_objects = format!("none yet: `object {} = sphere ... end` names one", free_name(session, "ball"));
     front.say(format!("objects:    {}", or_none(&objects, &no_objects)));

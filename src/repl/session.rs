@@ -10,13 +10,14 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
+use crate::lang::name::Name;
 use crate::lang::{
     Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items, parse_items_apart, stopped_reading,
 };
 use crate::lint::{Allowed, Picture, check_scene};
 use crate::scene::{Counts, Primitive, Scene};
 
-use super::cancel::{Stopped, off_thread};
+use super::cancel::{Stopped, drop_apart, off_thread};
 use super::describe::ObjectDescriptions;
 use super::rendering::RenderSettings;
 
@@ -69,7 +70,7 @@ pub(crate) struct Accepted {
     pub warnings: Vec<Diagnostic>,
     /// The procedures the input defines that were defined before it (to
     /// tell new from redefined).
-    pub redefined: Vec<Rc<str>>,
+    pub redefined: Vec<Name>,
     /// What the scene held before the input.
     pub counts_before: Counts,
 }
@@ -257,12 +258,14 @@ impl Session {
     /// tree there (for a file of 100 MB, a tenth of a second or more)
     /// while the session goes on.
     fn parse_apart(&self, source: SourceId, interrupt: &'static AtomicBool) -> Result<Program, Diagnostic> {
-        let text = Arc::clone(&self.sources.get(source).text);
+        let file = self.sources.get(source);
+        file.find_lines_apart();
+        let text = Arc::clone(&file.text);
         let (stop, reached) = (Arc::new(AtomicBool::new(false)), Arc::new(AtomicUsize::new(0)));
         let (stopping, reading) = (Arc::clone(&stop), Arc::clone(&reached));
         let parsed = off_thread("parse", interrupt, move || parse_items_apart(source, &text, &stopping, &reading));
         match parsed {
-            Ok(parsed) => parsed.into_result(),
+            Ok(parsed) => parsed,
             Err(stopped) => {
                 stop.store(true, Ordering::Relaxed);
                 let at = reached.load(Ordering::Relaxed);
@@ -296,7 +299,7 @@ impl Session {
             .items
             .iter()
             .filter_map(|item| match item {
-                Item::Proc(def) if self.interpreter.procedure(&def.name.name).is_some() => Some(def.name.name.clone()),
+                Item::Proc(def) if self.interpreter.procedure(&def.name.name).is_some() => Some(def.name.name),
                 _ => None,
             })
             .collect();
@@ -304,6 +307,11 @@ impl Session {
         self.printed.borrow_mut().absorb(self.interpreter.take_printed());
         if let Err(error) = result {
             self.interpreter.take_warnings();
+            if input.loaded_from.is_some()
+                && let Ok(program) = Rc::try_unwrap(input.program)
+            {
+                drop_apart(program);
+            }
             return Err(error);
         }
         let warnings = self.interpreter.take_warnings();
@@ -580,9 +588,9 @@ impl Session {
     }
 
     /// The global numbers and their values, by name.
-    pub(crate) fn numbers(&self) -> Vec<(Rc<str>, f64)> {
+    pub(crate) fn numbers(&self) -> Vec<(Name, f64)> {
         let names = self.interpreter.global_names();
-        names.into_iter().filter_map(|name| Some((Rc::clone(&name), self.number_shown(&name)?))).collect()
+        names.into_iter().filter_map(|name| Some((name, self.number_shown(&name)?))).collect()
     }
 
     /// The value of the global number `name` as the session shows it: after
@@ -595,9 +603,9 @@ impl Session {
     }
 
     /// The global objects and what they are, by name.
-    pub(crate) fn objects(&self) -> Vec<(Rc<str>, String)> {
+    pub(crate) fn objects(&self) -> Vec<(Name, String)> {
         let names = self.interpreter.global_names();
-        names.into_iter().filter_map(|name| Some((Rc::clone(&name), self.describe_object(&name)?))).collect()
+        names.into_iter().filter_map(|name| Some((name, self.describe_object(&name)?))).collect()
     }
 
     /// What the global object `name` is (`sphere`, `group of 2 objects`,
@@ -623,12 +631,12 @@ impl Session {
     }
 
     /// The procedures and their parameters, by name.
-    pub(crate) fn procedures(&self) -> Vec<(Rc<str>, Vec<Rc<str>>)> {
+    pub(crate) fn procedures(&self) -> Vec<(Name, Vec<Name>)> {
         let names = self.interpreter.procedure_names();
         names
             .into_iter()
             .filter_map(|name| {
-                let params = self.interpreter.procedure(&name)?.params.iter().map(|p| Rc::clone(&p.name)).collect();
+                let params = self.interpreter.procedure(&name)?.params.iter().map(|p| p.name).collect();
                 Some((name, params))
             })
             .collect()

@@ -12,7 +12,6 @@
 use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::path::Path;
-use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -96,7 +95,7 @@ struct Parts<'s> {
     ambient: Option<Header<'s, AmbientDef>>,
     lights: Vec<Header<'s, LightDef>>,
     /// The last definition of each procedure, in the order they were first defined.
-    procs: Vec<&'s Rc<ProcDef>>,
+    procs: Vec<&'s Arc<ProcDef>>,
     /// Every item in the order it ran, to follow calls through redefinitions.
     items: Vec<&'s Item>,
 }

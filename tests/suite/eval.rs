@@ -779,7 +779,7 @@ fn observe(i: &Interpreter) -> String {
         "{:?} {:?} {} {} {} {:?} {places}",
         i.scene(),
         names,
-        i.procedure_names().join(","),
+        i.procedure_names().iter().map(|name| name.as_str()).collect::<Vec<_>>().join(","),
         i.has_camera(),
         i.has_ambient(),
         i.has_time_reads()

@@ -7,13 +7,13 @@
 //! beats hashing, and nothing is allocated per call beyond the stack's growth.
 
 use std::collections::HashMap;
-use std::rc::Rc;
 
 use super::value::{Kind, Value};
 use crate::lang::fast_hash::FastHash;
+use crate::lang::name::Name;
 
 /// A map keyed by names, with the fast hasher.
-pub(crate) type NameMap<V> = HashMap<Rc<str>, V, FastHash>;
+pub(crate) type NameMap<V> = HashMap<Name, V, FastHash>;
 
 /// Where the current frame lies in the locals stack, saved across a call.
 #[derive(Debug, Clone, Copy)]
@@ -29,7 +29,7 @@ pub(crate) struct Env {
     /// Top-level `let`s and `object`s, and `time`.
     pub globals: NameMap<Value>,
     /// Parameters and locals of every active call, innermost last.
-    locals: Vec<(Rc<str>, Value)>,
+    locals: Vec<(Name, Value)>,
     /// The current frame is `locals[base..top]`. Arguments of a call being
     /// prepared sit above `top`, invisible until the call starts.
     base: usize,
@@ -39,43 +39,29 @@ pub(crate) struct Env {
     /// What each global held before each change since [`Env::begin`],
     /// oldest first, so that a failed input is taken back in time
     /// proportional to what it changed, not to all the globals.
-    undo: Vec<(Rc<str>, Option<Value>)>,
+    undo: Vec<(Name, Option<Value>)>,
     /// Primitives held by global objects, kept up to date on every change.
     object_primitives: usize,
 }
 
-/// Whether two names are equal. Names are short, so the bytes are compared
-/// inline rather than by a call to `memcmp`; names from the same source text
-/// are often the same allocation, which a pointer comparison settles at once.
-#[inline]
-pub(crate) fn same_name(a: &str, b: &str) -> bool {
-    let (a, b) = (a.as_bytes(), b.as_bytes());
-    a.len() == b.len() && (std::ptr::eq(a, b) || a.iter().zip(b).all(|(x, y)| x == y))
-}
-
 impl Env {
     /// The value `name` holds here: a local of the current call, else a global.
-    pub fn lookup(&self, name: &str) -> Option<&Value> {
-        self.frame_locals()
-            .iter()
-            .rev()
-            .find(|(n, _)| same_name(n, name))
-            .map(|(_, v)| v)
-            .or_else(|| self.globals.get(name))
+    pub fn lookup(&self, name: Name) -> Option<&Value> {
+        self.frame_locals().iter().rev().find(|(n, _)| *n == name).map(|(_, v)| v).or_else(|| self.globals.get(&name))
     }
 
     /// Binds `name`: a local inside a procedure call, a global at top level.
-    pub fn bind(&mut self, name: &Rc<str>, value: Value) {
+    pub fn bind(&mut self, name: Name, value: Value) {
         if !self.in_call {
             let before = self.replace_global(name, Some(value));
-            self.undo.push((name.clone(), before));
+            self.undo.push((name, before));
             return;
         }
         let (base, top) = (self.base, self.top);
-        match self.locals[base..top].iter_mut().find(|(n, _)| same_name(n, name)) {
+        match self.locals[base..top].iter_mut().find(|(n, _)| *n == name) {
             Some(slot) => slot.1 = value,
             None => {
-                self.locals.push((name.clone(), value));
+                self.locals.push((name, value));
                 self.top += 1;
             }
         }
@@ -83,15 +69,15 @@ impl Env {
 
     /// Marks the variable `name` of the current scope (the call's locals, or
     /// the globals at top level) as depending on `time`, if it exists.
-    pub fn taint(&mut self, name: &str) {
+    pub fn taint(&mut self, name: Name) {
         if !self.in_call {
-            if let Some((key, value)) = self.globals.get_key_value(name).filter(|(_, value)| !value.tainted) {
-                let (key, tainted) = (key.clone(), Value { tainted: true, ..value.clone() });
-                self.bind(&key, tainted);
+            if let Some(value) = self.globals.get(&name).filter(|value| !value.tainted) {
+                let tainted = Value { tainted: true, ..value.clone() };
+                self.bind(name, tainted);
             }
             return;
         }
-        let slot = self.locals[self.base..self.top].iter_mut().find(|(n, _)| same_name(n, name));
+        let slot = self.locals[self.base..self.top].iter_mut().find(|(n, _)| *n == name);
         if let Some((_, value)) = slot {
             value.tainted = true;
         }
@@ -105,7 +91,7 @@ impl Env {
     /// Gives every global changed since [`Env::begin`] its value from then.
     pub fn rollback(&mut self) {
         while let Some((name, before)) = self.undo.pop() {
-            self.replace_global(&name, before);
+            self.replace_global(name, before);
         }
     }
 
@@ -115,15 +101,15 @@ impl Env {
     }
 
     /// Sets (or with `None` removes) a global; returns what it held.
-    fn replace_global(&mut self, name: &Rc<str>, value: Option<Value>) -> Option<Value> {
+    fn replace_global(&mut self, name: Name, value: Option<Value>) -> Option<Value> {
         let size = |value: Option<&Value>| match value.map(|v| &v.kind) {
             Some(Kind::Object(primitives)) => primitives.len(),
             _ => 0,
         };
         self.object_primitives += size(value.as_ref());
         let before = match value {
-            Some(value) => self.globals.insert(name.clone(), value),
-            None => self.globals.remove(name),
+            Some(value) => self.globals.insert(name, value),
+            None => self.globals.remove(&name),
         };
         self.object_primitives -= size(before.as_ref());
         before
@@ -138,8 +124,8 @@ impl Env {
     /// Adds one argument of the call being prepared, bound to its parameter.
     /// It stays invisible until [`Env::enter`], so the other arguments are
     /// still evaluated in the caller's frame.
-    pub fn push_argument(&mut self, param: &Rc<str>, value: Value) {
-        self.locals.push((param.clone(), value));
+    pub fn push_argument(&mut self, param: Name, value: Value) {
+        self.locals.push((param, value));
     }
 
     /// Makes the pushed arguments the current frame.
@@ -170,7 +156,7 @@ impl Env {
         self.frame_locals().iter().map(|(n, _)| &**n).chain(self.globals.keys().map(|n| &**n))
     }
 
-    fn frame_locals(&self) -> &[(Rc<str>, Value)] {
+    fn frame_locals(&self) -> &[(Name, Value)] {
         &self.locals[self.base..self.top]
     }
 }
@@ -180,7 +166,7 @@ mod tests {
     use super::*;
 
     fn number(env: &Env, name: &str) -> Option<f64> {
-        match env.lookup(name)?.kind {
+        match env.lookup(name.into())?.kind {
             Kind::Number(v) => Some(v),
             Kind::Object(_) => None,
         }
@@ -189,13 +175,13 @@ mod tests {
     #[test]
     fn frames_hide_caller_locals_but_show_globals() {
         let mut env = Env::default();
-        let x: Rc<str> = "x".into();
-        let y: Rc<str> = "y".into();
-        env.bind(&x, Value::number(1.0, false));
+        let x: Name = "x".into();
+        let y: Name = "y".into();
+        env.bind(x, Value::number(1.0, false));
         let top = env.prepare_call();
-        env.push_argument(&y, Value::number(2.0, false));
+        env.push_argument(y, Value::number(2.0, false));
         env.enter(top);
-        env.bind(&x, Value::number(3.0, false));
+        env.bind(x, Value::number(3.0, false));
         assert_eq!(number(&env, "x"), Some(3.0));
         let inner = env.prepare_call();
         env.enter(inner);
@@ -211,15 +197,15 @@ mod tests {
     #[test]
     fn rollback_gives_back_the_globals_of_begin() {
         let mut env = Env::default();
-        let (x, y): (Rc<str>, Rc<str>) = ("x".into(), "y".into());
-        env.bind(&x, Value::number(1.0, false));
+        let (x, y): (Name, Name) = ("x".into(), "y".into());
+        env.bind(x, Value::number(1.0, false));
         env.begin();
-        env.bind(&x, Value::number(2.0, false));
-        env.bind(&y, Value::number(3.0, false));
-        env.taint("x");
+        env.bind(x, Value::number(2.0, false));
+        env.bind(y, Value::number(3.0, false));
+        env.taint(x);
         env.rollback();
         assert_eq!(number(&env, "x"), Some(1.0));
-        assert!(!env.lookup("x").expect("x is bound").tainted);
+        assert!(!env.lookup(x).expect("x is bound").tainted);
         assert_eq!(number(&env, "y"), None);
     }
 
@@ -230,6 +216,6 @@ mod tests {
             map.insert((*name).into(), i as u32);
         }
         assert_eq!(map.len(), 6);
-        assert_eq!(map.get("abcdefghi"), Some(&5));
+        assert_eq!(map.get(&Name::new("abcdefghi")), Some(&5));
     }
 }

@@ -1,9 +1,8 @@
 //! Evaluation errors: the internal error type and the messages of SPEC 3.
 
-use std::rc::Rc;
-
 use crate::lang::degrees::{field_of_view_looks_like_degrees, in_radians_help};
 use crate::lang::diagnostic::{Diagnostic, Note, shown_name};
+use crate::lang::name::Name;
 use crate::lang::number::format_number;
 use crate::lang::source::Span;
 use crate::lang::suggest;
@@ -17,7 +16,7 @@ pub(crate) struct EvalError {
     /// innermost first, as they are collected while the error unwinds; the
     /// note that summarises them once the sources are known reads them
     /// outermost first. `None` for the other errors.
-    pub chain: Option<Vec<(Rc<str>, Span)>>,
+    pub chain: Option<Vec<(Name, Span)>>,
 }
 
 /// Boxed, so that results on the hot path stay two words wide.
@@ -96,8 +95,8 @@ pub(crate) fn wrong_arity(span: Span, name: &str, params: &[&str], given: usize)
 /// its place: `f (line 9) -> f (line 3) -> ... `f (line 3)` repeated 99998
 /// more times`. Runs of a repeated call, or of a repeated cycle of up to four
 /// calls (mutual recursion), are folded.
-pub(crate) fn summarise_chain(chain: &[(Rc<str>, Span)]) -> Note {
-    let calls = |calls: &[(Rc<str>, Span)]| {
+pub(crate) fn summarise_chain(chain: &[(Name, Span)]) -> Note {
+    let calls = |calls: &[(Name, Span)]| {
         Note::joined(
             calls.iter().map(|(name, span)| Note::from(format!("{} (", shown_name(name))).place(*span).text(")")),
             " -> ",
@@ -149,12 +148,12 @@ mod tests {
     use crate::lang::source::{SourceId, SourceMap};
 
     /// A call of `name` at byte `offset` of source 0.
-    fn call(name: &str, offset: u32) -> (Rc<str>, Span) {
+    fn call(name: &str, offset: u32) -> (Name, Span) {
         (name.into(), Span { source: SourceId(0), start: offset, end: offset + 1 })
     }
 
     /// The chain as read in a diagnostic about source 0 of `map`.
-    fn read(chain: &[(Rc<str>, Span)], map: &SourceMap) -> String {
+    fn read(chain: &[(Name, Span)], map: &SourceMap) -> String {
         summarise_chain(chain).display(map, SourceId(0))
     }
 
@@ -190,7 +189,7 @@ mod tests {
     fn calls_in_other_inputs_are_named_with_them() {
         let mut map = lines();
         let other = map.add("<input 2>", "f()", 0);
-        let chain = vec![(Rc::from("f"), Span::new(other, 0, 3)), call("g", 2)];
+        let chain = vec![(Name::new("f"), Span::new(other, 0, 3)), call("g", 2)];
         assert_eq!(read(&chain, &map), "f (<input 2>:1) -> g (line 2)");
     }
 

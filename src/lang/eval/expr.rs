@@ -13,6 +13,7 @@ use super::stack::grow;
 use super::value::{Kind, Num};
 use crate::lang::ast::{BinOp, CmpOp, Cond, CondKind, Expr, ExprKind, Func};
 use crate::lang::diagnostic::Diagnostic;
+use crate::lang::name::Name;
 use crate::lang::number::Number;
 use crate::lang::source::Span;
 
@@ -25,7 +26,7 @@ impl Interpreter {
                 fail(Diagnostic::error(expr.span, "this number is too large").with_code("number-too-large"))
             }
             ExprKind::Pi => Ok(Num::constant(PI)),
-            ExprKind::Var(name) => self.number_variable(name, expr.span),
+            ExprKind::Var(name) => self.number_variable(*name, expr.span),
             _ => grow(|| expr.span, || self.eval_compound(expr)),
         }
     }
@@ -53,7 +54,7 @@ impl Interpreter {
     }
 
     /// The number a variable holds, or an error naming what is wrong with it.
-    fn number_variable(&mut self, name: &str, span: Span) -> EvalResult<Num> {
+    fn number_variable(&mut self, name: Name, span: Span) -> EvalResult<Num> {
         match self.env.lookup(name) {
             Some(value) => match value.kind {
                 // Only `time` can hold one (see `Interpreter::new`).
@@ -67,21 +68,21 @@ impl Interpreter {
                     self.scene.time_use.read |= tainted;
                     Ok(Num { value: number, tainted })
                 }
-                Kind::Object(_) => fail(wrong_kind(span, name, "an object", "a number")),
+                Kind::Object(_) => fail(wrong_kind(span, &name, "an object", "a number")),
             },
             None => fail(self.unknown_variable(name, span)),
         }
     }
 
     /// "unknown variable `x`", with a suggestion among the visible names.
-    pub(crate) fn unknown_variable(&self, name: &str, span: Span) -> Diagnostic {
+    pub(crate) fn unknown_variable(&self, name: Name, span: Span) -> Diagnostic {
         let diagnostic = Diagnostic::error(span, format!("unknown variable `{name}`"))
             .with_code("unknown-variable")
             .with_label("not defined here");
-        if self.procs.contains_key(name) {
+        if self.procs.contains_key(&name) {
             return diagnostic.with_note(format!("`{name}` is a procedure; procedures are called as instructions"));
         }
-        with_suggestion(diagnostic, name, self.env.visible_names())
+        with_suggestion(diagnostic, &name, self.env.visible_names())
     }
 
     /// Evaluates a condition: its truth and whether it depends on `time`.

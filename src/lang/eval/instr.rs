@@ -2,15 +2,17 @@
 
 use std::mem;
 use std::rc::Rc;
+use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
 use super::Interpreter;
-use super::env::same_name;
+
 use super::errors::{EvalError, EvalResult, fail, with_suggestion, wrong_arity};
 use super::stack::grow;
 use super::value::{Kind, Value};
 use crate::lang::ast::{Expr, Ident, Instr, InstrKind, Obj, ObjKind, ProcDef};
 use crate::lang::diagnostic::{Diagnostic, STOPPED_BY, with_names_shortened};
+use crate::lang::name::Name;
 use crate::lang::source::Span;
 
 /// How many calls of a failing call chain are shown as "in this call" places.
@@ -32,7 +34,7 @@ impl Interpreter {
             InstrKind::Let(name, expr) => {
                 let n = self.eval_expr(expr)?;
                 let tainted = n.tainted | self.context_tainted;
-                self.env.bind(&name.name, Value::number(n.value, tainted));
+                self.env.bind(name.name, Value::number(n.value, tainted));
                 Ok(())
             }
             InstrKind::Object(name, obj) => self.exec_object(name, obj),
@@ -88,7 +90,7 @@ impl Interpreter {
         while let Some(block) = blocks.pop() {
             for instr in block {
                 match &instr.kind {
-                    InstrKind::Let(name, _) | InstrKind::Object(name, _) => self.env.taint(&name.name),
+                    InstrKind::Let(name, _) | InstrKind::Object(name, _) => self.env.taint(name.name),
                     InstrKind::If(_, then, otherwise) => {
                         blocks.push(then);
                         blocks.extend(otherwise.as_deref());
@@ -121,7 +123,7 @@ impl Interpreter {
         while let Some(obj) = objects.pop() {
             match &obj.kind {
                 ObjKind::Var(name) => {
-                    if let Some(Value { kind: Kind::Object(_), definition, .. }) = self.env.lookup(name) {
+                    if let Some(Value { kind: Kind::Object(_), definition, .. }) = self.env.lookup(*name) {
                         let definition = *definition;
                         self.origins.objects.mark_used(definition);
                     }
@@ -147,7 +149,7 @@ impl Interpreter {
         }
         let tainted = result? | self.context_tainted;
         let definition = self.origins.objects.define(&name.name, name.span);
-        self.env.bind(&name.name, Value::object(primitives, tainted, definition));
+        self.env.bind(name.name, Value::object(primitives, tainted, definition));
         Ok(())
     }
 
@@ -215,7 +217,7 @@ impl Interpreter {
         let caller = self.env.prepare_call();
         for (param, arg) in proc.params.iter().zip(args) {
             let n = self.eval_expr(arg)?;
-            self.env.push_argument(&param.name, Value::number(n.value, n.tainted | self.context_tainted));
+            self.env.push_argument(param.name, Value::number(n.value, n.tainted | self.context_tainted));
         }
         self.env.enter(caller);
         if self.origins.calls.is_some() {
@@ -252,26 +254,26 @@ impl Interpreter {
         let arguments = params
             .iter()
             .map(|param| {
-                let value = match self.env.lookup(&param.name).map(|value| &value.kind) {
+                let value = match self.env.lookup(param.name).map(|value| &value.kind) {
                     Some(Kind::Number(value)) => *value,
                     _ => f64::NAN,
                 };
-                (param.name.clone(), value)
+                (param.name, value)
             })
             .collect();
         if let Some(calls) = &mut self.origins.calls {
-            calls.enter(name.name.clone(), arguments, span);
+            calls.enter(name.name, arguments, span);
         }
     }
 
     /// The procedure a call names, looked up at the time of the call.
-    fn find_proc(&mut self, name: &Ident) -> EvalResult<Rc<ProcDef>> {
+    fn find_proc(&mut self, name: &Ident) -> EvalResult<Arc<ProcDef>> {
         if let Some(last) = &self.last_proc
-            && same_name(&last.name.name, &name.name)
+            && last.name.name == name.name
         {
             return Ok(last.clone());
         }
-        match self.procs.get(&*name.name) {
+        match self.procs.get(&name.name) {
             Some(proc) => {
                 self.last_proc = Some(proc.clone());
                 Ok(proc.clone())
@@ -285,7 +287,7 @@ impl Interpreter {
         let diagnostic = Diagnostic::error(name.span, format!("unknown procedure `{}`", name.name))
             .with_code("unknown-procedure")
             .with_label("no such procedure");
-        if let Some(value) = self.env.lookup(&name.name) {
+        if let Some(value) = self.env.lookup(name.name) {
             let kind = value.kind_name();
             return diagnostic.with_note(format!("`{}` is {kind}, not a procedure", name.name));
         }
@@ -303,7 +305,7 @@ impl Interpreter {
                 self.limits.raised_with.how("calls")
             ));
         // The callers add themselves as the error unwinds (see `in_call`).
-        Box::new(EvalError { diagnostic, chain: Some(vec![(name.name.clone(), span)]) })
+        Box::new(EvalError { diagnostic, chain: Some(vec![(name.name, span)]) })
     }
 }
 
@@ -311,9 +313,9 @@ impl Interpreter {
 /// innermost few distinct places only: a deep recursion would otherwise list
 /// them all), and
 /// adds the call to a recursion error's chain.
-fn in_call(mut error: Box<EvalError>, name: &Rc<str>, span: Span) -> Box<EvalError> {
+fn in_call(mut error: Box<EvalError>, name: &Name, span: Span) -> Box<EvalError> {
     if let Some(chain) = &mut error.chain {
-        chain.push((name.clone(), span));
+        chain.push((*name, span));
     }
     let diagnostic = &mut error.diagnostic;
     let shown = span == diagnostic.span || diagnostic.related.iter().any(|(s, _)| *s == span);

@@ -15,6 +15,7 @@ use super::value::{Kind, Num};
 use crate::lang::ast::{Expr, Obj, ObjKind, Texture, Triple};
 use crate::lang::degrees::turn_looks_like_degrees;
 use crate::lang::diagnostic::Diagnostic;
+use crate::lang::name::Name;
 use crate::lang::number::Number;
 use crate::lang::source::Span;
 use crate::scene::transform::{rotated_up, rotation_matrix};
@@ -24,7 +25,7 @@ impl Interpreter {
     /// Appends the primitives of `obj` to `out`; returns whether they depend on `time`.
     pub(crate) fn emit_obj(&mut self, obj: &Obj, out: &mut Vec<Primitive>) -> EvalResult<bool> {
         match &obj.kind {
-            ObjKind::Var(name) => self.emit_variable(name, obj.span, out),
+            ObjKind::Var(name) => self.emit_variable(*name, obj.span, out),
             ObjKind::Sphere { center, radius, texture } => {
                 let (center, c) = self.eval_triple(center)?;
                 let r = self.eval_expr(radius)?;
@@ -104,11 +105,11 @@ impl Interpreter {
     }
 
     /// Appends a copy of the primitives an `object` variable holds.
-    fn emit_variable(&mut self, name: &str, span: Span, out: &mut Vec<Primitive>) -> EvalResult<bool> {
+    fn emit_variable(&mut self, name: Name, span: Span, out: &mut Vec<Primitive>) -> EvalResult<bool> {
         let (primitives, tainted, definition) = match self.env.lookup(name) {
             Some(value) => match &value.kind {
                 Kind::Object(primitives) => (primitives.clone(), value.tainted, value.definition),
-                Kind::Number(_) => return fail(wrong_kind(span, name, "a number", "an object")),
+                Kind::Number(_) => return fail(wrong_kind(span, &name, "a number", "an object")),
             },
             None => return fail(self.unknown_variable(name, span)),
         };

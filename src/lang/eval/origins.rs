@@ -10,9 +10,9 @@
 
 use std::collections::HashMap;
 use std::ops::Range;
-use std::rc::Rc;
 
 use crate::lang::fast_hash::FastHash;
+use crate::lang::name::Name;
 use crate::lang::source::Span;
 
 /// Where the parts of a scene come from, indexed like the scene's parts.
@@ -105,9 +105,9 @@ impl Origins {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Call {
     /// The procedure called.
-    pub procedure: Rc<str>,
+    pub procedure: Name,
     /// Its parameters, each with the value it was given.
-    pub arguments: Vec<(Rc<str>, f64)>,
+    pub arguments: Vec<(Name, f64)>,
     /// The call instruction.
     pub span: Span,
     /// The call whose body made this call (index in [`PutCalls`]'s
@@ -131,7 +131,7 @@ pub struct PutCalls {
 
 impl PutCalls {
     /// A call of `procedure` at `span` with `arguments` starts.
-    pub(crate) fn enter(&mut self, procedure: Rc<str>, arguments: Vec<(Rc<str>, f64)>, span: Span) {
+    pub(crate) fn enter(&mut self, procedure: Name, arguments: Vec<(Name, f64)>, span: Span) {
         let caller = self.current;
         self.current = Some(saturating_u32(self.calls.len()));
         self.calls.push(Call { procedure, arguments, span, caller });
@@ -270,15 +270,28 @@ impl PutSpans {
         }
         self.runs.truncate(kept);
         let used = self.runs.iter().map(|&(_, put)| put as usize + 1).max().unwrap_or(0);
-        for span in self.puts.drain(used..) {
-            self.index.remove(&span);
-        }
+        forget_from(&mut self.index, used, self.puts[used..].iter().copied());
+        self.puts.truncate(used);
     }
 
     /// The `put` that made primitive `index`, if it was recorded.
     pub fn span_of(&self, index: usize) -> Option<Span> {
         let run = self.runs.partition_point(|&(start, _)| start as usize <= index).checked_sub(1)?;
         Some(self.puts[self.runs[run].1 as usize])
+    }
+}
+
+/// Forgets the entries of `index` numbered `from` on, whose keys are
+/// `keys`: one by one when they are few, in one pass over the map when
+/// they are many (a stopped `:load` of a million `put`s gives them back
+/// in a fifth of the time, `BENCHMARKS.md`).
+fn forget_from(index: &mut HashMap<Span, u32, FastHash>, from: usize, keys: impl ExactSizeIterator<Item = Span>) {
+    if keys.len() < index.len() / 4 {
+        for key in keys {
+            index.remove(&key);
+        }
+    } else {
+        index.retain(|_, number| (*number as usize) < from);
     }
 }
 
@@ -292,7 +305,7 @@ fn saturating_u32(n: usize) -> u32 {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectDefinition {
     /// The name it binds, where it is written.
-    pub name: Rc<str>,
+    pub name: Name,
     /// The name's span in the `object` instruction.
     pub span: Span,
     /// Whether an object it bound was ever named in a `put` or in another
@@ -320,11 +333,11 @@ pub struct ObjectDefinitions {
 impl ObjectDefinitions {
     /// The number that stands for the definition of `name` at `span`, added
     /// the first time it runs.
-    pub(crate) fn define(&mut self, name: &Rc<str>, span: Span) -> u32 {
+    pub(crate) fn define(&mut self, name: &Name, span: Span) -> u32 {
         let next = self.list.len() as u32;
         let id = *self.index.entry(span).or_insert(next);
         if id == next {
-            self.list.push(ObjectDefinition { name: Rc::clone(name), span, used: false });
+            self.list.push(ObjectDefinition { name: *name, span, used: false });
             self.unused += 1;
         }
         id
@@ -356,12 +369,10 @@ impl ObjectDefinitions {
             self.list[id as usize].used = false;
             self.unused += 1;
         }
-        for definition in self.list.drain(self.begun_with..) {
-            self.index.remove(&definition.span);
-            if !definition.used {
-                self.unused -= 1;
-            }
-        }
+        let added = &self.list[self.begun_with..];
+        self.unused -= added.iter().filter(|definition| !definition.used).count();
+        forget_from(&mut self.index, self.begun_with, added.iter().map(|definition| definition.span));
+        self.list.truncate(self.begun_with);
     }
 
     /// Whether some definition is not used (yet).
@@ -386,7 +397,7 @@ mod tests {
 
     #[test]
     fn rollback_forgets_the_definitions_and_marks_of_the_run() {
-        let name: Rc<str> = "ball".into();
+        let name: Name = "ball".into();
         let mut objects = ObjectDefinitions::default();
         let kept = objects.define(&name, span(0));
         let before = objects.clone();
@@ -399,6 +410,21 @@ mod tests {
         assert_eq!(objects.iter().collect::<Vec<_>>(), before.iter().collect::<Vec<_>>());
         assert!(objects.has_unused());
         assert_eq!(objects.define(&name, span(40)), 1, "a forgotten definition is new again");
+    }
+
+    #[test]
+    fn rollback_of_many_definitions_leaves_those_from_before() {
+        let name: Name = "ball".into();
+        let mut objects = ObjectDefinitions::default();
+        objects.define(&name, span(0));
+        let before = objects.clone();
+        objects.begin();
+        for i in 1..40 {
+            objects.define(&name, span(10 * i));
+        }
+        objects.rollback();
+        assert_eq!(objects.index, before.index);
+        assert_eq!(objects.iter().collect::<Vec<_>>(), before.iter().collect::<Vec<_>>());
     }
 
     #[test]
@@ -418,10 +444,27 @@ mod tests {
         assert_eq!(PutSpans::default().span_of(0), None);
     }
 
+    /// A few puts taken back are removed from the index one by one, many
+    /// in one pass over it: either way the index is the one the kept puts
+    /// alone make.
+    #[test]
+    fn truncating_forgets_the_puts_of_the_primitives_taken_back_few_or_many() {
+        let mut puts = PutSpans::default();
+        for i in 0..20 {
+            puts.record(i..i + 1, span(10 * i));
+        }
+        for kept in [19, 4, 0] {
+            puts.truncate(kept);
+            let mut alone = PutSpans::default();
+            (0..kept).for_each(|i| alone.record(i..i + 1, span(10 * i)));
+            assert_eq!(puts, alone, "{kept} kept");
+        }
+    }
+
     #[test]
     fn a_definition_that_runs_again_is_the_same_one() {
         let mut objects = ObjectDefinitions::default();
-        let name: Rc<str> = "ball".into();
+        let name: Name = "ball".into();
         let first = objects.define(&name, span(0));
         assert_eq!(objects.define(&name, span(0)), first);
         let second = objects.define(&name, span(40));

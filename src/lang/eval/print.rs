@@ -107,7 +107,7 @@ impl Interpreter {
         let mut line = PrintLine { span, values: Vec::new() };
         for expr in values {
             let object = match &expr.kind {
-                ExprKind::Var(name) => match self.env.lookup(name).map(|value| &value.kind) {
+                ExprKind::Var(name) => match self.env.lookup(*name).map(|value| &value.kind) {
                     Some(Kind::Object(primitives)) => Some(shown.then(|| describe_object(primitives))),
                     _ => None,
                 },
