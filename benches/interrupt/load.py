@@ -9,7 +9,9 @@ Writes a file of MB megabytes of spheres (100 by default), starts the
 session BINARY on a pseudo-terminal, and RUNS times (29 by default) types
 `:load big.ray`, waits a random time within the load (its length measured
 first), types Ctrl-C and times the wait for the next prompt. Prints the
-moments, the waits, their median and 90th percentile, as JSON.
+moments, the waits, their median and 90th percentile, as JSON. With
+`COMMAND=reload`, the file is loaded once and each time `:reload` is
+typed instead (the file read, parsed and every input run again).
 """
 
 import json
@@ -49,7 +51,12 @@ def read_until(fd, needle, timeout, after=()):
 SPREAD = tuple(float(part) for part in os.environ.get("SPREAD", "0.05,0.95").split(","))
 
 # What the session says when a load ends: stopped, or done.
-ENDED = (b"Ctrl-C", b"as it was", b"object in the scene", b"objects in the scene")
+ENDED = (b"Ctrl-C", b"as it was", b"in the scene")
+
+# The command interrupted: `load` (the file loaded, then taken back) or
+# `reload` (the file loaded once, then read and run again).
+RELOAD = os.environ.get("COMMAND", "load") == "reload"
+TYPED = b":reload\r" if RELOAD else b":load big.ray\r"
 
 
 def main():
@@ -69,22 +76,27 @@ def main():
     # The whole load, once, to know when to interrupt it.
     os.write(fd, b":load big.ray\r")
     whole = read_until(fd, PROMPT, 300, ENDED)
-    os.write(fd, b":undo\r")
-    read_until(fd, PROMPT, 60, (b"took back",))
+    if RELOAD:
+        os.write(fd, TYPED)
+        whole = read_until(fd, PROMPT, 300, ENDED)
+    else:
+        os.write(fd, b":undo\r")
+        read_until(fd, PROMPT, 60, (b"took back",))
     random.seed(35)
     moments, waits = [], []
     for _ in range(runs):
         moment = random.uniform(*SPREAD) * whole
-        os.write(fd, b":load big.ray\r")
+        os.write(fd, TYPED)
         time.sleep(moment)
         os.write(fd, b"\x03")
         sent = time.monotonic()
         read_until(fd, PROMPT, 60, ENDED)
         waits.append(round((time.monotonic() - sent) * 1000, 1))
         moments.append(round(moment, 2))
-        # A load that ended before the Ctrl-C is taken back.
-        os.write(fd, b":reset\r")
-        read_until(fd, PROMPT, 60, (b"empty again",))
+        if not RELOAD:
+            # A load that ended before the Ctrl-C is taken back.
+            os.write(fd, b":reset\r")
+            read_until(fd, PROMPT, 60, (b"empty again",))
         time.sleep(0.5)
     os.write(fd, b":quit\r")
     ordered = sorted(waits)

@@ -212,8 +212,15 @@ pub(crate) fn off_thread_streaming<P: Send + 'static, T: Send + 'static>(
         return Ok(answer);
     }
     loop {
-        match received.recv_timeout(LOOK) {
-            _ if cancel.load(Ordering::SeqCst) => return Err(Stopped::Cancelled),
+        let message = received.recv_timeout(LOOK);
+        if cancel.load(Ordering::SeqCst) {
+            // What came with the Ctrl-C or waits behind it (a whole syntax
+            // tree) is freed elsewhere, as what comes after it is, by the
+            // work's thread.
+            drop_apart((message, received));
+            return Err(Stopped::Cancelled);
+        }
+        match message {
             Ok(Sent::Part(part)) => take(part),
             Ok(Sent::Answer(answer)) => return Ok(answer),
             Err(RecvTimeoutError::Timeout) => {}
@@ -236,19 +243,36 @@ pub(crate) fn drop_apart<T: Send + 'static>(value: T) {
 mod tests {
     use super::*;
 
+    /// A value that says on which thread it is dropped.
+    struct Noted(mpsc::Sender<std::thread::ThreadId>);
+
+    impl Drop for Noted {
+        fn drop(&mut self) {
+            self.0.send(std::thread::current().id()).expect("the test waits");
+        }
+    }
+
+    /// The thread the [`Noted`] whose messages `received` takes was dropped on.
+    fn dropped_on(received: &mpsc::Receiver<std::thread::ThreadId>) -> std::thread::ThreadId {
+        received.recv_timeout(Duration::from_secs(10)).expect("dropped")
+    }
+
     /// What [`drop_apart`] is given is dropped, on another thread.
     #[test]
     fn a_value_dropped_apart_is_dropped_on_a_thread_of_its_own() {
-        struct Noted(mpsc::Sender<std::thread::ThreadId>);
-        impl Drop for Noted {
-            fn drop(&mut self) {
-                self.0.send(std::thread::current().id()).expect("the test waits");
-            }
-        }
         let (sent, received) = mpsc::channel();
         drop_apart(Noted(sent));
-        let dropped_on = received.recv_timeout(Duration::from_secs(10)).expect("dropped");
-        assert_ne!(dropped_on, std::thread::current().id());
+        assert_ne!(dropped_on(&received), std::thread::current().id());
+    }
+
+    /// An answer that comes with the Ctrl-C is not freed by the thread
+    /// that waited for it (a large syntax tree would hold it up).
+    #[test]
+    fn an_answer_cancelled_is_not_dropped_by_the_waiting_thread() {
+        static RAISED: AtomicBool = AtomicBool::new(true);
+        let (sent, received) = mpsc::channel();
+        assert_eq!(off_thread("noted", &RAISED, move || Noted(sent)).err(), Some(Stopped::Cancelled));
+        assert_ne!(dropped_on(&received), std::thread::current().id());
     }
 
     #[test]

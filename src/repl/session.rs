@@ -4,7 +4,6 @@
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
-use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
@@ -38,7 +37,7 @@ pub(crate) struct Input {
     /// The file it was read from, for an input of `:load`, `:reload` or `:watch`.
     pub loaded_from: Option<PathBuf>,
     /// The parsed items.
-    pub program: Rc<Program>,
+    pub program: Arc<Program>,
 }
 
 /// What `:undo` takes back.
@@ -65,7 +64,7 @@ pub(crate) struct Checkpoint {
 #[derive(Debug, Clone)]
 pub(crate) struct Accepted {
     /// The parsed items.
-    pub program: Rc<Program>,
+    pub program: Arc<Program>,
     /// Warnings the interpreter raised (clamped colours, ...).
     pub warnings: Vec<Diagnostic>,
     /// The procedures the input defines that were defined before it (to
@@ -114,7 +113,7 @@ pub struct Session {
     history: Vec<Input>,
     undo_steps: Vec<UndoStep>,
     /// The programs of the inputs the last `:write` wrote.
-    written: Vec<Rc<Program>>,
+    written: Vec<Arc<Program>>,
     descriptions: ObjectDescriptions,
     settings: RenderSettings,
     limits: Limits,
@@ -201,7 +200,7 @@ impl Session {
         // more would be most of a long script's memory.
         program.items.shrink_to_fit();
         let text = Arc::clone(&self.sources.get(source).text);
-        self.run(Input { text, loaded_from: None, program: Rc::new(program) })
+        self.run(Input { text, loaded_from: None, program: Arc::new(program) })
     }
 
     /// Runs the text of the file at `path`, all of it as one input (its
@@ -250,7 +249,7 @@ impl Session {
             None => parse_items(source, text)?,
         };
         let text = format!(":load {name}").into();
-        Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Rc::new(program) })
+        Ok(Input { text, loaded_from: Some(path.to_path_buf()), program: Arc::new(program) })
     }
 
     /// The program of the text `source`, parsed on a thread that
@@ -307,10 +306,8 @@ impl Session {
         self.printed.borrow_mut().absorb(self.interpreter.take_printed());
         if let Err(error) = result {
             self.interpreter.take_warnings();
-            if input.loaded_from.is_some()
-                && let Ok(program) = Rc::try_unwrap(input.program)
-            {
-                drop_apart(program);
+            if input.loaded_from.is_some() {
+                drop_apart(input);
             }
             return Err(error);
         }
@@ -323,7 +320,7 @@ impl Session {
             lights: added.lights,
         };
         self.descriptions.record(&input.program);
-        let program = Rc::clone(&input.program);
+        let program = Arc::clone(&input.program);
         if !program.items.is_empty() {
             self.history.push(input);
             self.undo_steps.push(UndoStep::Input);
@@ -348,13 +345,13 @@ impl Session {
 
     /// Records that the inputs the session holds now were written to a file.
     pub(crate) fn mark_written(&mut self) {
-        self.written = self.history.iter().map(|input| Rc::clone(&input.program)).collect();
+        self.written = self.history.iter().map(|input| Arc::clone(&input.program)).collect();
     }
 
     /// How many typed inputs (not loaded from a file) the last `:write`
     /// did not write: what leaving now would lose.
     pub(crate) fn unwritten(&self) -> usize {
-        let written = |input: &Input| self.written.iter().any(|program| Rc::ptr_eq(program, &input.program));
+        let written = |input: &Input| self.written.iter().any(|program| Arc::ptr_eq(program, &input.program));
         self.history.iter().filter(|input| input.loaded_from.is_none() && !written(input)).count()
     }
 
@@ -418,7 +415,7 @@ impl Session {
     pub(crate) fn restore(&mut self, checkpoint: Checkpoint) -> Result<(), Diagnostic> {
         let Checkpoint { history, undo_steps, settings, limits } = checkpoint;
         let same_inputs = history.len() == self.history.len()
-            && history.iter().zip(&self.history).all(|(then, now)| Rc::ptr_eq(&then.program, &now.program));
+            && history.iter().zip(&self.history).all(|(then, now)| Arc::ptr_eq(&then.program, &now.program));
         let same_settings = settings == self.settings && limits == self.limits;
         if !(same_inputs && same_settings) {
             (self.settings, self.limits) = (settings, limits);
@@ -503,7 +500,14 @@ impl Session {
     /// time; returns what the replay printed.
     fn rebuild(&mut self, history: Vec<Input>) -> Result<PrintLog, Diagnostic> {
         let time = self.settings.time;
-        self.interpreter = self.replay(self.new_interpreter(time), &history)?;
+        self.interpreter = match self.replay(self.new_interpreter(time), &history) {
+            Ok(interpreter) => interpreter,
+            Err(error) => {
+                // It may hold the only tree of a file `:reload` read.
+                drop_apart(history);
+                return Err(error);
+            }
+        };
         self.counts = self.interpreter.scene().counts();
         self.interpreter_time = time;
         let mut descriptions = ObjectDescriptions::default();
