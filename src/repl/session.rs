@@ -27,6 +27,14 @@ use super::rendering::RenderSettings;
 /// history takes about 0.6 GB for the smallest inputs.
 pub const MOST_INPUTS: usize = 1_000_000;
 
+/// The most `:reload`s (a `:watch` makes one at each save) and `:reset`s
+/// that `:undo` takes back: each keeps what it replaced (the file's last
+/// version, the inputs cleared), and a `:watch` of a large file saved all
+/// day would otherwise fill the memory. Past it the oldest is forgotten: an
+/// older reload is then taken back with the input that loaded the file,
+/// and `:undo` goes back no further than an older reset.
+pub const MOST_VERSIONS_UNDONE: usize = 10;
+
 /// One accepted input, kept so the session can be rebuilt without it, and
 /// written back, listed or shown.
 #[derive(Debug, Clone)]
@@ -223,7 +231,7 @@ impl Session {
         let mut history = previous.clone();
         history[index] = Input { text: Arc::clone(&history[index].text), ..input };
         self.rebuild(history)?;
-        self.undo_steps.push(UndoStep::Reload(previous, path.to_path_buf()));
+        self.push_version(UndoStep::Reload(previous, path.to_path_buf()));
         Ok(())
     }
 
@@ -448,7 +456,25 @@ impl Session {
         self.counts = Counts::default();
         self.interpreter_time = self.settings.time;
         self.descriptions = ObjectDescriptions::default();
-        self.undo_steps.push(UndoStep::Reset(cleared));
+        self.push_version(UndoStep::Reset(cleared));
+    }
+
+    /// Records `step`, a reload or a reset, for `:undo`, forgetting the
+    /// oldest of them past [`MOST_VERSIONS_UNDONE`] (in the background: it
+    /// may hold the only tree of a large file).
+    fn push_version(&mut self, step: UndoStep) {
+        self.undo_steps.push(step);
+        let is_version = |step: &UndoStep| matches!(step, UndoStep::Reload(..) | UndoStep::Reset(_));
+        if self.undo_steps.iter().filter(|step| is_version(step)).count() <= MOST_VERSIONS_UNDONE {
+            return;
+        }
+        let Some(oldest) = self.undo_steps.iter().position(is_version) else { return };
+        let forgotten = match self.undo_steps[oldest] {
+            // The steps before a reset took back inputs it cleared.
+            UndoStep::Reset(_) => self.undo_steps.drain(..=oldest).collect(),
+            _ => vec![self.undo_steps.remove(oldest)],
+        };
+        drop_apart(forgotten);
     }
 
     /// Sets `time`. If anything read it, every input is evaluated again at
@@ -675,6 +701,58 @@ mod tests {
     use super::*;
 
     const BALL: &str = "put sphere center x, 0, 0 radius 1 kd 1 ks 0 phong 1 color 255, 0, 0 end";
+
+    /// Every `:undo` until there is nothing left to take back.
+    fn undo_all(session: &mut Session) -> Vec<Undone> {
+        std::iter::from_fn(|| Some(session.undo().expect("undoes")).filter(|undone| *undone != Undone::Nothing))
+            .collect()
+    }
+
+    #[test]
+    fn undo_takes_back_the_last_reloads_and_an_older_one_with_the_load() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        let path = Path::new("part.ray");
+        session.load(path, "let a = 0").expect("loads");
+        let versions = MOST_VERSIONS_UNDONE + 2;
+        for version in 1..=versions {
+            session.reload(path, &format!("let a = {version}")).expect("reloads");
+        }
+        for version in (versions - MOST_VERSIONS_UNDONE..versions).rev() {
+            assert_eq!(session.undo().ok(), Some(Undone::Reload(path.to_path_buf())));
+            assert_eq!(session.interpreter.global_number("a"), Some(version as f64));
+        }
+        assert_eq!(undo_all(&mut session), [Undone::Input(":load part.ray".to_string())]);
+        assert_eq!(session.inputs().len(), 0);
+    }
+
+    #[test]
+    fn the_help_and_the_docs_give_the_number_of_versions_kept() {
+        let undo = include_str!("help_pages/commands/undo.txt").split_whitespace().collect::<Vec<_>>().join(" ");
+        let readme = include_str!("../../README.md");
+        let language = include_str!("../../docs/language.md").split_whitespace().collect::<Vec<_>>().join(" ");
+        let said = format!("the last {MOST_VERSIONS_UNDONE} ");
+        for (text, name) in [
+            (&undo.to_lowercase(), "the help of :undo"),
+            (&readme.to_string(), "the README"),
+            (&language, "docs/language.md"),
+        ] {
+            assert!(text.contains(&said), "{name} does not say {said:?}");
+        }
+    }
+
+    #[test]
+    fn undo_goes_back_no_further_than_the_oldest_reset_kept() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        session.submit("<input 1>", "let a = 0", 0).expect("runs");
+        for version in 1..=MOST_VERSIONS_UNDONE + 1 {
+            session.reset();
+            session.submit("<input>", &format!("let a = {version}"), 0).expect("runs");
+        }
+        // Each reset kept and the input after it, and the input after the
+        // reset forgotten: back to the session that reset left, empty.
+        assert_eq!(undo_all(&mut session).len(), 2 * MOST_VERSIONS_UNDONE + 1);
+        assert_eq!((session.inputs().len(), session.interpreter.global_number("a")), (0, None));
+    }
 
     #[test]
     fn a_reload_replaces_the_file_where_it_stood_and_keeps_typed_inputs() {
