@@ -4,7 +4,8 @@
 //! lalrpop's external-lexer interface expects; `start` and `end` are byte
 //! offsets into the text. It allocates nothing per token except the first
 //! time a name is seen by the process ([`Name`]); a lexer keeps the names it
-//! has read, so that interning each takes the process's table once. Keywords come from the table of [`super::words`].
+//! has read, so that each takes the process's table once. Keywords come from
+//! the table of [`super::words`].
 
 use std::collections::HashMap;
 

@@ -24,11 +24,12 @@ const MAX_DEFINITION_LINES: usize = 4;
 /// `r = 2` or `put 1 sphere (3 objects in the scene)`, each formatted
 /// straight into the front's line.
 pub(crate) fn confirm(accepted: &Accepted, session: &Session, front: &mut dyn FrontEnd) {
-    let items = &accepted.program.items;
-    if items.iter().filter(|item| defines(item)).count() > MAX_DEFINITION_LINES {
-        front.say(format_args!("defined {}", definition_names(accepted).join(", ")));
+    // One pass over the items: a `:load`ed file may hold a million.
+    let definitions: Vec<&Item> = accepted.program.items.iter().filter(|item| defines(item)).collect();
+    if definitions.len() > MAX_DEFINITION_LINES {
+        front.say(format_args!("defined {}", definition_names(&definitions).join(", ")));
     } else {
-        say_definitions(accepted, session, front);
+        say_definitions(&definitions, accepted, session, front);
     }
     let after = session.counts();
     let before = accepted.counts_before;
@@ -60,9 +61,9 @@ fn defines(item: &Item) -> bool {
     }
 }
 
-fn say_definitions(accepted: &Accepted, session: &Session, front: &mut dyn FrontEnd) {
+fn say_definitions(definitions: &[&Item], accepted: &Accepted, session: &Session, front: &mut dyn FrontEnd) {
     let scene = session.scene();
-    for item in &accepted.program.items {
+    for item in definitions {
         match item {
             Item::Camera(_) => front.say(format_args!(
                 "camera: distance {}, angle {}",
@@ -71,11 +72,11 @@ fn say_definitions(accepted: &Accepted, session: &Session, front: &mut dyn Front
             )),
             Item::Ambient(_) => front.say(format_args!("ambient light: {}", Number(scene.ambient))),
             Item::Proc(proc_def) => {
-                let name = &*proc_def.name.name;
-                let known = accepted.redefined.iter().any(|before| &**before == name);
+                let name = proc_def.name.name;
+                let known = accepted.redefined.contains(&name);
                 let verb = if known { "redefined" } else { "defined" };
                 let params: Vec<_> = proc_def.params.iter().map(|p| shown_name(&p.name)).collect();
-                front.say(format_args!("{verb} proc {}({})", shown_name(name), params.join(", ")));
+                front.say(format_args!("{verb} proc {}({})", shown_name(&name), params.join(", ")));
             }
             Item::Instr(instr) => match &instr.kind {
                 InstrKind::Let(name, _) => match session.global_number(&name.name) {
@@ -93,9 +94,9 @@ fn say_definitions(accepted: &Accepted, session: &Session, front: &mut dyn Front
     }
 }
 
-fn definition_names(accepted: &Accepted) -> Vec<String> {
+fn definition_names(definitions: &[&Item]) -> Vec<String> {
     let mut names = Vec::new();
-    for item in &accepted.program.items {
+    for item in definitions {
         match item {
             Item::Camera(_) => names.push("the camera".to_string()),
             Item::Ambient(_) => names.push("the ambient light".to_string()),
