@@ -138,6 +138,11 @@ pub struct Session {
     /// Every file `:load`, `:reload`, `:watch` or `-i` read, which `:save`
     /// and `:anim` must not write over (`:undo` and `:reset` keep them).
     files_read: Vec<PathBuf>,
+    /// The file read last and the source of its text while no input holds
+    /// it (it failed, or Ctrl-C stopped it): read again as it was (a
+    /// `:load` stopped and typed again), it reuses that source, so that a
+    /// session keeps the text of a file once however often its load fails.
+    failed_file_text: Option<(PathBuf, SourceId)>,
 }
 
 impl Session {
@@ -158,6 +163,7 @@ impl Session {
             counts: Counts::default(),
             interrupt: None,
             files_read: Vec::new(),
+            failed_file_text: None,
         }
     }
 
@@ -215,7 +221,9 @@ impl Session {
     /// items in any order).
     pub(crate) fn load(&mut self, path: &Path, text: &str) -> Result<Accepted, Diagnostic> {
         let input = self.parse_file_input(path, text)?;
-        self.run(input)
+        let accepted = self.run(input)?;
+        self.failed_file_text = None;
+        Ok(accepted)
     }
 
     /// Replaces what the last `:load` of `path` brought by `text`, the
@@ -231,6 +239,7 @@ impl Session {
         let mut history = previous.clone();
         history[index] = Input { text: Arc::clone(&history[index].text), ..input };
         self.rebuild(history)?;
+        self.failed_file_text = None;
         self.push_version(UndoStep::Reload(previous, path.to_path_buf()));
         Ok(())
     }
@@ -251,7 +260,12 @@ impl Session {
             self.files_read.push(path.to_path_buf());
         }
         let name = path.display().to_string();
-        let source = self.sources.add(name.as_str(), text, 0);
+        let source = match self.failed_file_text.take() {
+            Some((read, source)) if read == path && *self.sources.get(source).text == *text => source,
+            _ => self.sources.add(name.as_str(), text, 0),
+        };
+        // Until the input runs: `load` and `reload` forget it then.
+        self.failed_file_text = Some((path.to_path_buf(), source));
         let program = match self.interrupt {
             Some(interrupt) => self.parse_apart(source, interrupt)?,
             None => parse_items(source, text)?,
@@ -706,6 +720,23 @@ mod tests {
     fn undo_all(session: &mut Session) -> Vec<Undone> {
         std::iter::from_fn(|| Some(session.undo().expect("undoes")).filter(|undone| *undone != Undone::Nothing))
             .collect()
+    }
+
+    /// A file whose load fails (or Ctrl-C stops) keeps its text once
+    /// however often it is loaded again as it was, and no text an input
+    /// holds is reused.
+    #[test]
+    fn a_file_loaded_again_as_it_was_after_a_failure_keeps_one_text() {
+        let mut session = Session::new(RenderSettings::default(), Limits::default());
+        let path = Path::new("part.ray");
+        let failed = |session: &mut Session, text: &str| session.load(path, text).expect_err("fails").span.source;
+        let first = failed(&mut session, "let a = 1 / 0");
+        assert_eq!(failed(&mut session, "let a = 1 / 0"), first);
+        assert_ne!(failed(&mut session, "let a = 2 / 0"), first, "another text is another source");
+        session.load(path, "let a = 1").expect("loads");
+        let held = session.inputs()[0].program.items[0].span().source;
+        session.load(path, "let a = 1").expect("loads");
+        assert_ne!(session.inputs()[1].program.items[0].span().source, held, "the first load holds its text");
     }
 
     #[test]
