@@ -456,7 +456,7 @@ impl Interpreter {
 
 /// The names, sorted.
 fn sorted<'a>(names: impl Iterator<Item = &'a Name>) -> Vec<Name> {
-    let mut names: Vec<Name> = names.cloned().collect();
+    let mut names: Vec<Name> = names.copied().collect();
     names.sort();
     names
 }

@@ -69,12 +69,6 @@ impl Deref for Name {
     }
 }
 
-impl AsRef<str> for Name {
-    fn as_ref(&self) -> &str {
-        self.0.text
-    }
-}
-
 impl From<&str> for Name {
     fn from(text: &str) -> Name {
         Name::new(text)
@@ -88,18 +82,6 @@ impl PartialEq for Name {
 }
 
 impl Eq for Name {}
-
-impl PartialEq<str> for Name {
-    fn eq(&self, other: &str) -> bool {
-        self.0.text == other
-    }
-}
-
-impl PartialEq<&str> for Name {
-    fn eq(&self, other: &&str) -> bool {
-        self.0.text == *other
-    }
-}
 
 impl Hash for Name {
     fn hash<H: Hasher>(&self, state: &mut H) {

@@ -148,7 +148,7 @@ impl Interpreter {
             self.scratch = buffer;
         }
         let tainted = result? | self.context_tainted;
-        let definition = self.origins.objects.define(&name.name, name.span);
+        let definition = self.origins.objects.define(name.name, name.span);
         self.env.bind(name.name, Value::object(primitives, tainted, definition));
         Ok(())
     }
@@ -230,7 +230,7 @@ impl Interpreter {
         if let Some(calls) = &mut self.origins.calls {
             calls.leave();
         }
-        result.map_err(|error| in_call(error, &name.name, span))
+        result.map_err(|error| in_call(error, name.name, span))
     }
 
     /// Records the call of `name` at `span` that just started, with the
@@ -313,9 +313,9 @@ impl Interpreter {
 /// innermost few distinct places only: a deep recursion would otherwise list
 /// them all), and
 /// adds the call to a recursion error's chain.
-fn in_call(mut error: Box<EvalError>, name: &Name, span: Span) -> Box<EvalError> {
+fn in_call(mut error: Box<EvalError>, name: Name, span: Span) -> Box<EvalError> {
     if let Some(chain) = &mut error.chain {
-        chain.push((*name, span));
+        chain.push((name, span));
     }
     let diagnostic = &mut error.diagnostic;
     let shown = span == diagnostic.span || diagnostic.related.iter().any(|(s, _)| *s == span);

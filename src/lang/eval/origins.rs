@@ -333,11 +333,11 @@ pub struct ObjectDefinitions {
 impl ObjectDefinitions {
     /// The number that stands for the definition of `name` at `span`, added
     /// the first time it runs.
-    pub(crate) fn define(&mut self, name: &Name, span: Span) -> u32 {
+    pub(crate) fn define(&mut self, name: Name, span: Span) -> u32 {
         let next = self.list.len() as u32;
         let id = *self.index.entry(span).or_insert(next);
         if id == next {
-            self.list.push(ObjectDefinition { name: *name, span, used: false });
+            self.list.push(ObjectDefinition { name, span, used: false });
             self.unused += 1;
         }
         id
@@ -399,28 +399,28 @@ mod tests {
     fn rollback_forgets_the_definitions_and_marks_of_the_run() {
         let name: Name = "ball".into();
         let mut objects = ObjectDefinitions::default();
-        let kept = objects.define(&name, span(0));
+        let kept = objects.define(name, span(0));
         let before = objects.clone();
         objects.begin();
         objects.mark_used(kept);
-        let added = objects.define(&name, span(40));
+        let added = objects.define(name, span(40));
         objects.mark_used(added);
-        objects.define(&name, span(80));
+        objects.define(name, span(80));
         objects.rollback();
         assert_eq!(objects.iter().collect::<Vec<_>>(), before.iter().collect::<Vec<_>>());
         assert!(objects.has_unused());
-        assert_eq!(objects.define(&name, span(40)), 1, "a forgotten definition is new again");
+        assert_eq!(objects.define(name, span(40)), 1, "a forgotten definition is new again");
     }
 
     #[test]
     fn rollback_of_many_definitions_leaves_those_from_before() {
         let name: Name = "ball".into();
         let mut objects = ObjectDefinitions::default();
-        objects.define(&name, span(0));
+        objects.define(name, span(0));
         let before = objects.clone();
         objects.begin();
         for i in 1..40 {
-            objects.define(&name, span(10 * i));
+            objects.define(name, span(10 * i));
         }
         objects.rollback();
         assert_eq!(objects.index, before.index);
@@ -465,9 +465,9 @@ mod tests {
     fn a_definition_that_runs_again_is_the_same_one() {
         let mut objects = ObjectDefinitions::default();
         let name: Name = "ball".into();
-        let first = objects.define(&name, span(0));
-        assert_eq!(objects.define(&name, span(0)), first);
-        let second = objects.define(&name, span(40));
+        let first = objects.define(name, span(0));
+        assert_eq!(objects.define(name, span(0)), first);
+        let second = objects.define(name, span(40));
         assert!(objects.has_unused());
         objects.mark_used(second);
         objects.mark_used(second);
