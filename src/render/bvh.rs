@@ -12,7 +12,7 @@ mod wide;
 use glam::{DMat3, DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 
-use self::wide::{WideBvh, WideRay, round_down, round_up};
+use self::wide::{Leaves, WideBvh, WideRay, round_down, round_up};
 use super::intersect::{Aabb, Bounded, BoxShape, Ray};
 
 /// Up to this many objects a tree costs more than it saves: on the solar
@@ -158,32 +158,77 @@ impl SharedFrame {
     /// The ray in the frame, for the node tests, and `1 / direction` there.
     #[inline(always)]
     fn local_ray(&self, ray: &Ray) -> (WideRay, DVec3) {
-        let d = self.to_local * ray.dir;
-        (WideRay::new((self.to_local * ray.origin).into(), d.into()), d.recip())
+        let inverse = (self.to_local * ray.dir).recip();
+        (WideRay::new(self.to_local * ray.origin, inverse), inverse)
     }
 
     /// [`Bvh::closest_hit`] through the frame; `tree` was built in the frame.
     fn closest_hit(&self, tree: &WideBvh, put_order: &[u32], ray: &Ray, t_max: f64) -> (f64, u32) {
-        let (local, inv) = self.local_ray(ray);
-        tree.closest_hit(&local, t_max, |start, count, best| {
-            for (k, &(center, half)) in self.boxes[start..start + count].iter().enumerate() {
-                let t = BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv);
-                let k = (start + k) as u32;
-                if goes_before(t, k, *best, put_order) {
-                    *best = (t, k);
-                }
-            }
-        })
+        let (local, inverse) = self.local_ray(ray);
+        tree.closest_hit(&local, t_max, &FrameLeaves { frame: self, put_order, origin: ray.origin, inverse })
     }
 
     /// [`Bvh::any_hit`] through the frame.
     fn any_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> bool {
-        let (local, inv) = self.local_ray(ray);
-        tree.any_hit(&local, t_max, |start, count| {
-            self.boxes[start..start + count]
-                .iter()
-                .any(|&(center, half)| BoxShape::hit_in_frame(self.to_local, center, half, ray.origin, inv) < t_max)
-        })
+        let (local, inverse) = self.local_ray(ray);
+        tree.any_hit(&local, t_max, &FrameLeaves { frame: self, put_order: &[], origin: ray.origin, inverse })
+    }
+}
+
+/// The boxes of a shared frame in the leaves of its tree, tested against a
+/// ray from `origin` with `1 / direction` in the frame `inverse`.
+struct FrameLeaves<'a> {
+    frame: &'a SharedFrame,
+    put_order: &'a [u32],
+    origin: DVec3,
+    inverse: DVec3,
+}
+
+impl Leaves for FrameLeaves<'_> {
+    #[inline(always)]
+    fn closest(&self, start: usize, count: usize, best: &mut (f64, u32)) {
+        for (k, &(center, half)) in self.frame.boxes[start..start + count].iter().enumerate() {
+            let t = BoxShape::hit_in_frame(self.frame.to_local, center, half, self.origin, self.inverse);
+            let k = (start + k) as u32;
+            if goes_before(t, k, *best, self.put_order) {
+                *best = (t, k);
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn any(&self, start: usize, count: usize, t_max: f64) -> bool {
+        // Plain loops here: `Iterator::any` is not always inlined.
+        for &(center, half) in &self.frame.boxes[start..start + count] {
+            if BoxShape::hit_in_frame(self.frame.to_local, center, half, self.origin, self.inverse) < t_max {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// The objects in the leaves of a tree, tested against `ray`.
+struct ObjectLeaves<'a> {
+    objects: &'a [Bounded],
+    put_order: &'a [u32],
+    ray: &'a Ray,
+}
+
+impl Leaves for ObjectLeaves<'_> {
+    #[inline(always)]
+    fn closest(&self, start: usize, count: usize, best: &mut (f64, u32)) {
+        test_range(&self.objects[start..start + count], start, self.put_order, self.ray, best);
+    }
+
+    #[inline(always)]
+    fn any(&self, start: usize, count: usize, t_max: f64) -> bool {
+        for object in &self.objects[start..start + count] {
+            if object.hit(self.ray) < t_max {
+                return true;
+            }
+        }
+        false
     }
 }
 
@@ -404,10 +449,12 @@ impl Bvh {
         if let Some(shared) = &self.shared {
             return shared.closest_hit(&self.wide, &self.put_order, ray, t_max);
         }
-        let wide_ray = WideRay::new(ray.origin.into(), ray.dir.into());
-        self.wide.closest_hit(&wide_ray, t_max, |start, count, best| {
-            test_range(&self.objects[start..start + count], start, &self.put_order, ray, best);
-        })
+        let wide_ray = WideRay::new(ray.origin, ray.dir.recip());
+        self.wide.closest_hit(
+            &wide_ray,
+            t_max,
+            &ObjectLeaves { objects: &self.objects, put_order: &self.put_order, ray },
+        )
     }
 
     /// Whether some object is hit at `0 < t < t_max`; stops at the first hit
@@ -434,10 +481,8 @@ impl Bvh {
         if let Some(shared) = &self.shared {
             return shared.any_hit(&self.wide, ray, t_max);
         }
-        let wide_ray = WideRay::new(ray.origin.into(), ray.dir.into());
-        self.wide.any_hit(&wide_ray, t_max, |start, count| {
-            self.objects[start..start + count].iter().any(|o| o.hit(ray) < t_max)
-        })
+        let wide_ray = WideRay::new(ray.origin, ray.dir.recip());
+        self.wide.any_hit(&wide_ray, t_max, &ObjectLeaves { objects: &self.objects, put_order: &[], ray })
     }
 
     /// The depth of the tree (1 for a single node, 0 without a tree).

@@ -10,12 +10,15 @@
 //! [`WIDEN`] to cover the rounding of the subtraction and the product. The
 //! objects themselves are tested by the exact f64 tests of the caller.
 //!
-//! The node tests are plain `[f32; 8]` loops, which LLVM turns into SSE on
-//! the x86_64 baseline (AVX with the wider forms) and NEON on aarch64; on
-//! x86_64 the walks are also compiled for AVX2 and AVX-512 and chosen at
+//! The node test is written twice ([`NodeTest`]): as plain `[f32; 8]`
+//! loops, which LLVM turns into SSE on the x86_64 baseline and NEON on
+//! aarch64, and on x86_64 with AVX2 intrinsics, all eight children in one
+//! register; the walk with the widest test the processor runs is chosen at
 //! run time ([`Isa`]).
 
 use std::mem::MaybeUninit;
+
+use glam::{DVec3, Vec3A};
 
 use super::{Aabb, Node, STACK_SIZE, reach_past};
 
@@ -95,12 +98,9 @@ const UNUSED: u32 = u32::MAX;
 pub(super) enum Isa {
     /// The baseline of the target (SSE2 on x86_64, NEON on aarch64).
     Portable,
-    /// AVX2 and FMA.
+    /// AVX2.
     #[cfg(target_arch = "x86_64")]
     Avx2,
-    /// AVX-512 (F, VL).
-    #[cfg(target_arch = "x86_64")]
-    Avx512,
 }
 
 impl Isa {
@@ -110,8 +110,6 @@ impl Isa {
             Isa::Portable => "portable",
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => "AVX2",
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => "AVX-512",
         }
     }
 
@@ -126,11 +124,8 @@ impl Isa {
         let mut all = vec![Isa::Portable];
         #[cfg(target_arch = "x86_64")]
         {
-            if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
+            if is_x86_feature_detected!("avx2") {
                 all.push(Isa::Avx2);
-                if is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
-                    all.push(Isa::Avx512);
-                }
             }
         }
         all
@@ -161,62 +156,69 @@ pub(super) struct WideRay {
     entry_row: [usize; 3],
     exit_row: [usize; 3],
     /// The origin rounded up for lower planes, down for upper planes.
-    entry_origin: [f32; 3],
-    exit_origin: [f32; 3],
+    entry_origin: Vec3A,
+    exit_origin: Vec3A,
     /// `1 / direction`, rounded towards zero for the entry planes (so entry
     /// distances come out no larger) and away from zero for the exit planes.
-    entry_inv: [f32; 3],
-    exit_inv: [f32; 3],
+    entry_inv: Vec3A,
+    exit_inv: Vec3A,
 }
 
 impl WideRay {
-    /// The ray `origin + t dir`.
+    /// The ray `origin + t dir`, given `inverse = 1 / dir` (which the
+    /// caller may need too: one division per axis for both).
     #[inline(always)]
-    pub(super) fn new(origin: [f64; 3], dir: [f64; 3]) -> WideRay {
-        let mut ray = WideRay {
-            entry_row: [0; 3],
-            exit_row: [0; 3],
-            entry_origin: [0.0; 3],
-            exit_origin: [0.0; 3],
-            entry_inv: [0.0; 3],
-            exit_inv: [0.0; 3],
-        };
-        for axis in 0..3 {
-            let inv = 1.0 / dir[axis];
-            // `(lower - origin)` may only shrink, `(upper - origin)` only grow.
-            let (o, margin) = widened(origin[axis]);
-            let (lower_origin, upper_origin) = (o + margin, o - margin);
-            let (inv, margin) = widened(inv);
-            let (towards_zero, away_from_zero) = (inv - margin.copysign(inv), inv + margin.copysign(inv));
-            let negative = inv.is_sign_negative();
-            ray.entry_row[axis] = if negative { axis + 3 } else { axis };
-            ray.exit_row[axis] = if negative { axis } else { axis + 3 };
-            ray.entry_origin[axis] = if negative { upper_origin } else { lower_origin };
-            ray.exit_origin[axis] = if negative { lower_origin } else { upper_origin };
-            ray.entry_inv[axis] = towards_zero;
-            ray.exit_inv[axis] = away_from_zero;
+    pub(super) fn new(origin: DVec3, inverse: DVec3) -> WideRay {
+        // The three axes at once, in f32 lanes.
+        let (o, o_margin) = widened(origin);
+        let (inv, inv_margin) = widened(inverse);
+        // `(lower - origin)` may only shrink, `(upper - origin)` only grow:
+        // the origin moves up by the margin for the entry planes when the
+        // direction is positive (the lower planes), down when it is
+        // negative (the upper ones), and the other way for the exit planes.
+        let origin_shift = o_margin.copysign(inv);
+        let inv_shift = inv_margin.copysign(inv);
+        let negative = |axis: usize| inv.is_negative_bitmask() >> axis & 1 != 0;
+        WideRay {
+            entry_row: std::array::from_fn(|axis| if negative(axis) { axis + 3 } else { axis }),
+            exit_row: std::array::from_fn(|axis| if negative(axis) { axis } else { axis + 3 }),
+            entry_origin: o + origin_shift,
+            exit_origin: o - origin_shift,
+            entry_inv: inv - inv_shift,
+            exit_inv: inv + inv_shift,
         }
-        ray
     }
 }
 
-/// `x` in f32 (clamped to the finite range) and a margin above its
-/// rounding error: `value - margin <= x <= value + margin` once each side
-/// is rounded, and past the range the sums round to infinity. Cheaper per
-/// ray than exact directed rounding.
+/// `x` in f32 lanes (each clamped to the finite range) and a margin above
+/// its rounding error: `value - margin <= x <= value + margin` once each
+/// side is rounded, and past the range the sums round to infinity. Cheaper
+/// per ray than exact directed rounding.
 #[inline(always)]
-fn widened(x: f64) -> (f32, f32) {
-    let value = x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
-    // Two units in the last place, and the smallest normal for values
-    // that rounded to zero or below the normal range.
-    (value, value.abs() * (1.0 / (1u32 << 22) as f32) + f32::MIN_POSITIVE)
+fn widened(x: DVec3) -> (Vec3A, Vec3A) {
+    let value = Vec3A::new(narrowed(x.x), narrowed(x.y), narrowed(x.z));
+    (value, margin(value))
+}
+
+/// `x` in f32, clamped to the finite range.
+#[inline(always)]
+fn narrowed(x: f64) -> f32 {
+    x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32
+}
+
+/// The margin of [`widened`] for the f32 `value`: two units in the last
+/// place, and the smallest normal for values that rounded to zero or below
+/// the normal range.
+#[inline(always)]
+fn margin(value: Vec3A) -> Vec3A {
+    value.abs() * (1.0 / (1u32 << 22) as f32) + f32::MIN_POSITIVE
 }
 
 /// An f32 not below `x`: a distance limit for the node tests.
 #[inline(always)]
 fn limit_above(x: f64) -> f32 {
-    let (value, margin) = widened(x);
-    value + margin
+    let value = narrowed(x);
+    value + margin(Vec3A::splat(value)).x
 }
 
 /// The largest f32 not above `x`.
@@ -231,30 +233,92 @@ pub(super) fn round_up(x: f64) -> f32 {
     if f64::from(f) < x { f.next_up() } else { f }
 }
 
-/// The entry distance of each child whose box the ray meets at some
-/// `t <= t_max`, and a bit mask of those children.
+/// How the eight children of a node are tested against a ray, in one
+/// compiled form of the walks.
+trait NodeTest {
+    /// The entry distance of each child whose box the ray meets at some
+    /// `t <= t_max`, and a bit mask of those children.
+    ///
+    /// A `0 · ∞` (the ray in a plane of a box, parallel to it) gives NaN,
+    /// which the comparisons drop: that axis then does not limit the
+    /// interval, which is conservative.
+    fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32);
+}
+
+/// The node test as plain loops over the lanes, for the baseline.
+struct PortableTest;
+
+impl NodeTest for PortableTest {
+    #[inline(always)]
+    fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
+        let mut entry = [0.0f32; WIDTH];
+        let mut exit = [t_max; WIDTH];
+        for axis in 0..3 {
+            let lower = &node.bounds[ray.entry_row[axis]];
+            let upper = &node.bounds[ray.exit_row[axis]];
+            for i in 0..WIDTH {
+                let t_in = (lower[i] - ray.entry_origin[axis]) * ray.entry_inv[axis];
+                let t_out = (upper[i] - ray.exit_origin[axis]) * ray.exit_inv[axis];
+                entry[i] = if t_in > entry[i] { t_in } else { entry[i] };
+                exit[i] = if t_out < exit[i] { t_out } else { exit[i] };
+            }
+        }
+        for t in &mut exit {
+            *t *= WIDEN;
+        }
+        (entry, lanes_at_most(&entry, &exit))
+    }
+}
+
+/// The node test in 256-bit registers: each of the six planes of all eight
+/// children in one register, the same operations as [`PortableTest`] in
+/// the same order (so the same distances, bit for bit).
 ///
-/// A `0 · ∞` (the ray in a plane of a box, parallel to it) gives NaN, which
-/// the comparisons drop: that axis then does not limit the interval, which
-/// is conservative.
-#[inline(always)]
-fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
-    let mut entry = [0.0f32; WIDTH];
-    let mut exit = [t_max; WIDTH];
-    for axis in 0..3 {
-        let lower = &node.bounds[ray.entry_row[axis]];
-        let upper = &node.bounds[ray.exit_row[axis]];
-        for i in 0..WIDTH {
-            let t_in = (lower[i] - ray.entry_origin[axis]) * ray.entry_inv[axis];
-            let t_out = (upper[i] - ray.exit_origin[axis]) * ray.exit_inv[axis];
-            entry[i] = if t_in > entry[i] { t_in } else { entry[i] };
-            exit[i] = if t_out < exit[i] { t_out } else { exit[i] };
+/// Only the walks of [`walk_avx2`] use it, which run only when the
+/// processor has AVX2.
+#[cfg(target_arch = "x86_64")]
+struct Avx2Test;
+
+#[cfg(target_arch = "x86_64")]
+impl NodeTest for Avx2Test {
+    #[inline(always)]
+    fn meet(node: &WideNode, ray: &WideRay, t_max: f32) -> ([f32; WIDTH], u32) {
+        use std::arch::x86_64::{
+            _CMP_LE_OQ, _mm256_cmp_ps, _mm256_load_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+            _mm256_set1_ps, _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps,
+        };
+        let mut entries = [0.0f32; WIDTH];
+        // SAFETY: this test runs only in `walk_avx2`, on processors with
+        // AVX2 ([`Isa::available`]). A row index of the ray is an axis or
+        // an axis plus 3 ([`WideRay::new`]), so below 6, and each row is
+        // 32 bytes from the 64-byte aligned start of the node, so the
+        // aligned loads read 8 f32 of one row.
+        unsafe {
+            let row = |r: usize| _mm256_load_ps(node.bounds.as_ptr().add(r).cast::<f32>());
+            let mut entry = _mm256_setzero_ps();
+            let mut exit = _mm256_set1_ps(t_max);
+            for axis in 0..3 {
+                let lower = row(ray.entry_row[axis]);
+                let upper = row(ray.exit_row[axis]);
+                let t_in = _mm256_mul_ps(
+                    _mm256_sub_ps(lower, _mm256_set1_ps(ray.entry_origin[axis])),
+                    _mm256_set1_ps(ray.entry_inv[axis]),
+                );
+                let t_out = _mm256_mul_ps(
+                    _mm256_sub_ps(upper, _mm256_set1_ps(ray.exit_origin[axis])),
+                    _mm256_set1_ps(ray.exit_inv[axis]),
+                );
+                // `max(a, b)` is `if a > b { a } else { b }`, `min` alike:
+                // a NaN `t_in` or `t_out` is dropped, as in the loops.
+                entry = _mm256_max_ps(t_in, entry);
+                exit = _mm256_min_ps(t_out, exit);
+            }
+            exit = _mm256_mul_ps(exit, _mm256_set1_ps(WIDEN));
+            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(entry, exit)) as u32;
+            _mm256_storeu_ps(entries.as_mut_ptr(), entry);
+            (entries, mask)
         }
     }
-    for t in &mut exit {
-        *t *= WIDEN;
-    }
-    (entry, lanes_at_most(&entry, &exit))
 }
 
 /// The bit mask of the lanes where `a <= b`.
@@ -415,40 +479,30 @@ impl WideBvh {
 
     /// The closest-hit walk: the children the ray meets are visited nearest
     /// first, each only while its entry distance is within
-    /// [`reach_past`]`(best.0)`, so that ties are still seen;
-    /// `leaf(start, count, best)` tests the objects
-    /// `start .. start + count` and keeps the nearest hit in `best`
-    /// (starting at `(t_max, u32::MAX)`).
+    /// [`reach_past`]`(best.0)`, so that ties are still seen; the objects
+    /// of the leaves are tested by [`Leaves::closest`], which keeps the
+    /// nearest hit in `best` (starting at `(t_max, u32::MAX)`).
     #[inline(always)]
-    pub(super) fn closest_hit(
-        &self,
-        ray: &WideRay,
-        t_max: f64,
-        leaf: impl FnMut(usize, usize, &mut (f64, u32)),
-    ) -> (f64, u32) {
-        self.run(Closest { ray, t_max, leaf })
+    pub(super) fn closest_hit(&self, ray: &WideRay, t_max: f64, leaves: &impl Leaves) -> (f64, u32) {
+        self.run(Closest { ray, t_max, leaves })
     }
 
-    /// The any-hit walk: whether `leaf(start, count)` returns true for the
-    /// objects of some leaf whose box the ray meets before `t_max`.
+    /// The any-hit walk: whether [`Leaves::any`] finds a hit before `t_max`
+    /// in some leaf whose box the ray meets.
     #[inline(always)]
-    pub(super) fn any_hit(&self, ray: &WideRay, t_max: f64, leaf: impl FnMut(usize, usize) -> bool) -> bool {
-        self.run(Any { ray, t_max, leaf })
+    pub(super) fn any_hit(&self, ray: &WideRay, t_max: f64, leaves: &impl Leaves) -> bool {
+        self.run(Any { ray, t_max, leaves })
     }
 
     /// Runs `walk` in the compiled form chosen at build time.
     #[inline(always)]
     fn run<W: Walk>(&self, walk: W) -> W::Output {
         match self.isa {
-            Isa::Portable => walk.walk(&self.nodes),
-            // SAFETY: `isa` is `Avx2` only when the processor has AVX2 and
-            // FMA ([`Isa::available`]).
+            Isa::Portable => walk.walk::<PortableTest>(&self.nodes),
+            // SAFETY: `isa` is `Avx2` only when the processor has AVX2
+            // ([`Isa::available`]).
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { walk_avx2(walk, &self.nodes) },
-            // SAFETY: `isa` is `Avx512` only when the processor has AVX-512
-            // F and VL (as above).
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => unsafe { walk_avx512(walk, &self.nodes) },
         }
     }
 
@@ -565,25 +619,20 @@ impl Plan {
     }
 }
 
-/// [`WideBvh::closest_hit`], compiled for the baseline.
+/// [`WideBvh::closest_hit`], with the node test `T`.
 #[inline(always)]
-fn closest_walk(
-    nodes: &[WideNode],
-    ray: &WideRay,
-    t_max: f64,
-    mut leaf: impl FnMut(usize, usize, &mut (f64, u32)),
-) -> (f64, u32) {
+fn closest_walk<T: NodeTest>(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaves: &impl Leaves) -> (f64, u32) {
     let mut best = (t_max, u32::MAX);
     let mut limit = limit_above(reach_past(t_max));
     let mut stack = Stack::new();
     let mut current = ROOT;
     loop {
         if current.count > 0 {
-            leaf(current.child as usize, current.count as usize, &mut best);
+            leaves.closest(current.child as usize, current.count as usize, &mut best);
             limit = limit_above(reach_past(best.0));
         } else if let Some(node) = nodes.get(current.child as usize) {
             // (No node: an unused slot, [`UNUSED`].)
-            let (entries, mut mask) = meet(node, ray, limit);
+            let (entries, mut mask) = T::meet(node, ray, limit);
             if mask != 0 {
                 let met = node.take(&mut mask, &entries);
                 if mask == 0 {
@@ -609,20 +658,20 @@ fn closest_walk(
     }
 }
 
-/// [`WideBvh::any_hit`], compiled for the baseline.
+/// [`WideBvh::any_hit`], with the node test `T`.
 #[inline(always)]
-fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(usize, usize) -> bool) -> bool {
+fn any_walk<T: NodeTest>(nodes: &[WideNode], ray: &WideRay, t_max: f64, leaves: &impl Leaves) -> bool {
     let limit = limit_above(t_max);
     let mut stack = Stack::new();
     let mut current = ROOT;
     loop {
         if current.count > 0 {
-            if leaf(current.child as usize, current.count as usize) {
+            if leaves.any(current.child as usize, current.count as usize, t_max) {
                 return true;
             }
         } else if let Some(node) = nodes.get(current.child as usize) {
             // (No node: an unused slot, [`UNUSED`].)
-            let (entries, mut mask) = meet(node, ray, limit);
+            let (entries, mut mask) = T::meet(node, ray, limit);
             if mask != 0 {
                 current = node.take(&mut mask, &entries);
                 while mask != 0 {
@@ -636,25 +685,39 @@ fn any_walk(nodes: &[WideNode], ray: &WideRay, t_max: f64, mut leaf: impl FnMut(
     }
 }
 
+/// The tests of the objects in the leaves, which the walks call: a trait
+/// whose methods are always inlined, so that the tests are compiled into
+/// each form of the walks (a closure was called out of line, with its
+/// registers saved and restored at every leaf).
+pub(super) trait Leaves {
+    /// Keeps in `best` the hit among the objects `start .. start + count`
+    /// (in tree order) that goes first.
+    fn closest(&self, start: usize, count: usize, best: &mut (f64, u32));
+
+    /// Whether one of the objects `start .. start + count` is hit at
+    /// `0 < t < t_max`.
+    fn any(&self, start: usize, count: usize, t_max: f64) -> bool;
+}
+
 /// A query's walk of the tree, compiled once per [`Isa`].
 trait Walk {
     type Output;
-    fn walk(self, nodes: &[WideNode]) -> Self::Output;
+    fn walk<T: NodeTest>(self, nodes: &[WideNode]) -> Self::Output;
 }
 
 /// [`WideBvh::closest_hit`]'s walk.
 struct Closest<'a, L> {
     ray: &'a WideRay,
     t_max: f64,
-    leaf: L,
+    leaves: &'a L,
 }
 
-impl<L: FnMut(usize, usize, &mut (f64, u32))> Walk for Closest<'_, L> {
+impl<L: Leaves> Walk for Closest<'_, L> {
     type Output = (f64, u32);
 
     #[inline(always)]
-    fn walk(self, nodes: &[WideNode]) -> (f64, u32) {
-        closest_walk(nodes, self.ray, self.t_max, self.leaf)
+    fn walk<T: NodeTest>(self, nodes: &[WideNode]) -> (f64, u32) {
+        closest_walk::<T>(nodes, self.ray, self.t_max, self.leaves)
     }
 }
 
@@ -662,30 +725,23 @@ impl<L: FnMut(usize, usize, &mut (f64, u32))> Walk for Closest<'_, L> {
 struct Any<'a, L> {
     ray: &'a WideRay,
     t_max: f64,
-    leaf: L,
+    leaves: &'a L,
 }
 
-impl<L: FnMut(usize, usize) -> bool> Walk for Any<'_, L> {
+impl<L: Leaves> Walk for Any<'_, L> {
     type Output = bool;
 
     #[inline(always)]
-    fn walk(self, nodes: &[WideNode]) -> bool {
-        any_walk(nodes, self.ray, self.t_max, self.leaf)
+    fn walk<T: NodeTest>(self, nodes: &[WideNode]) -> bool {
+        any_walk::<T>(nodes, self.ray, self.t_max, self.leaves)
     }
 }
 
 /// `walk` compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
+#[target_feature(enable = "avx2")]
 fn walk_avx2<W: Walk>(walk: W, nodes: &[WideNode]) -> W::Output {
-    walk.walk(nodes)
-}
-
-/// `walk` compiled for AVX-512.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-fn walk_avx512<W: Walk>(walk: W, nodes: &[WideNode]) -> W::Output {
-    walk.walk(nodes)
+    walk.walk::<Avx2Test>(nodes)
 }
 
 #[cfg(test)]
@@ -702,7 +758,8 @@ mod tests {
     fn rounding_is_outward() {
         for x in [0.1, -0.1, 1e-50, -1e-50, 1e300, -1e300, 3.0, 1.0 / 3.0] {
             assert!(f64::from(round_down(x)) <= x && f64::from(round_up(x)) >= x, "{x}");
-            let (value, margin) = widened(x);
+            let (value, margin) = widened(DVec3::splat(x));
+            let (value, margin) = (value.x, margin.x);
             assert!(f64::from(value - margin) <= x && f64::from(value + margin) >= x, "{x}");
             if x.abs() >= 1.0 {
                 // As `1 / direction` is (a unit direction).
