@@ -46,7 +46,7 @@ import sys
 PATTERNS = [
     # Helpers used by more than one phase: skipped, the next name outwards
     # decides (f32 rounding: ray set-up and the build's node bounds).
-    ("skip", r"src/render/bvh/wide\.rs:(widened|limit_above|round_down|round_up)$|embree/src/geometry\.rs:(round_up|round_down)$"),
+    ("skip", r"src/render/bvh/wide\.rs:(widened|narrowed|margin|limit_above|round_down|round_up)$|embree/src/geometry\.rs:(round_up|round_down)$"),
     # BVH build: rayrepl's binned SAH build, the collapse into the wide tree
     # and the shared frame's set-up; Embree's rtcCommitScene (TBB is its
     # thread pool) and embree-render's bounds callback.
@@ -62,7 +62,7 @@ PATTERNS = [
     # Leaf tests: the sphere, box and plane tests, rayrepl's loop over a
     # leaf's objects (test_range) and embree-render's intersect and
     # occluded callbacks around the same tests.
-    ("leaf tests", r"src/render/intersect\.rs:(?!Ray::)|src/render/bvh\.rs:(test_range|goes_before|put_before|nearer_than|reach_past)$"
+    ("leaf tests", r"src/render/intersect\.rs:(?!Ray::)|src/render/bvh\.rs:(test_range|goes_before|put_before|nearer_than|reach_past|FrameLeaves::\w+|ObjectLeaves::\w+)$"
                    r"|embree/src/geometry\.rs:(intersect|occluded|Objects::hit|goes_before|culling_distance)$"),
     # Ray set-up: camera rays; a query's ray made ready for the tree
     # (rayrepl's WideRay and the turn into the boxes' common frame,
