@@ -37,6 +37,7 @@ pub mod bvh;
 pub mod camera;
 pub mod geometry;
 pub mod intersect;
+pub mod isa;
 pub mod memory;
 pub mod moving_bounds;
 mod options;

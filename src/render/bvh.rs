@@ -411,12 +411,6 @@ impl Bvh {
         })
     }
 
-    /// The compiled form of the tree walks (`AVX-512`, `AVX2` or
-    /// `portable`), or `None` for a flat list.
-    pub fn walk_form(&self) -> Option<&'static str> {
-        (!self.is_flat()).then(|| self.wide.isa().name())
-    }
-
     /// The objects, in tree order.
     pub fn objects(&self) -> &[Bounded] {
         &self.objects

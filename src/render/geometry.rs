@@ -19,6 +19,7 @@ use rayon::prelude::*;
 use super::bvh::{self, Bvh};
 use super::camera::{PrimaryRays, Screen};
 use super::intersect::{Aabb, Bounded, PlaneShape, Ray, ShapeClass};
+use super::isa::Isa;
 use crate::scene::{Camera, Material, Primitive, Scene, Shape};
 
 /// The primitives of one part of a scene, ready for ray queries.
@@ -152,14 +153,11 @@ impl Geometry {
         self.bvh.is_empty() && self.planes.is_empty()
     }
 
-    /// For `--stats`: how the spheres and boxes are searched (the tree
-    /// walk's compiled form, or a flat list).
+    /// For `--stats`: how the spheres and boxes are searched, in a tree or
+    /// a flat list.
     fn search(&self) -> String {
         let count = self.bvh.objects().len();
-        match self.bvh.walk_form() {
-            Some(form) => format!("a tree of {count}, {form} walk"),
-            None => format!("a list of {count}"),
-        }
+        if self.bvh.is_flat() { format!("a list of {count}") } else { format!("a tree of {count}") }
     }
 
     /// Number of primitives.
@@ -330,16 +328,16 @@ impl SceneGeometry {
         &self.static_part
     }
 
-    /// For `--stats`: how the spheres and boxes are searched, in a tree
-    /// (and the compiled form of its walk) or a flat list, for the fixed
-    /// and the moving part.
+    /// For `--stats`: how the spheres and boxes are searched, in a tree or
+    /// a flat list, for the fixed and the moving part, and the compiled
+    /// form of the renderer that runs ([`Isa::chosen`]).
     pub fn search(&self) -> String {
         let search = match &self.merged {
             Some(merged) => merged.search(),
             None if self.timed.is_empty() => self.static_part.search(),
             None => format!("{}; those depending on time: {}", self.static_part.search(), self.timed.search()),
         };
-        format!("spheres and boxes: {search}")
+        format!("spheres and boxes: {search}; {} code", Isa::chosen().name())
     }
 
     /// The nearest hit with `t > 0` (SPEC 6), with its point, facing normal

@@ -12,6 +12,7 @@ use rayon::prelude::*;
 
 use super::camera::{PrimaryRays, sample_offsets};
 use super::geometry::SceneGeometry;
+use super::isa::Isa;
 use super::options::{Cancelled, RayCounts, RenderControl, RenderOptions};
 use super::shade::{Lighting, PathObserver, Tracer};
 use crate::scene::Scene;
@@ -32,6 +33,16 @@ pub(crate) struct Pass<'a> {
     control: &'a RenderControl<'a>,
     /// Whether progress counts the pixels of this pass.
     reports_progress: bool,
+}
+
+/// A band of rows to render: the first row's number, the band's RGB
+/// bytes, the pixels to render (the band's share of the flags; all of them
+/// without flags) and each pixel's observer.
+struct Band<'b, O> {
+    top: u32,
+    pixels: &'b mut [u8],
+    flags: Option<&'b [bool]>,
+    observers: &'b mut [O],
 }
 
 impl<'a> Pass<'a> {
@@ -85,7 +96,7 @@ impl<'a> Pass<'a> {
             .map(|(band, (pixels, observers))| {
                 let first = band * band_pixels;
                 let flags = flags.map(|f| &f[first..first + observers.len()]);
-                self.band(band as u32 * band_rows, pixels, flags, observers)
+                self.band(Band { top: band as u32 * band_rows, pixels, flags, observers })
             })
             .collect::<Result<_, Cancelled>>()?;
         let mut counts = RayCounts::default();
@@ -106,19 +117,34 @@ impl<'a> Pass<'a> {
         if self.width == 0 {
             return Ok(RayCounts::default());
         }
-        self.band(top, buffer, None, &mut vec![(); buffer.len() / 3])
+        let observers = &mut vec![(); buffer.len() / 3];
+        self.band(Band { top, pixels: buffer, flags: None, observers })
     }
 
-    /// Renders the band of rows starting at row `top` into `pixels` (its
-    /// RGB bytes), tile by tile: the pixels `flags` marks (the band's share
-    /// of them), each watched by its observer.
-    fn band<O: PathObserver>(
-        &self,
-        top: u32,
-        pixels: &mut [u8],
-        flags: Option<&[bool]>,
-        observers: &mut [O],
-    ) -> Result<RayCounts, Cancelled> {
+    /// Renders `band`, tile by tile, in the compiled form [`Isa::chosen`].
+    fn band<O: PathObserver>(&self, band: Band<'_, O>) -> Result<RayCounts, Cancelled> {
+        match Isa::chosen() {
+            Isa::Portable => self.band_in_form(band),
+            // SAFETY: `Avx2` is chosen only when the processor has AVX2.
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2 => unsafe { self.band_avx2(band) },
+        }
+    }
+
+    /// [`Pass::band`] compiled for AVX2, with the tracing of each pixel
+    /// inlined into it: the shading, the flat list's tests and the bytes'
+    /// rounding in AVX2 instructions (the rounding is a call of `round` in
+    /// the baseline, which has no rounding instruction).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn band_avx2<O: PathObserver>(&self, band: Band<'_, O>) -> Result<RayCounts, Cancelled> {
+        self.band_in_form(band)
+    }
+
+    /// [`Pass::band`], inlined into the compiled form that calls it.
+    #[inline(always)]
+    fn band_in_form<O: PathObserver>(&self, band: Band<'_, O>) -> Result<RayCounts, Cancelled> {
+        let Band { top, pixels, flags, observers } = band;
         let rows = (observers.len() / self.width as usize) as u32;
         let mut tracer = Tracer::new(self.geometry, &self.lighting);
         let mut left = 0;
@@ -153,7 +179,10 @@ impl<'a> Pass<'a> {
 
     /// The bytes of pixel `(i, j)`: `round(255 * c)` of the average of its
     /// samples' colours (SPEC 6).
-    #[inline]
+    ///
+    /// Always inlined, so that each compiled form of [`Pass::band`] traces
+    /// in its own instructions.
+    #[inline(always)]
     fn pixel<O: PathObserver>(&self, tracer: &mut Tracer, i: u32, j: u32, observer: &mut O) -> [u8; 3] {
         let mut sum = DVec3::ZERO;
         for &offset in &self.offsets {

@@ -152,28 +152,44 @@ fn samples_threads_screen_and_stats_are_accepted() {
         .arg(&out)
         .assert()
         .success()
-        .stderr(contains("primary").and(contains("Mrays/s")).and(contains("(spheres and boxes: a list of 1)")));
+        .stderr(contains("primary").and(contains("Mrays/s")).and(contains("(spheres and boxes: a list of 1; ")));
 }
 
-/// `--stats` says how the objects are searched: past 4 objects, a tree,
-/// walked in the widest compiled form the processor runs.
+/// `--stats` says how the objects are searched (past 4 objects, a tree)
+/// and which compiled form of the renderer runs: the widest the processor
+/// has, or the portable one that `RAYREPL_ISA=portable` asks for, which
+/// gives the same bytes.
 #[test]
-fn stats_name_the_tree_walk() {
+fn stats_name_the_tree_and_the_compiled_form_and_the_forms_give_the_same_bytes() {
     let spheres: String = (0..5)
-        .map(|k| format!("put sphere center {k}, 0, 0 radius 0.4 kd 1 ks 0 phong 1 color 255, 0, 0 end\n"))
+        .map(|k| format!("put sphere center {k}, 0, 0 radius 0.4 kd 1 ks 0.5 phong 7 color 255, 0, 0 end\n"))
         .collect();
-    let (dir, path) = scene(&format!("camera distance 10 angle 1 end\nambient 0.2\n{spheres}"));
-    let out = dir.path().join("out.png");
-    let walk = if cfg!(target_arch = "x86_64") { r"(AVX-512|AVX2|portable) walk" } else { "portable walk" };
-    let line = format!(r"build [0-9.]+ s \(spheres and boxes: a tree of 5, {walk}\)");
-    let names_the_walk = predicates::str::is_match(line).expect("a valid pattern");
-    rayrepl()
-        .arg(&path)
-        .args(["--width", "8", "--height", "6", "--stats", "-o"])
-        .arg(&out)
-        .assert()
-        .success()
-        .stderr(names_the_walk);
+    let (dir, path) = scene(&format!(
+        "camera distance 10 angle 1 end\nambient 0.2\nlight vector 0.5, 0.3, 1 intensity 0.8 end\n{spheres}\
+         put sphere center time - 2, 1, 0 radius 0.5 kd 0.8 ks 0.4 phong 10 color 0, 255, 0 end\n\
+         put plane rotation 0, 0, 0 shift -1 kd 0.8 ks 0.3 phong 10 color 0, 0, 255 end\n"
+    ));
+    let render = |isa: Option<&str>, form: &str| {
+        let out = dir.path().join(format!("{form}.png"));
+        let line = format!(
+            r"build [0-9.]+ s \(spheres and boxes: a tree of 5; those depending on time: a list of 1; {form} code\)"
+        );
+        let names_the_form = predicates::str::is_match(line).expect("a valid pattern");
+        let mut command = rayrepl();
+        if let Some(isa) = isa {
+            command.env("RAYREPL_ISA", isa);
+        }
+        command
+            .arg(&path)
+            .args(["--width", "40", "--height", "30", "--stats", "-o"])
+            .arg(&out)
+            .assert()
+            .success()
+            .stderr(names_the_form);
+        std::fs::read(out).expect("written")
+    };
+    let widest = if cfg!(target_arch = "x86_64") { "(AVX2|portable)" } else { "portable" };
+    assert_eq!(render(None, widest), render(Some("portable"), "portable"));
 }
 
 #[test]

@@ -14,12 +14,13 @@
 //! loops, which LLVM turns into SSE on the x86_64 baseline and NEON on
 //! aarch64, and on x86_64 with AVX2 intrinsics, all eight children in one
 //! register; the walk with the widest test the processor runs is chosen at
-//! run time ([`Isa`]).
+//! run time ([`Isa::chosen`]).
 
 use std::mem::MaybeUninit;
 
 use glam::{DVec3, Vec3A};
 
+use super::super::isa::Isa;
 use super::{Aabb, Node, STACK_SIZE, reach_past};
 
 /// Children per node.
@@ -92,45 +93,6 @@ impl WideNode {
 /// So an unused slot must lead nowhere: pointing at a node, it would send
 /// the walk round that subtree again, and from the root without end.
 const UNUSED: u32 = u32::MAX;
-
-/// Which compiled form of the walks runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Isa {
-    /// The baseline of the target (SSE2 on x86_64, NEON on aarch64).
-    Portable,
-    /// AVX2.
-    #[cfg(target_arch = "x86_64")]
-    Avx2,
-}
-
-impl Isa {
-    /// Its name, as `--stats` prints it.
-    pub(super) fn name(self) -> &'static str {
-        match self {
-            Isa::Portable => "portable",
-            #[cfg(target_arch = "x86_64")]
-            Isa::Avx2 => "AVX2",
-        }
-    }
-
-    /// The widest form this processor runs.
-    pub(super) fn detect() -> Isa {
-        *Isa::available().last().expect("the portable form always runs")
-    }
-
-    /// Every form this processor runs, the widest last.
-    pub(super) fn available() -> Vec<Isa> {
-        #[allow(unused_mut, reason = "only x86_64 has other forms")]
-        let mut all = vec![Isa::Portable];
-        #[cfg(target_arch = "x86_64")]
-        {
-            if is_x86_feature_detected!("avx2") {
-                all.push(Isa::Avx2);
-            }
-        }
-        all
-    }
-}
 
 /// The tree in its traversal form.
 #[derive(Debug, Clone)]
@@ -424,7 +386,7 @@ impl WideBvh {
     /// construction), and this one check keeps the walks from ever
     /// running past their stack.
     pub(super) fn collapse(nodes: &[Node], bounds: impl Fn(usize) -> Aabb) -> WideBvh {
-        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 4), depth: 0, isa: Isa::detect() };
+        let mut wide = WideBvh { nodes: Vec::with_capacity(nodes.len() / 4), depth: 0, isa: Isa::chosen() };
         if !nodes.is_empty() {
             let plans = Plan::all(nodes, &bounds);
             wide.add(nodes, &plans, &bounds, 0, 1);
@@ -460,11 +422,6 @@ impl WideBvh {
         }
         self.nodes[at] = node;
         at as u32
-    }
-
-    /// The compiled form the walks run.
-    pub(super) fn isa(&self) -> Isa {
-        self.isa
     }
 
     /// Whether there is no tree.
