@@ -169,9 +169,9 @@ impl SharedFrame {
     }
 
     /// [`Bvh::any_hit`] through the frame.
-    fn any_hit(&self, tree: &WideBvh, ray: &Ray, t_max: f64) -> bool {
+    fn any_hit(&self, tree: &WideBvh, put_order: &[u32], ray: &Ray, t_max: f64) -> bool {
         let (local, inverse) = self.local_ray(ray);
-        tree.any_hit(&local, t_max, &FrameLeaves { frame: self, put_order: &[], origin: ray.origin, inverse })
+        tree.any_hit(&local, t_max, &FrameLeaves { frame: self, put_order, origin: ray.origin, inverse })
     }
 }
 
@@ -223,6 +223,8 @@ impl Leaves for ObjectLeaves<'_> {
 
     #[inline(always)]
     fn any(&self, start: usize, count: usize, t_max: f64) -> bool {
+        // A plain loop: `Iterator::any` is not always inlined, which would
+        // put the ray through memory again.
         for object in &self.objects[start..start + count] {
             if object.hit(self.ray) < t_max {
                 return true;
@@ -432,10 +434,17 @@ impl Bvh {
     pub fn closest_hit(&self, ray: &Ray, t_max: f64) -> (f64, u32) {
         if self.is_flat() {
             let mut best = (t_max, u32::MAX);
-            test_range(&self.objects, 0, &[], ray, &mut best);
+            self.object_leaves(ray).closest(0, self.objects.len(), &mut best);
             return best;
         }
         self.closest_hit_in_tree(ray, t_max)
+    }
+
+    /// The objects of the leaves (of the whole list when flat), tested
+    /// against `ray`.
+    #[inline(always)]
+    fn object_leaves<'a>(&'a self, ray: &'a Ray) -> ObjectLeaves<'a> {
+        ObjectLeaves { objects: &self.objects, put_order: &self.put_order, ray }
     }
 
     /// [`Bvh::closest_hit`] when there is a tree.
@@ -444,11 +453,7 @@ impl Bvh {
             return shared.closest_hit(&self.wide, &self.put_order, ray, t_max);
         }
         let wide_ray = WideRay::new(ray.origin, ray.dir.recip());
-        self.wide.closest_hit(
-            &wide_ray,
-            t_max,
-            &ObjectLeaves { objects: &self.objects, put_order: &self.put_order, ray },
-        )
+        self.wide.closest_hit(&wide_ray, t_max, &self.object_leaves(ray))
     }
 
     /// Whether some object is hit at `0 < t < t_max`; stops at the first hit
@@ -458,14 +463,7 @@ impl Bvh {
     #[inline(always)]
     pub fn any_hit(&self, ray: &Ray, t_max: f64) -> bool {
         if self.is_flat() {
-            // A plain loop: `Iterator::any` is not always inlined, which
-            // would put the ray through memory again.
-            for object in &self.objects {
-                if object.hit(ray) < t_max {
-                    return true;
-                }
-            }
-            return false;
+            return self.object_leaves(ray).any(0, self.objects.len(), t_max);
         }
         self.any_hit_in_tree(ray, t_max)
     }
@@ -473,10 +471,10 @@ impl Bvh {
     /// [`Bvh::any_hit`] when there is a tree.
     fn any_hit_in_tree(&self, ray: &Ray, t_max: f64) -> bool {
         if let Some(shared) = &self.shared {
-            return shared.any_hit(&self.wide, ray, t_max);
+            return shared.any_hit(&self.wide, &self.put_order, ray, t_max);
         }
         let wide_ray = WideRay::new(ray.origin, ray.dir.recip());
-        self.wide.any_hit(&wide_ray, t_max, &ObjectLeaves { objects: &self.objects, put_order: &[], ray })
+        self.wide.any_hit(&wide_ray, t_max, &self.object_leaves(ray))
     }
 
     /// The depth of the tree (1 for a single node, 0 without a tree).

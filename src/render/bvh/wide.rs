@@ -140,7 +140,8 @@ impl WideRay {
         // negative (the upper ones), and the other way for the exit planes.
         let origin_shift = o_margin.copysign(inv);
         let inv_shift = inv_margin.copysign(inv);
-        let negative = |axis: usize| inv.is_negative_bitmask() >> axis & 1 != 0;
+        let signs = inv.is_negative_bitmask();
+        let negative = |axis: usize| signs >> axis & 1 != 0;
         WideRay {
             entry_row: std::array::from_fn(|axis| if negative(axis) { axis + 3 } else { axis }),
             exit_row: std::array::from_fn(|axis| if negative(axis) { axis } else { axis + 3 }),
@@ -251,7 +252,7 @@ impl NodeTest for Avx2Test {
         };
         let mut entries = [0.0f32; WIDTH];
         // SAFETY: this test runs only in `walk_avx2`, on processors with
-        // AVX2 ([`Isa::available`]). A row index of the ray is an axis or
+        // AVX2 ([`Isa::chosen`]). A row index of the ray is an axis or
         // an axis plus 3 ([`WideRay::new`]), so below 6, and each row is
         // 32 bytes from the 64-byte aligned start of the node, so the
         // aligned loads read 8 f32 of one row.
@@ -457,7 +458,8 @@ impl WideBvh {
         match self.isa {
             Isa::Portable => walk.walk::<PortableTest>(&self.nodes),
             // SAFETY: `isa` is `Avx2` only when the processor has AVX2
-            // ([`Isa::available`]).
+            // ([`Isa::available`], which [`Isa::chosen`] and the tests'
+            // [`WideBvh::with_isa`] take it from).
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { walk_avx2(walk, &self.nodes) },
         }
