@@ -40,7 +40,7 @@ impl Isa {
     pub fn chosen() -> Isa {
         static CHOSEN: OnceLock<Isa> = OnceLock::new();
         *CHOSEN.get_or_init(|| {
-            let portable = std::env::var(ISA_VARIABLE).is_ok_and(|v| v == "portable");
+            let portable = std::env::var(ISA_VARIABLE).is_ok_and(|v| v == Isa::Portable.name());
             if portable { Isa::Portable } else { *Isa::available().last().expect("the portable form always runs") }
         })
     }

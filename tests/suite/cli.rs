@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use assert_cmd::Command;
 use predicates::prelude::*;
 use predicates::str::contains;
+use rayrepl::render::isa::ISA_VARIABLE;
 
 use crate::common::interrupt::{interrupt, is_temporary, names_in, wait_for_a_write, wait_for_files};
 
@@ -177,7 +178,7 @@ fn stats_name_the_tree_and_the_compiled_form_and_the_forms_give_the_same_bytes()
         let names_the_form = predicates::str::is_match(line).expect("a valid pattern");
         let mut command = rayrepl();
         if let Some(isa) = isa {
-            command.env("RAYREPL_ISA", isa);
+            command.env(ISA_VARIABLE, isa);
         }
         command
             .arg(&path)
