@@ -20,8 +20,6 @@ use crate::animation::{AnimationError, render_animation};
 use crate::cli::Cli;
 use crate::clock::Stopwatch;
 use crate::explain::ExplainedScene;
-use crate::failure::{end_if_closed_pipe, report_failure, tell};
-use crate::interruption::may_block;
 use crate::job::{Animation, Destination, DiagnosticFormat, Job, JobError, Render, SceneFile, Task};
 use crate::lang::ast::Program;
 use crate::lang::diagnostic::emit;
@@ -31,13 +29,16 @@ use crate::lang::{Diagnostic, Interpreter, SourceId, SourceMap, parse_file};
 use crate::lint::check_scene;
 use crate::output::{self, FrameSink};
 use crate::pov;
+use crate::process::cancel::{CancelSwitch, cancel_flag};
+use crate::process::failure::{end_if_closed_pipe, report_failure, tell};
+use crate::process::interruption::may_block;
+use crate::process::signals;
 use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
-use crate::repl::{CancelSwitch, cancel_flag};
 use crate::scene::Scene;
 use crate::terminal::preview::Preview;
 use crate::terminal::progress::Progress;
 use crate::terminal::watch::FileWatcher;
-use crate::terminal::{ctrl_c, run_script_on_stdin, run_session};
+use crate::terminal::{run_script_on_stdin, run_session};
 use crate::warned::Warned;
 
 /// The exit code of a command line that asks for something impossible or
@@ -51,7 +52,7 @@ const USAGE_EXIT_CODE: u8 = 2;
 pub fn run(cli: Cli) -> ExitCode {
     // Before the job is built: the check of an output folder makes a file,
     // which a signal must remove.
-    ctrl_c::install();
+    signals::install();
     let job = match Job::from_cli(cli) {
         Ok(job) => job,
         Err(error) => {
@@ -96,7 +97,7 @@ fn install_kernel(prefix: &crate::jupyter::KernelPrefix, interrupt_mode: &str) -
 fn dispatch(task: Task) -> ExitCode {
     // Sessions and scripts install the same switch (one per process), and
     // arm it for each entry.
-    let switch = ctrl_c::install();
+    let switch = signals::install();
     match task {
         Task::Session(options) => run_session(&options),
         Task::Compare(job) => compare::grade_all(&job),
@@ -110,10 +111,7 @@ fn dispatch(task: Task) -> ExitCode {
             }
         },
         #[cfg(feature = "jupyter")]
-        Task::Kernel(connection_file) => match switch
-            .ok_or_else(|| "Ctrl-C cannot be handled here".to_string())
-            .and_then(|switch| crate::jupyter::serve(&connection_file, switch))
-        {
+        Task::Kernel(connection_file) => match crate::jupyter::serve(&connection_file) {
             Ok(()) => ExitCode::SUCCESS,
             Err(message) => {
                 report_failure(message);
@@ -403,7 +401,7 @@ fn write_still(output: &Destination, image: &RgbImage, cancel: &'static AtomicBo
 fn write_stdout(what: &str, write: impl FnOnce(&mut StdoutLock<'static>) -> io::Result<()>) -> Result<(), String> {
     let mut stdout = std::io::stdout().lock();
     // A reader that does not read blocks the write: a signal then ends the
-    // process (`crate::interruption`).
+    // process (`crate::process::interruption`).
     may_block(|| write(&mut stdout).and_then(|()| stdout.flush())).map_err(|e| {
         end_if_closed_pipe(&e);
         format!("cannot write {what} to standard output: {}", output::io_reason(&e))

@@ -20,7 +20,7 @@ use crate::lint::{Allowed, Picture};
 use crate::output::{self, Content, ImageFormat, OutputError};
 use crate::playback::{AnimationOptions, Playback};
 use crate::render::RenderOptions;
-use crate::repl::SessionOptions;
+use crate::session::SessionOptions;
 use crate::settings::{DEFAULTS, RenderSettings};
 
 /// What the command line asks for, checked: the task and the threads it

@@ -11,7 +11,7 @@
 //! work) stops a running cell and leaves the session as before it.
 
 mod front;
-mod install;
+pub mod install;
 mod sockets;
 
 use std::cell::RefCell;
@@ -27,21 +27,23 @@ use jupyter_protocol::{
 };
 
 use crate::clock::Stopwatch;
-use crate::interruption::Signal;
-use crate::repl::{CancelSwitch, CellEnd, CellSession, Completeness, SessionOptions};
+use crate::process::interruption::Signal;
+use crate::session::{CancelSwitch, CellEnd, CellSession, Completeness, SessionOptions};
 use front::KernelFront;
 use sockets::{Control, Outgoing};
 
-pub(crate) use install::{KernelPrefix, install};
+pub use install::{KernelPrefix, install};
 
 /// The language's name, as notebooks and their exporters know it (the
 /// kernelspec's `language`, the Pygments lexer's and CodeMirror mode's name).
-pub(crate) const LANGUAGE: &str = "ray";
+pub const LANGUAGE: &str = "ray";
 
 /// Serves the kernel whose sockets `connection_file` describes, until a
-/// shutdown request ends the process. Fails with the reason when the file
-/// cannot be read or a socket cannot be bound.
-pub(crate) fn serve(connection_file: &Path, switch: &'static CancelSwitch) -> Result<(), String> {
+/// shutdown request ends the process; the kernel's interrupt (SIGINT) stops
+/// the cell that runs. Fails with the reason when the file cannot be read,
+/// a socket cannot be bound or the signals cannot be heard.
+pub fn serve(connection_file: &Path) -> Result<(), String> {
+    let switch = crate::process::signals::install().ok_or("Ctrl-C cannot be handled here")?;
     let text = std::fs::read_to_string(connection_file).map_err(|error| {
         format!(
             "the connection file {} cannot be read: {}",
@@ -51,7 +53,7 @@ pub(crate) fn serve(connection_file: &Path, switch: &'static CancelSwitch) -> Re
     })?;
     let info: ConnectionInfo = serde_json::from_str(&text)
         .map_err(|error| format!("the connection file {} is not one: {error}", connection_file.display()))?;
-    crate::terminal::ctrl_c::ignore_idle_interrupts();
+    crate::process::signals::ignore_idle_interrupts();
     let session_id = uuid::Uuid::new_v4().to_string();
     let (requests, outgoing) =
         sockets::start(info, session_id, Box::new(move |request, outgoing| control(request, outgoing, switch)))?;
@@ -102,7 +104,7 @@ fn shutdown_reply(shutdown: &ShutdownRequest, request: &JupyterMessage, outgoing
 
 /// Logs a request of a type the kernel does not answer.
 fn sockets_ignored(message_type: &str) {
-    crate::failure::report_failure(format!(
+    crate::process::failure::report_failure(format!(
         "kernel: a `{message_type}` message was ignored: it is not one this kernel answers"
     ));
 }

@@ -7,10 +7,6 @@
 //! image file ([`output`]) or terminal preview ([`repl`]). [`explain`] tells
 //! why a pixel has its colour.
 
-// Without the terminal (a core-only or wasm32 build), the parts of the
-// session core that only the terminal's front-end uses today are unused.
-#![cfg_attr(not(feature = "terminal"), allow(dead_code, unused_imports, unused_macros))]
-
 pub mod animation;
 #[cfg(feature = "terminal")]
 pub mod app;
@@ -20,23 +16,22 @@ pub mod clock;
 pub mod compare;
 mod data_dir;
 pub mod explain;
-pub mod failure;
-mod interruption;
 #[cfg(feature = "terminal")]
 mod job;
 #[cfg(feature = "jupyter")]
-mod jupyter;
+pub mod jupyter;
 pub mod lang;
 pub mod lint;
 #[cfg(feature = "lsp")]
 pub mod lsp;
 pub mod output;
 pub mod playback;
-mod pov;
+pub mod pov;
+pub mod process;
 pub mod render;
-pub mod repl;
 pub mod scene;
-mod settings;
+pub mod session;
+pub mod settings;
 #[cfg(test)]
 mod source_tree;
 #[cfg(feature = "terminal")]

@@ -36,7 +36,7 @@ use lsp_types::{
 };
 use serde_json::Value;
 
-use crate::repl::Vocabulary;
+use crate::session::Vocabulary;
 use analysis::Analysis;
 
 /// An open document: its text as the client last sent it, and its

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rayrepl::cli::{Cli, translate_legacy_args};
-use rayrepl::failure::{report_failure, unwritten_messages};
+use rayrepl::process::failure::{report_failure, unwritten_messages};
 
 fn main() -> ExitCode {
     keep_freed_memory();

@@ -26,13 +26,17 @@ mod still;
 mod video;
 
 pub use apng::apng_bytes;
-pub(crate) use atomic::{INTERRUPTED_EXIT_CODE, NEVER_CANCELLED, discarding_unfinished, exit_discarding_unfinished};
+pub use atomic::INTERRUPTED_EXIT_CODE;
+#[cfg(feature = "signals")]
+pub(crate) use atomic::discarding_unfinished;
+pub(crate) use atomic::{NEVER_CANCELLED, exit_discarding_unfinished};
 pub(crate) use checks::{check_animation_output, check_output, frame_over, same_file};
 pub use error::OutputError;
 pub(crate) use error::io_reason;
 pub use formats::Content;
-pub(crate) use formats::ImageFormat;
-pub(crate) use frame_names::frame_path;
+pub use formats::ImageFormat;
+pub use frame_names::frame_path;
 pub(crate) use frames::{FrameSink, describe_files};
+pub use still::write_ppm;
 pub use still::{write_image, write_png};
-pub(crate) use still::{write_image_cancellable, write_ppm, write_text};
+pub(crate) use still::{write_image_cancellable, write_text};

@@ -7,7 +7,7 @@
 //! front-end (`front_end`). Built with the
 //! `terminal` feature (on by default), which brings their crates.
 
-pub(crate) mod ctrl_c;
+mod console;
 pub(crate) mod editor;
 mod front_end;
 mod history;
@@ -15,14 +15,16 @@ pub mod interactive;
 mod play;
 pub(crate) mod preview;
 pub mod progress;
+mod script;
 pub(crate) mod watch;
 
 use std::process::ExitCode;
 
 pub use interactive::{ReplError, run_interactive, run_typed};
+pub use script::run_script;
 
-use crate::repl::script::run_script_keeping_session;
-use crate::repl::{CancelSwitch, SessionOptions};
+use crate::session::{CancelSwitch, SessionOptions};
+use script::run_script_keeping_session;
 
 /// Runs the interactive session on the terminal; fails (status 1) when
 /// the terminal cannot be used.
@@ -30,7 +32,7 @@ pub fn run_session(options: &SessionOptions) -> ExitCode {
     match run_interactive(options) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
-            crate::failure::report_failure(error);
+            crate::process::failure::report_failure(error);
             ExitCode::FAILURE
         }
     }

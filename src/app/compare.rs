@@ -9,10 +9,10 @@ use std::process::ExitCode;
 
 use super::{USAGE_EXIT_CODE, load, show, write_stdout};
 use crate::compare::{CSV_HEADER, Grade, Outcome, Reference, ReferenceError, Verdict, summary};
-use crate::failure::report_failure;
 use crate::job::{DiagnosticFormat, GradingJob, Report};
 use crate::lang::SourceMap;
 use crate::output::{self, frame_path};
+use crate::process::failure::report_failure;
 
 /// Grades every submission of `job` against its reference and gives the
 /// exit code: 0 when all match, 1 when one differs or does not run (or an

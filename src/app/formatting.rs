@@ -8,11 +8,11 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use super::{load, show, write_stdout};
-use crate::failure::report_failure;
 use crate::job::{DiagnosticFormat, Formatted, FormattingJob};
 use crate::lang::SourceMap;
 use crate::lang::format::format;
 use crate::output;
+use crate::process::failure::report_failure;
 
 /// What became of one text.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -12,10 +12,10 @@ use jupyter_protocol::{
     DisplayData, ErrorOutput, JupyterMessage, JupyterMessageContent, Media, MediaType, ReplyError, StreamContent,
 };
 
-use crate::interruption::Signal;
 use crate::lang::{Diagnostic, Severity, SourceMap};
 use crate::playback::Playback;
-use crate::repl::{
+use crate::process::interruption::Signal;
+use crate::session::{
     CancelSwitch, FrontEnd, LessonStep, LessonVerdict, Output, Picture, Size, TextRole, Ticker, mark_pixel,
 };
 

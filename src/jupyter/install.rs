@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
-use crate::repl::{CellSession, Collected, Output, SessionOptions};
+use crate::session::{CellSession, Collected, Output, SessionOptions};
 
 /// The kernelspec's name: its folder, and what `jupyter kernelspec list` shows.
 pub(crate) const KERNEL_NAME: &str = "rayrepl";
@@ -36,7 +36,7 @@ const LOGO_SCENE: &str = "camera distance 3.2 angle 1 end\n\
 /// Writes the kernelspec under `prefix`, starting `program` (this
 /// program's path) with the interrupt mode `interrupt_mode` (`message` or
 /// `signal`); gives the folder written.
-pub(crate) fn install(prefix: &KernelPrefix, program: &Path, interrupt_mode: &str) -> Result<PathBuf, String> {
+pub fn install(prefix: &KernelPrefix, program: &Path, interrupt_mode: &str) -> Result<PathBuf, String> {
     let folder = kernels_folder(prefix)?.join(KERNEL_NAME);
     std::fs::create_dir_all(&folder)
         .map_err(|error| format!("{} cannot be made: {}", folder.display(), crate::output::io_reason(&error)))?;

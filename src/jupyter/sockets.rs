@@ -136,7 +136,7 @@ impl Sockets {
 
 /// Logs a message that was ignored, and why.
 fn ignored(channel: &str, error: impl std::fmt::Display) {
-    crate::failure::report_failure(format!("kernel: a message on {channel} was ignored: {error}"));
+    crate::process::failure::report_failure(format!("kernel: a message on {channel} was ignored: {error}"));
 }
 
 async fn echo(mut heartbeat: KernelHeartbeatConnection) {

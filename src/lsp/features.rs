@@ -20,8 +20,8 @@ use crate::lang::names::{Binding, Namespace, Occurrence, Scope};
 use crate::lang::number::format_number;
 use crate::lang::walk::{same_level, textures};
 use crate::lang::{Diagnostic, Severity, SourceId, Span, words};
-use crate::repl::help;
-use crate::repl::syntax::is_word_char;
+use crate::session::help;
+use crate::session::syntax::is_word_char;
 
 /// The diagnostics of the document at `uri`, as the protocol gives them.
 pub(crate) fn diagnostics(uri: &Uri, analysis: &Analysis) -> Vec<lsp_types::Diagnostic> {

@@ -14,8 +14,8 @@ use super::text::Lines;
 use crate::lang::ast::Item;
 use crate::lang::names::{Binding, Namespace, Scope};
 use crate::lang::words::{self, Role};
-use crate::repl::Vocabulary;
-use crate::repl::completion::{self, CandidateKind};
+use crate::session::Vocabulary;
+use crate::session::completion::{self, CandidateKind};
 
 /// The names a document defines, from its analysis: the globals, the
 /// procedures with their parameters and, inside procedure `inside` (the

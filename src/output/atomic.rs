@@ -24,7 +24,7 @@ fn unfinished() -> MutexGuard<'static, Vec<PathBuf>> {
 }
 
 /// The exit code after Ctrl-C or `kill` (128 + SIGINT, as shells report it).
-pub(crate) const INTERRUPTED_EXIT_CODE: i32 = 130;
+pub const INTERRUPTED_EXIT_CODE: i32 = 130;
 
 /// Removes the temporary files of unfinished writes and ends the process
 /// with `code`: what an interruption (Ctrl-C, `kill`) does, so that it

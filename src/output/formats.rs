@@ -5,7 +5,7 @@ use std::path::Path;
 
 /// An image format rayrepl writes, named by a file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum ImageFormat {
+pub enum ImageFormat {
     /// PNG, 8 bits per channel.
     Png,
     /// Binary PPM (P6).

@@ -18,7 +18,7 @@ pub(crate) fn frame_names(
 /// The file name of frame `k` of `n`: the frame number, zero-padded to at
 /// least 4 digits (more if `n` needs them), inserted before the extension:
 /// `out.png` gives `out0001.png`.
-pub(crate) fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
+pub fn frame_path(base: &Path, k: usize, n: usize) -> PathBuf {
     let digits = n.to_string().len().max(4);
     let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let mut name = format!("{stem}{k:0digits$}");

@@ -46,7 +46,7 @@ pub(crate) fn write_text(path: &Path, text: &str, cancel: &'static AtomicBool) -
 }
 
 /// Writes `image` as binary PPM (P6) to `writer` (used for `-o -`).
-pub(crate) fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
+pub fn write_ppm(writer: &mut dyn Write, image: &RgbImage) -> io::Result<()> {
     write!(writer, "P6\n{} {}\n255\n", image.width(), image.height())?;
     writer.write_all(image.as_raw())?;
     writer.flush()

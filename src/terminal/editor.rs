@@ -19,10 +19,10 @@ use rustyline::{Context, Helper};
 
 use crate::lang::{EntryState, entry_state};
 
-use crate::repl::Vocabulary;
-use crate::repl::commands::{self, is_command};
-use crate::repl::completion;
-use crate::repl::syntax::{PieceKind, pieces};
+use crate::session::Vocabulary;
+use crate::session::commands::{self, is_command};
+use crate::session::completion;
+use crate::session::syntax::{PieceKind, pieces};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
 /// rustyline repaint the whole line at every key, so a long pasted line

@@ -7,10 +7,9 @@ use std::time::Duration;
 
 use rustyline::history::{FileHistory, History};
 
+use super::console::Console;
 use crate::lang::SourceMap;
-use crate::repl::{
-    CancelSwitch, Console, FrontEnd, Output, Picture, PreviewSize, SaveWatcher, Size, Ticker, mark_pixel,
-};
+use crate::session::{CancelSwitch, FrontEnd, Output, Picture, PreviewSize, SaveWatcher, Size, Ticker, mark_pixel};
 
 use super::history::history_path;
 use super::play::play_until_key;

@@ -17,19 +17,22 @@ use rustyline::history::FileHistory;
 use crate::clock::Stopwatch;
 use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 
-use crate::repl::commands::{self, Flow, is_command};
-use crate::repl::file_commands::load_reporting;
-use crate::repl::inputs::handle_input;
-use crate::repl::lessons;
-use crate::repl::report::counted;
-use crate::repl::syntax::{continuation_prompt, open_constructs};
-use crate::repl::{Console, FrontEnd, Session, SessionOptions, Shell, new_session, write_back};
+use super::console::Console;
+use crate::session::commands::{self, Flow, is_command};
+use crate::session::file_commands::load_reporting;
+use crate::session::inputs::report_input;
+use crate::session::lessons;
+use crate::session::options::new_session;
+use crate::session::report::counted;
+use crate::session::shell::Shell;
+use crate::session::syntax::open_constructs;
+use crate::session::{FrontEnd, Session, SessionOptions};
 
-use super::ctrl_c;
 use super::editor::RayHelper;
 use super::front_end::TerminalFrontEnd;
 use super::history::history_path;
 use super::preview::Preview;
+use crate::process::signals;
 
 /// The prompt for a new input, after its number.
 const PROMPT: &str = "ray> ";
@@ -68,7 +71,7 @@ impl std::error::Error for ReplError {
 pub fn run_interactive(options: &SessionOptions) -> Result<(), ReplError> {
     let (mut out, mut err) = (std::io::stdout(), std::io::stderr());
     let mut console = Console::new(&mut out, &mut err);
-    console.cancel = ctrl_c::install();
+    console.cancel = signals::install();
     let front: &mut dyn FrontEnd = &mut TerminalFrontEnd { console, preview: Preview::new(options.no_preview) };
     if editor_unsupported() {
         greet(front);
@@ -226,9 +229,9 @@ impl LineSource for PlainTerminal {
         let shown = if initial.is_empty() { String::new() } else { format!("{initial}\n") };
         let _ = write!(stdout, "{shown}{prompt}").and_then(|()| stdout.flush());
         let started = Stopwatch::start();
-        let waiting = ctrl_c::at_plain_prompt();
+        let waiting = signals::at_plain_prompt();
         loop {
-            match self.lines.recv_timeout(crate::repl::LOOK) {
+            match self.lines.recv_timeout(crate::process::cancel::LOOK) {
                 Ok(Ok(mut text)) => {
                     let end = text.trim_end_matches(['\n', '\r']).len();
                     text.truncate(end);
@@ -418,7 +421,7 @@ fn leave(pending: &str, unwritten: usize, warned: &mut bool, how: &str, front: &
     }
     *warned = true;
     if pending.trim().is_empty() {
-        front.note(write_back::unwritten_note(unwritten, how));
+        front.note(unwritten_note(unwritten, how));
         return false;
     }
     let first = pending.lines().find(|line| !line.trim().is_empty()).unwrap_or_default().trim();
@@ -456,4 +459,46 @@ fn new_editor(color: bool) -> rustyline::Result<Editor<RayHelper, FileHistory>> 
     let mut editor = Editor::with_config(config)?;
     editor.set_helper(Some(RayHelper::new(color)));
     Ok(editor)
+}
+
+/// Runs one input of program text and prints what it did, or its error.
+/// `Err(())` tells the caller it failed (the session is unchanged).
+fn handle_input(
+    shell: &mut Shell,
+    front: &mut dyn FrontEnd,
+    name: &str,
+    text: &str,
+    line_offset: usize,
+) -> Result<(), ()> {
+    let result = shell.session.submit(name, text, line_offset);
+    report_input(shell, front, text, result)
+}
+
+/// The prompt shown while an input continues on a new line: `...sphere> `
+/// names the innermost construct still open, `...> ` when none is (a line
+/// that ended with an operator or a comma).
+fn continuation_prompt(pending: &str) -> String {
+    match open_constructs(pending).last() {
+        Some(open) => format!("...{open}> "),
+        None => "...> ".to_string(),
+    }
+}
+
+/// The note for leaving with `unwritten` typed inputs not written to a
+/// file, when `how` (Ctrl-D, `:quit`) asked to leave.
+fn unwritten_note(unwritten: usize, how: &str) -> String {
+    let (inputs, them) =
+        if unwritten == 1 { ("1 input is".to_string(), "it") } else { (format!("{unwritten} inputs are"), "them") };
+    format!("{inputs} not written to a file: `:write FILE.ray` keeps {them}; {how} again leaves without {them}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn continuation_prompt_names_the_innermost_open_construct() {
+        assert_eq!(continuation_prompt("put group sphere"), "...sphere> ");
+        assert_eq!(continuation_prompt("let x = 1 +"), "...> ");
+    }
 }

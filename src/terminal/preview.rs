@@ -6,7 +6,7 @@ use std::io::IsTerminal;
 
 use image::{DynamicImage, RgbImage};
 
-use crate::repl::{PreviewSize, Size};
+use crate::session::{PreviewSize, Size};
 
 /// Rows kept free under a preview: one for the message after it, one for the prompt.
 const ROWS_KEPT_FREE: u32 = 2;

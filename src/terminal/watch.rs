@@ -24,7 +24,7 @@ use notify_debouncer_full::notify::event::{AccessKind, AccessMode};
 use notify_debouncer_full::notify::{self, EventKind, RecommendedWatcher, RecursiveMode};
 use notify_debouncer_full::{DebounceEventResult, DebouncedEvent, Debouncer, RecommendedCache, new_debouncer};
 
-use crate::repl::{SaveWatcher, Waited};
+use crate::session::{SaveWatcher, Waited};
 
 /// How long the events of one save are gathered before it is reported.
 const SETTLE: Duration = Duration::from_millis(150);

@@ -18,7 +18,7 @@ use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use rayrepl::repl::SessionOptions;
+use rayrepl::session::SessionOptions;
 use rayrepl::terminal::run_typed;
 use serde_json::Value;
 use unicode_width::UnicodeWidthChar;

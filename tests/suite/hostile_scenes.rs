@@ -13,9 +13,10 @@ use glam::DVec3;
 use image::RgbImage;
 use proptest::prelude::*;
 use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, render};
-use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
 use rayrepl::scene::transform::rotation_matrix;
 use rayrepl::scene::{Primitive, Scene, Shape};
+use rayrepl::session::{RenderSettings, SessionOptions};
+use rayrepl::terminal::run_script;
 
 use crate::common::scenes::{light, material, scene};
 

@@ -3,7 +3,8 @@
 //! interactive session, and the lines after it run (issue 33, point 7).
 
 use assert_cmd::Command;
-use rayrepl::repl::{SessionOptions, run_script};
+use rayrepl::session::SessionOptions;
+use rayrepl::terminal::run_script;
 use rayrepl::terminal::run_typed;
 
 /// A sphere left without its `end`.

@@ -116,7 +116,7 @@ fn a_recursion_deeper_than_the_memory_allows_is_an_error_with_its_chain_of_calls
 
 #[test]
 fn an_endless_script_stops_at_the_limit_on_inputs_even_going_on_after_errors() {
-    use rayrepl::repl::MOST_INPUTS;
+    use rayrepl::session::MOST_INPUTS;
     let script = "let a = 1\n".repeat(MOST_INPUTS + 3);
     for args in [&[][..], &["--keep-going"][..]] {
         // The inputs the session keeps at the limit fit well under 1 GiB.
@@ -196,13 +196,13 @@ fn with_commas(n: usize) -> String {
 
 #[test]
 fn the_limits_are_documented_beside_the_others() {
-    use rayrepl::repl::MOST_INPUTS;
+    use rayrepl::session::MOST_INPUTS;
     let language = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/language.md")).expect("the docs");
     let limits = language.split_once("## 10. Limits").expect("section 10").1.split_once("\n## ").expect("its end").0;
     assert!(limits.contains(&format!("- **Nesting**: at most {} levels", with_commas(MAX_NESTING))));
     assert!(limits.contains(&format!("- **Inputs of a session**: at most {}", with_commas(MOST_INPUTS))));
     assert!(limits.contains("- **Stack**:"));
-    let help = include_str!("../../src/repl/help_pages/commands/limits.txt");
+    let help = include_str!("../../src/session/help_pages/commands/limits.txt");
     assert!(help.contains(&format!("nested at most {MAX_NESTING} levels")), "{help}");
     assert!(help.contains(&format!("at most {MOST_INPUTS}\n  inputs")), "{help}");
 }

@@ -8,7 +8,8 @@ use std::path::PathBuf;
 
 use assert_cmd::Command;
 use rayrepl::lint::Check;
-use rayrepl::repl::{SessionOptions, run_script};
+use rayrepl::session::SessionOptions;
+use rayrepl::terminal::run_script;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

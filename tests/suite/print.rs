@@ -6,7 +6,8 @@ use assert_cmd::Command;
 use predicates::prelude::*;
 use predicates::str::contains;
 use rayrepl::lang::eval::PRINT_LIMIT;
-use rayrepl::repl::{SessionOptions, run_script};
+use rayrepl::session::SessionOptions;
+use rayrepl::terminal::run_script;
 
 fn rayrepl() -> Command {
     Command::cargo_bin("rayrepl").expect("the binary is built")

@@ -9,7 +9,7 @@ use std::time::Duration;
 use expectrl::process::unix::WaitStatus;
 use expectrl::{Any, ControlCode, Eof, Expect, Session};
 use rayrepl::lang::Limits;
-use rayrepl::repl::SessionOptions;
+use rayrepl::session::SessionOptions;
 use rayrepl::terminal::run_typed;
 
 use crate::common::interrupt::{names_in, wait_for_a_write, wait_for_files};

@@ -6,7 +6,8 @@ use std::path::Path;
 
 use rayrepl::lang::{Interpreter, Limits, SourceMap, parse_file};
 use rayrepl::render::{RenderControl, RenderOptions, SceneGeometry, render};
-use rayrepl::repl::{RenderSettings, SessionOptions, run_script};
+use rayrepl::session::{RenderSettings, SessionOptions};
+use rayrepl::terminal::run_script;
 
 use crate::common::interrupt::{interrupt, names_in, wait_for_a_write, wait_for_files};
 

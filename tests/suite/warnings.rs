@@ -13,8 +13,9 @@ use glam::DVec3;
 use rayrepl::lang::eval::Origins;
 use rayrepl::lint::{Allowed, Check, Picture, check_scene};
 use rayrepl::render::{self, RenderControl, RenderOptions, SceneGeometry, Screen};
-use rayrepl::repl::{SessionOptions, run_script};
 use rayrepl::scene::Scene;
+use rayrepl::session::SessionOptions;
+use rayrepl::terminal::run_script;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -15,7 +15,7 @@ use std::time::Duration;
 use image::RgbImage;
 use rayrepl::lang::{Limits, SourceMap};
 use rayrepl::playback::Playback;
-use rayrepl::repl::{
+use rayrepl::session::{
     CellEnd, CellSession, Collected, FrontEnd, LessonVerdict, Output, RenderSettings, SessionOptions, TextRole,
 };
 use serde_json::{Value, json};

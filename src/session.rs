@@ -1,0 +1,53 @@
+//! The session core (SPEC 7) and piped scripts.
+//!
+//! A [`Session`] keeps one interpreter across inputs: items typed one at a
+//! time accumulate into one global environment and one scene, and an input
+//! that fails changes nothing. A [`Shell`] holds it with what a front-end
+//! keeps beside it (the lesson followed, the last picture). Inputs and
+//! commands hand what they show, as [`Output`] values, to the [`FrontEnd`]
+//! that drives them: piped scripts ([`run_script`]) write them as text
+//! through a [`Console`], the terminal session (`crate::terminal`) also
+//! previews their pictures, and [`Collected`] keeps them in a list.
+//!
+//! Commands (`:render`, `:save`, `:time`, ...) are defined once in the
+//! registry, `commands`, and run by the modules of their topic below it
+//! (`picture_commands`, `setting_commands`, `file_commands`, `inspect`,
+//! `session_commands`, `play`, `reload`, `write_back`, `lessons`).
+
+mod cells;
+pub(crate) mod commands;
+pub(crate) mod completion;
+mod describe;
+mod excerpt;
+pub(crate) mod file_commands;
+pub(crate) mod help;
+pub(crate) mod inputs;
+pub(crate) mod inspect;
+pub(crate) mod lessons;
+pub(crate) mod options;
+mod outcome;
+mod outputs;
+mod picture_commands;
+mod play;
+mod reload;
+mod render_steps;
+mod rendering;
+pub(crate) mod report;
+pub(crate) mod script;
+mod session_commands;
+mod setting_commands;
+pub(crate) mod shell;
+mod state;
+pub(crate) mod syntax;
+pub(crate) mod write_back;
+
+pub use crate::process::cancel::CancelSwitch;
+pub use cells::{CellEnd, CellSession, Completeness, Completions};
+pub use options::SessionOptions;
+pub use outputs::{
+    Collected, FrontEnd, LessonStep, LessonVerdict, Output, Picture, PixelExplanation, PreviewSize, SaveWatcher,
+    TextRole, Ticker, Waited, mark_pixel,
+};
+pub use rendering::{RenderSettings, Size};
+pub(crate) use state::Vocabulary;
+pub use state::{MOST_INPUTS, Session};
