@@ -95,7 +95,7 @@ pub static FLAGS: [Flag; 31] = [
     flag("anim", "--anim", |cli| cli.anim.is_some())
         .conflicts(NO_ANIMATION)
         .nothing_in_a_session("; there, `:anim FRAMES FILE` renders an animation"),
-    animation_flag("frames", "--frames", |cli| cli.frames.is_some()).conflicts(NO_ANIMATION),
+    animation_flag("frames", "--frames", |cli| cli.frames.is_some()),
     animation_flag("time_start", "--time-start", |cli| cli.timeline.time_start.is_some()),
     animation_flag("time_step", "--time-step", |cli| cli.timeline.time_step.is_some()),
     animation_flag("fps", "--fps", |cli| cli.fps.is_some()),
@@ -107,7 +107,7 @@ pub static FLAGS: [Flag; 31] = [
     flag("export_pov", "--export-pov", |cli| cli.export_pov.is_some()).nothing_in_a_session(""),
     flag("stats", "--stats", |cli| cli.stats).conflicts(&["check", "export_pov", "explain"]).nothing_in_a_session(""),
     flag("reference", "--reference", |cli| cli.reference).conflicts(&["check", "export_pov"]).nothing_in_a_session(""),
-    flag("quiet", "--quiet", |cli| cli.quiet).conflicts(&["check"]).nothing_in_a_session(""),
+    flag("quiet", "--quiet", |cli| cli.quiet).conflicts(&["check", "explain"]).nothing_in_a_session(""),
     flag("watch", "--watch", |cli| cli.watch)
         .conflicts(&["check", "export_pov", "explain"])
         .nothing_in_a_session("; there, `:watch FILE` follows a file"),
@@ -159,9 +159,10 @@ const fn flag(id: &'static str, name: &'static str, given: fn(&Cli) -> bool) -> 
     Flag { id, name, given, conflicts: &[], needs: Needs::Nothing, in_a_session: InASession::NotRefused }
 }
 
-/// A flag of an animation: it needs `--anim`.
+/// A flag of an animation: it needs `--anim`, and goes with no mode that
+/// renders something else.
 const fn animation_flag(id: &'static str, name: &'static str, given: fn(&Cli) -> bool) -> Flag {
-    flag(id, name, given).conflicts(&["check"]).needs(AN_ANIMATION).nothing_in_a_session("")
+    flag(id, name, given).conflicts(NO_ANIMATION).needs(AN_ANIMATION).nothing_in_a_session("")
 }
 
 impl Flag {
