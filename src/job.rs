@@ -1,5 +1,5 @@
 //! The command line turned into a job, in one step: which flags go together
-//! is decided here, and the settings, limits and outputs are resolved and
+//! is decided here (by the table of `cli::flags`), and the settings, limits and outputs are resolved and
 //! checked before any work, so that what runs the job (`app`) reads only
 //! what this step gives it, never the flags.
 
@@ -449,6 +449,8 @@ mod tests {
     use clap::Parser;
 
     use super::*;
+    use crate::cli::flags::tests::example;
+    use crate::cli::flags::{Flag, InASession, Needs};
     use crate::lint::Check;
     use crate::playback::Timeline;
     use crate::render::Screen;
@@ -588,6 +590,57 @@ mod tests {
         for (args, said) in cases {
             let misuse = job(args).expect_err("a misuse");
             assert!(matches!(&misuse, JobError::Misuse(message) if message.contains(said)), "{args:?}: {misuse}");
+        }
+    }
+
+    /// The job of `rayrepl`, `before`, then `flags` given as the table's tests give them.
+    fn job_with(before: &[&str], flags: &[&Flag]) -> Result<Job, JobError> {
+        let args: Vec<&str> = before.iter().copied().chain(flags.iter().flat_map(|flag| example(flag))).collect();
+        job(&args)
+    }
+
+    /// The misuse `result` says, if it says one.
+    fn misuse_of(result: Result<Job, JobError>) -> Option<String> {
+        match result {
+            Err(JobError::Misuse(message)) => Some(message),
+            _ => None,
+        }
+    }
+
+    #[test]
+    fn each_flag_that_would_do_nothing_is_refused_in_the_words_of_the_table() {
+        for flag in &FLAGS {
+            let (name, alone) = (flag.name, misuse_of(job_with(&["a.ray"], &[flag])));
+            match flag.needs {
+                Needs::Nothing => assert_eq!(alone, None, "{name}"),
+                Needs::OneOf { flags, words, .. } => {
+                    assert_eq!(alone, Some(format!("{name} {words}")));
+                    for other in flags.iter().map(|id| flag_with_id(id)) {
+                        assert_eq!(misuse_of(job_with(&["a.ray"], &[flag, other])), None, "{name} {}", other.name);
+                    }
+                }
+                Needs::NoneOf { flags, words } => {
+                    assert_eq!(alone, None, "{name}");
+                    for other in flags.iter().map(|id| flag_with_id(id)) {
+                        let refused = misuse_of(job_with(&["a.ray"], &[flag, other]));
+                        assert_eq!(refused, Some(format!("{name} {words}")), "{name} {}", other.name);
+                    }
+                }
+            }
+            let in_a_session = match (flag.in_a_session, flag.needs) {
+                (InASession::DoesNothing { instead }, _) => {
+                    let with_dash_i = format!("{name} does nothing in a session (-i starts a session){instead}");
+                    assert_eq!(misuse_of(job_with(&["-i", "a.ray"], &[flag])), Some(with_dash_i));
+                    Some(format!(
+                        "{name} does nothing in a session (without a scene file, rayrepl starts a session){instead}"
+                    ))
+                }
+                (InASession::NotRefused, Needs::OneOf { or_a_session: false, words, .. }) => {
+                    Some(format!("{name} {words}"))
+                }
+                (InASession::NotRefused, _) => None,
+            };
+            assert_eq!(misuse_of(job_with(&[], &[flag])), in_a_session, "{name} in a session");
         }
     }
 

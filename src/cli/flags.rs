@@ -216,3 +216,97 @@ pub fn with_conflicts(arg: Arg) -> Arg {
         None => arg,
     }
 }
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use std::collections::BTreeSet;
+
+    use clap::error::ErrorKind;
+    use clap::{CommandFactory, Parser};
+
+    use super::*;
+
+    /// A value for each flag of the table that takes one.
+    const VALUES: [(&str, &str); 20] = [
+        ("output", "x.png"),
+        ("anim", "3"),
+        ("frames", "1..2"),
+        ("time_start", "2"),
+        ("time_step", "2"),
+        ("fps", "10"),
+        ("loops", "2"),
+        ("export_pov", "x.pov"),
+        ("explain", "1,1"),
+        ("time", "2"),
+        ("lesson", "1"),
+        ("width", "8"),
+        ("height", "8"),
+        ("depth", "2"),
+        ("samples", "4"),
+        ("screen", "bottom"),
+        ("threads", "2"),
+        ("allow", "colours"),
+        ("max_calls", "7"),
+        ("max_primitives", "7"),
+    ];
+
+    /// `flag` as given on the command line, with a value if it takes one.
+    pub(crate) fn example(flag: &Flag) -> Vec<&'static str> {
+        let value = VALUES.iter().find(|(id, _)| *id == flag.id).map(|(_, value)| *value);
+        [flag.name].into_iter().chain(value).collect()
+    }
+
+    /// The command line `rayrepl a.ray` followed by `flags`, as parsed.
+    fn parse(flags: &[&Flag]) -> Result<Cli, clap::Error> {
+        let args = flags.iter().flat_map(|flag| example(flag));
+        Cli::try_parse_from(["rayrepl", "a.ray"].into_iter().chain(args))
+    }
+
+    #[test]
+    fn every_flag_of_the_command_line_has_one_row_and_its_name() {
+        let command = Cli::command();
+        let flags: Vec<_> = command.get_arguments().filter(|arg| !arg.is_positional()).collect();
+        let ids: BTreeSet<&str> = flags.iter().map(|arg| arg.get_id().as_str()).collect();
+        let rows: BTreeSet<&str> = FLAGS.iter().map(|flag| flag.id).collect();
+        assert_eq!(rows.len(), FLAGS.len(), "a flag has two rows");
+        assert_eq!(rows, ids, "each flag of `Cli` has its row in FLAGS, in the order it is checked");
+        for arg in flags {
+            let row = flag_with_id(arg.get_id().as_str());
+            let long = arg.get_long().map(|long| format!("--{long}"));
+            let short = arg.get_short().map(|short| format!("-{short}"));
+            assert!([long, short].contains(&Some(row.name.to_string())), "{} is not named {}", row.id, row.name);
+        }
+        for flag in &FLAGS {
+            let named = match flag.needs {
+                Needs::Nothing => &[][..],
+                Needs::OneOf { flags, .. } | Needs::NoneOf { flags, .. } => flags,
+            };
+            for id in flag.conflicts.iter().chain(named) {
+                assert!(rows.contains(id), "{} names `{id}`, which has no row", flag.id);
+            }
+        }
+    }
+
+    #[test]
+    fn given_says_whether_the_command_line_gives_each_flag() {
+        let none = parse(&[]).expect("a scene alone parses");
+        for flag in &FLAGS {
+            let cli = parse(&[flag]).unwrap_or_else(|error| panic!("{}: give it a value in VALUES: {error}", flag.id));
+            assert!((flag.given)(&cli), "{} given", flag.id);
+            assert!(!(flag.given)(&none), "{} not given", flag.id);
+        }
+    }
+
+    #[test]
+    fn clap_refuses_each_pair_the_table_lists_as_conflicts() {
+        for flag in &FLAGS {
+            for other in flag.conflicts.iter().map(|id| flag_with_id(id)) {
+                for pair in [[flag, other], [other, flag]] {
+                    let error = parse(&pair).expect_err("refused");
+                    assert_eq!(error.kind(), ErrorKind::ArgumentConflict, "{} {}: {error}", pair[0].id, pair[1].id);
+                    assert!(error.to_string().contains("cannot be used with"), "{error}");
+                }
+            }
+        }
+    }
+}
