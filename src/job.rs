@@ -1,7 +1,7 @@
 //! The command line turned into a job, in one step: which flags go together
-//! is decided here (by the table of `cli::flags`), and the settings, limits and outputs are resolved and
-//! checked before any work, so that what runs the job (`app`) reads only
-//! what this step gives it, never the flags.
+//! is decided here (from the table of `cli::flags`), and the settings,
+//! limits and outputs are resolved and checked before any work, so that what
+//! runs the job (`app`) reads only what this step gives it, never the flags.
 
 use std::fmt;
 use std::io::IsTerminal;
