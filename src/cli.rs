@@ -1,5 +1,8 @@
-//! The command line: clap definitions and the original course's spellings.
-//! `job` turns what they parse into the job to run.
+//! The command line: clap definitions and the original course's spellings;
+//! which flags go together is in [`flags`]. `job` turns what they parse into
+//! the job to run.
+
+pub mod flags;
 
 use std::ffi::OsString;
 use std::ops::RangeInclusive;
@@ -22,6 +25,7 @@ use crate::settings::{self, DEFAULTS, DEPTH, FRAMES, HEIGHT, SAMPLES, THREADS, W
 /// standard input, runs the script it carries.
 #[derive(Debug, Clone, Parser)]
 #[command(name = "rayrepl", version, after_help = AFTER_HELP, args_conflicts_with_subcommands = true)]
+#[command(mut_args = flags::with_conflicts)]
 pub struct Cli {
     /// A command other than rendering: `compare`, `fmt`, `lsp`, `jupyter`.
     #[command(subcommand)]
@@ -35,7 +39,7 @@ pub struct Cli {
     pub output: Option<PathBuf>,
 
     /// Parse and evaluate only, then print what the scene holds.
-    #[arg(long, conflicts_with_all = RENDER_ONLY)]
+    #[arg(long)]
     pub check: bool,
 
     /// Load the scene into an interactive session instead of rendering it.
@@ -61,7 +65,7 @@ pub struct Cli {
     pub adaptive: bool,
 
     /// Ground-truth render for error measurements: 256 stratified samples per pixel, no shortcuts.
-    #[arg(long, conflicts_with_all = ["samples", "adaptive"])]
+    #[arg(long)]
     pub reference: bool,
 
     /// Where the z axis meets the screen: its centre (default) or the middle of its bottom edge.
@@ -101,7 +105,7 @@ pub struct Cli {
     pub apng: bool,
 
     /// Write the scene evaluated at --time as a POV-Ray 3.7 scene file instead of rendering it (`-`: to stdout).
-    #[arg(long, value_name = "OUT.pov", conflicts_with_all = ["output", "check", "watch", "anim", "frames", "samples", "adaptive", "reference", "stats", "explain", "threads", "screen"])]
+    #[arg(long, value_name = "OUT.pov")]
     pub export_pov: Option<PathBuf>,
 
     /// The evaluator's limits.
@@ -110,7 +114,7 @@ pub struct Cli {
 
     /// Render again each time the scene file is saved, until Ctrl-C: shown in the terminal, and written to -o FILE
     /// if given. A version with an error is reported and the last good picture stays.
-    #[arg(long, conflicts_with_all = ["anim", "frames"])]
+    #[arg(long)]
     pub watch: bool,
 
     /// Interactive session (or --watch): no pictures in the terminal.
@@ -127,7 +131,7 @@ pub struct Cli {
 
     /// Explain the colour of pixel X,Y (from the left and from the top) instead of writing an image: what the
     /// camera ray met and which `put` and calls placed it, each light's part, the reflections, and the bytes.
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, conflicts_with_all = ["output", "anim", "frames", "watch", "stats"])]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
     pub explain: Option<(u32, u32)>,
 
     /// With --explain: print the explanation as one JSON object. With --check: print each diagnostic as one
@@ -392,15 +396,6 @@ impl TimelineFlags {
             step: self.time_step.unwrap_or(Timeline::DEFAULT.step),
         }
     }
-
-    /// The flag given, if any: they are for an animation only.
-    pub fn given(&self) -> Option<&'static str> {
-        match (self.time_start, self.time_step) {
-            (Some(_), _) => Some("--time-start"),
-            (None, Some(_)) => Some("--time-step"),
-            (None, None) => None,
-        }
-    }
 }
 
 /// The evaluator's limits.
@@ -421,30 +416,6 @@ impl LimitFlags {
         Limits { max_call_depth: self.max_calls, max_primitives: self.max_primitives, ..Limits::DEFAULT }
     }
 }
-
-/// The flags that only matter when an image is rendered, which `--check` does not do.
-const RENDER_ONLY: [&str; 20] = [
-    "output",
-    "watch",
-    "quiet",
-    "width",
-    "height",
-    "depth",
-    "samples",
-    "adaptive",
-    "reference",
-    "screen",
-    "stats",
-    "anim",
-    "frames",
-    "time_start",
-    "time_step",
-    "fps",
-    "loops",
-    "apng",
-    "explain",
-    "threads",
-];
 
 /// The two screen conventions of SPEC 5.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

@@ -1,7 +1,7 @@
 //! The command line turned into a job, in one step: which flags go together
-//! is decided here, and the settings, limits and outputs are resolved and
-//! checked before any work, so that what runs the job (`app`) reads only
-//! what this step gives it, never the flags.
+//! is decided here (from the table of `cli::flags`), and the settings,
+//! limits and outputs are resolved and checked before any work, so that what
+//! runs the job (`app`) reads only what this step gives it, never the flags.
 
 use std::fmt;
 use std::io::IsTerminal;
@@ -14,6 +14,7 @@ mod formatting;
 pub use compare::{GradingJob, Report};
 pub use formatting::{Formatted, FormattingJob};
 
+use crate::cli::flags::{FLAGS, flag_with_id};
 use crate::cli::{Cli, Command};
 use crate::lang::Limits;
 use crate::lint::{Allowed, Picture};
@@ -381,65 +382,27 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
 }
 
 /// A flag that would do nothing with the others given, said in words, or
-/// a setting out of its limits. (clap refuses the pairs that conflict
-/// whatever their values: `conflicts_with` in `cli`.)
+/// a setting out of its limits. Which flags go together is the table of
+/// `cli::flags` (clap has already refused the pairs it lists as conflicts);
+/// the rules here depend on the values given.
 fn misuse(cli: &Cli) -> Option<String> {
-    if cli.json && !cli.check && cli.explain.is_none() {
-        return Some("--json is for --check (the diagnostics) and --explain X,Y (the explanation)".into());
+    let session = scene_path(cli).is_none().then_some(if cli.interactive {
+        "-i starts a session"
+    } else {
+        "without a scene file, rayrepl starts a session"
+    });
+    let given = |id: &str| (flag_with_id(id).given)(cli);
+    if let Some(misuse) = FLAGS.iter().find_map(|flag| flag.misuse(&given, session)) {
+        return Some(misuse);
     }
-    let animation_flags = [
-        (cli.frames.is_some(), "--frames"),
-        (cli.timeline.given().is_some(), cli.timeline.given().unwrap_or_default()),
-        (cli.fps.is_some(), "--fps"),
-        (cli.loops.is_some(), "--loop"),
-        (cli.apng, "--apng"),
-    ];
-    let animation_flag = animation_flags.into_iter().find_map(|(given, flag)| given.then_some(flag));
-    let session_flags = [
-        (cli.output.is_some(), "-o", "; there, `:save FILE` and `:anim FRAMES FILE` write images"),
-        (cli.anim.is_some(), "--anim", "; there, `:anim FRAMES FILE` renders an animation"),
-        (animation_flag.is_some(), animation_flag.unwrap_or_default(), ""),
-        (cli.check, "--check", "; there, `:scene` tells what the scene holds"),
-        (cli.export_pov.is_some(), "--export-pov", ""),
-        (cli.stats, "--stats", ""),
-        (cli.reference, "--reference", ""),
-        (cli.quiet, "--quiet", ""),
-        (cli.watch, "--watch", "; there, `:watch FILE` follows a file"),
-        (cli.explain.is_some(), "--explain", "; there, `:pick X Y` explains a pixel of the last picture"),
-    ];
-    if scene_path(cli).is_none() {
-        let (_, flag, instead) = session_flags.into_iter().find(|(given, _, _)| *given)?;
-        let why =
-            if cli.interactive { "-i starts a session" } else { "without a scene file, rayrepl starts a session" };
-        return Some(format!("{flag} does nothing in a session ({why}){instead}"));
-    }
-    if let Some(flag) = animation_flag.filter(|_| cli.anim.is_none()) {
-        return Some(for_an_animation(flag));
-    }
-    if cli.adaptive && cli.picture.samples <= 1 {
-        return Some("--adaptive gives more samples to some pixels: give --samples N too, with N > 1".into());
-    }
-    if cli.time.is_some() && cli.anim.is_some() {
-        return Some(time_with_an_animation());
+    if session.is_some() {
+        return None;
     }
     if cli.watch && cli.scene.as_deref() == Some(Path::new("-")) {
         return Some("--watch follows a file as it is saved: give its name, not `-`".into());
     }
     if cli.watch && cli.output.as_deref() == Some(Path::new("-")) {
         return Some("--watch writes an image at every save: give -o a file name, not `-`".into());
-    }
-    if cli.no_preview && !cli.watch {
-        return Some(
-            "--no-preview is for the interactive session (`rayrepl` or `rayrepl -i scene.ray`) and --watch".into(),
-        );
-    }
-    if cli.lesson.is_some() && scene_path(cli).is_some() {
-        return Some(
-            "--lesson is for the session (`rayrepl --lesson 1`, or `rayrepl -i scene.ray --lesson FILE`)".into(),
-        );
-    }
-    if cli.keep_going {
-        return Some("--keep-going is for a script on standard input (`rayrepl --keep-going < script`)".into());
     }
     if let Some((x, y)) = cli.explain
         && (x >= cli.picture.width || y >= cli.picture.height)
@@ -453,18 +416,6 @@ fn misuse(cli: &Cli) -> Option<String> {
         ));
     }
     settings(cli).validate().err().map(|error| error.to_string())
-}
-
-/// Why `flag` needs `--anim`.
-fn for_an_animation(flag: &str) -> String {
-    format!("{flag} is for an animation: give --anim N too")
-}
-
-/// Why `--time` does not go with `--anim`.
-fn time_with_an_animation() -> String {
-    "--time sets the time of one image; frame k of an animation has time = k, \
-     or A + (k - 1) * S with --time-start A --time-step S"
-        .into()
 }
 
 /// The task `rayrepl jupyter` asks for.
@@ -498,6 +449,8 @@ mod tests {
     use clap::Parser;
 
     use super::*;
+    use crate::cli::flags::tests::example;
+    use crate::cli::flags::{Flag, InASession, Needs};
     use crate::lint::Check;
     use crate::playback::Timeline;
     use crate::render::Screen;
@@ -637,6 +590,57 @@ mod tests {
         for (args, said) in cases {
             let misuse = job(args).expect_err("a misuse");
             assert!(matches!(&misuse, JobError::Misuse(message) if message.contains(said)), "{args:?}: {misuse}");
+        }
+    }
+
+    /// The job of `rayrepl`, `before`, then `flags` given as the table's tests give them.
+    fn job_with(before: &[&str], flags: &[&Flag]) -> Result<Job, JobError> {
+        let args: Vec<&str> = before.iter().copied().chain(flags.iter().flat_map(|flag| example(flag))).collect();
+        job(&args)
+    }
+
+    /// The misuse `result` says, if it says one.
+    fn misuse_of(result: Result<Job, JobError>) -> Option<String> {
+        match result {
+            Err(JobError::Misuse(message)) => Some(message),
+            _ => None,
+        }
+    }
+
+    #[test]
+    fn each_flag_that_would_do_nothing_is_refused_in_the_words_of_the_table() {
+        for flag in &FLAGS {
+            let (name, alone) = (flag.name, misuse_of(job_with(&["a.ray"], &[flag])));
+            match flag.needs {
+                Needs::Nothing => assert_eq!(alone, None, "{name}"),
+                Needs::OneOf { flags, words, .. } => {
+                    assert_eq!(alone, Some(format!("{name} {words}")));
+                    for other in flags.iter().map(|id| flag_with_id(id)) {
+                        assert_eq!(misuse_of(job_with(&["a.ray"], &[flag, other])), None, "{name} {}", other.name);
+                    }
+                }
+                Needs::NoneOf { flags, words } => {
+                    assert_eq!(alone, None, "{name}");
+                    for other in flags.iter().map(|id| flag_with_id(id)) {
+                        let refused = misuse_of(job_with(&["a.ray"], &[flag, other]));
+                        assert_eq!(refused, Some(format!("{name} {words}")), "{name} {}", other.name);
+                    }
+                }
+            }
+            let in_a_session = match (flag.in_a_session, flag.needs) {
+                (InASession::DoesNothing { instead }, _) => {
+                    let with_dash_i = format!("{name} does nothing in a session (-i starts a session){instead}");
+                    assert_eq!(misuse_of(job_with(&["-i", "a.ray"], &[flag])), Some(with_dash_i));
+                    Some(format!(
+                        "{name} does nothing in a session (without a scene file, rayrepl starts a session){instead}"
+                    ))
+                }
+                (InASession::NotRefused, Needs::OneOf { or_a_session: false, words, .. }) => {
+                    Some(format!("{name} {words}"))
+                }
+                (InASession::NotRefused, _) => None,
+            };
+            assert_eq!(misuse_of(job_with(&[], &[flag])), in_a_session, "{name} in a session");
         }
     }
 

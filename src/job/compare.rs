@@ -4,8 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{JobError, for_an_animation, time_with_an_animation};
+use super::JobError;
 use crate::cli::CompareArgs;
+use crate::cli::flags::flag_with_id;
 use crate::compare::{Frames, Grading, Tolerances};
 use crate::output;
 use crate::settings::{DEFAULTS, RenderSettings};
@@ -38,13 +39,27 @@ pub enum Report {
     Csv,
 }
 
+/// The flags of `compare` that share the rules of the command line's own
+/// (`cli::flags`), in the order they are checked.
+const SHARED_FLAGS: [&str; 3] = ["time", "time_start", "time_step"];
+
+/// A flag of [`SHARED_FLAGS`] that would do nothing with the others given,
+/// said in the words of `cli::flags`.
+fn misuse(args: &CompareArgs) -> Option<String> {
+    let given = |id: &str| match id {
+        "time" => args.time.is_some(),
+        "anim" => args.anim.is_some(),
+        "time_start" => args.timeline.time_start.is_some(),
+        "time_step" => args.timeline.time_step.is_some(),
+        _ => false,
+    };
+    SHARED_FLAGS.iter().find_map(|id| flag_with_id(id).misuse(&given, None))
+}
+
 /// The grading job `args` ask for, or why there is none.
 pub(super) fn grading_job(args: &CompareArgs) -> Result<GradingJob, JobError> {
-    if args.time.is_some() && args.anim.is_some() {
-        return Err(JobError::Misuse(time_with_an_animation()));
-    }
-    if let Some(flag) = args.timeline.given().filter(|_| args.anim.is_none()) {
-        return Err(JobError::Misuse(for_an_animation(flag)));
+    if let Some(misuse) = misuse(args) {
+        return Err(JobError::Misuse(misuse));
     }
     let picture = &args.picture;
     let time = args.time.unwrap_or(DEFAULTS.time);
