@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How long Ctrl-C takes to give the prompt back during the `:load` of a
-large file (issue 35, point 6b): BENCHMARKS.md, "Ctrl-C during a long
-:load".
+large file (issue 35, point 6b): docs/perf/interrupts.md, "Ctrl-C during
+the `:load` of 100 MB".
 
     python3 benches/interrupt/load.py BINARY [RUNS] [MB]
 

@@ -1,6 +1,6 @@
 """How the notebook kernel compares with a piped script on the same input,
 how fast it starts, and whether its memory grows over many cells
-(BENCHMARKS.md, "The notebook kernel").
+(docs/perf/front-ends.md, "The notebook kernel").
 
     target/jupyter-venv/bin/python benches/jupyter/latency.py [target/release/rayrepl] [rounds] [cells]
 

@@ -1,5 +1,5 @@
 """How fast `rayrepl lsp` answers on a 10,000-line file, and whether its
-memory stays flat over many edits (BENCHMARKS.md, "The language server").
+memory stays flat over many edits (docs/perf/front-ends.md, "The language server").
 
     python3 benches/lsp/latency.py [target/release/rayrepl] [edits]
 

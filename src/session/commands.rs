@@ -580,11 +580,11 @@ mod tests {
         assert_eq!(help::suggestion("spehre", &pages), Some("sphere"));
     }
 
-    /// The README's table of commands: its first column.
+    /// The guide's table of commands (docs/guide/terminal.md): its first column.
     fn readme_commands() -> Vec<String> {
-        let readme = include_str!("../../README.md");
+        let readme = include_str!("../../docs/guide/terminal.md");
         let table =
-            readme.split_once("| command | what it does | example |").expect("the README has a table of commands").1;
+            readme.split_once("| command | what it does | example |").expect("the guide has a table of commands").1;
         let rows = table.lines().skip(2).take_while(|line| line.starts_with('|'));
         rows.map(|row| row.split(" | ").next().unwrap_or_default().to_string()).collect()
     }
@@ -595,13 +595,13 @@ mod tests {
         for command in COMMANDS {
             assert!(
                 first_column.contains(&format!("`{}", command.topic.name)),
-                "`{}` missing from the README's table",
+                "`{}` missing from the guide's table",
                 command.topic.name
             );
         }
         for named in first_column.split('`').skip(1).step_by(2) {
             let name = named.split_whitespace().next().unwrap_or_default();
-            assert!(find(name).is_some(), "the README's table names `{name}`, which is no command");
+            assert!(find(name).is_some(), "the guide's table names `{name}`, which is no command");
         }
     }
 }

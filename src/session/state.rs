@@ -759,12 +759,12 @@ mod tests {
     #[test]
     fn the_help_and_the_docs_give_the_number_of_versions_kept() {
         let undo = include_str!("help_pages/commands/undo.txt").split_whitespace().collect::<Vec<_>>().join(" ");
-        let readme = include_str!("../../README.md");
+        let readme = include_str!("../../docs/guide/terminal.md");
         let language = include_str!("../../docs/language.md").split_whitespace().collect::<Vec<_>>().join(" ");
         let said = format!("the last {MOST_VERSIONS_UNDONE} ");
         for (text, name) in [
             (&undo.to_lowercase(), "the help of :undo"),
-            (&readme.to_string(), "the README"),
+            (&readme.to_string(), "docs/guide/terminal.md"),
             (&language, "docs/language.md"),
         ] {
             assert!(text.contains(&said), "{name} does not say {said:?}");

@@ -281,8 +281,8 @@ proptest! {
 }
 
 #[test]
-fn the_readmes_example_is_the_formatters() {
-    let readme = std::fs::read_to_string(repository().join("README.md")).expect("the README");
+fn the_guides_example_is_the_formatters() {
+    let readme = std::fs::read_to_string(repository().join("docs/guide/batch.md")).expect("the guide");
     let section = &readme[readme.find("## Formatting").expect("a section on formatting")..];
     let example = &section[..section.find("\n```\n").expect("the example ends")];
     let shown = |after: &str, until: &str| {

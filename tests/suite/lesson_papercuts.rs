@@ -133,12 +133,18 @@ fn fenced_blocks(markdown: &str) -> Vec<String> {
 }
 
 #[test]
-fn the_readmes_missing_end_message_is_the_programs() {
-    let readme = read("README.md");
-    let sample = fenced_blocks(&readme)
+fn the_missing_end_message_the_docs_show_is_the_programs() {
+    for document in ["README.md", "docs/guide/errors.md"] {
+        the_missing_end_message_is_the_programs(document);
+    }
+}
+
+fn the_missing_end_message_is_the_programs(document: &str) {
+    let text = read(document);
+    let sample = fenced_blocks(&text)
         .into_iter()
         .find(|block| block.starts_with("error: expected `end`"))
-        .expect("the README shows a missing `end`");
+        .unwrap_or_else(|| panic!("{document} shows a missing `end`"));
     // The scene the sample shows: its lines 3 and 4, after a camera and an ambient light.
     let shown = |number: &str| {
         let prefix = format!("{number} | ");
@@ -150,7 +156,7 @@ fn the_readmes_missing_end_message_is_the_programs() {
     std::fs::write(dir.path().join("scene.ray"), text).expect("scene written");
     let output = rayrepl().current_dir(dir.path()).args(["--check", "scene.ray"]).output().expect("runs");
     assert_eq!(output.status.code(), Some(1));
-    assert_eq!(String::from_utf8_lossy(&output.stderr), sample);
+    assert_eq!(String::from_utf8_lossy(&output.stderr), sample, "{document}");
 }
 
 #[test]
@@ -159,8 +165,10 @@ fn every_allow_name_the_documents_suggest_is_accepted() {
     let path = dir.path().join("scene.ray");
     std::fs::write(&path, SCENE).expect("scene written");
     let mut names = Vec::new();
-    for document in ["README.md", "docs/language.md"] {
-        let text = read(document);
+    let guide = std::fs::read_dir(root().join("docs/guide")).expect("the guide");
+    let chapters = guide.map(|entry| format!("docs/guide/{}", entry.expect("a chapter").file_name().to_string_lossy()));
+    for document in ["README.md".to_string(), "docs/language.md".to_string()].into_iter().chain(chapters) {
+        let text = read(&document);
         for (at, _) in text.match_indices("rayrepl --allow ") {
             let rest = &text[at + "rayrepl --allow ".len()..];
             let name: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '-').collect();

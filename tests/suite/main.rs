@@ -12,6 +12,7 @@ mod closed_streams;
 mod compare;
 mod deep;
 mod diagnostics;
+mod docs;
 mod eval;
 mod explain;
 mod fmt;

@@ -1,4 +1,4 @@
-//! Spreading an animation over processes, as the README shows it: GNU
+//! Spreading an animation over processes, as the guide shows it: GNU
 //! parallel runs several `rayrepl --frames A..B` at once, and the frames
 //! they write are byte for byte those of one run. Skipped, saying so, when
 //! `parallel` is not installed.
@@ -40,7 +40,7 @@ fn frames_split_over_processes_by_gnu_parallel_equal_one_run() {
         .status()
         .expect("sh runs");
     assert!(single.success());
-    // The README's command: four jobs of three frames, at most four at once.
+    // The guide's command (docs/guide/scale-out.md): four jobs of three frames, at most four at once.
     let jobs = format!(
         "seq 0 3 | parallel -j 4 \"'{}' '{}' {common} --frames \\$(({{}}*3+1))..\\$(({{}}*3+3)) -o '{}/solar.png'\"",
         rayrepl.display(),

@@ -4,7 +4,7 @@
 //! during a `:write` of a large session, while the output folder is
 //! checked, and while a write blocks on a reader that does not read. Each
 //! test sends a real signal with `kill`; a run that does not end is killed
-//! after a generous wait and the test fails (the 0.1 s the README promises
+//! after a generous wait and the test fails (the 0.1 s the guide promises
 //! is measured by hand, not here, so that a busy machine cannot fail it).
 
 use std::io::Write;

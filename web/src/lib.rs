@@ -214,8 +214,8 @@ impl Reply {
         self.end.to_string()
     }
 
-    /// The outputs, as a JSON list of objects with a `kind` (README, "In
-    /// the browser", lists them).
+    /// The outputs, as a JSON list of objects with a `kind` (`describe`
+    /// below gives each kind).
     #[wasm_bindgen(getter)]
     pub fn outputs(&self) -> String {
         self.outputs.clone()

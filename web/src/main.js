@@ -1,8 +1,8 @@
 // The playground page: the editor, the picture, the controls, the
 // diagnostics, the explanations of pixels, the lessons and the share
 // links. What the session core does runs in a worker (worker.js); this
-// file shows its outputs. The hooks of `window.rayrepl` are the README's
-// ("In the browser").
+// file shows its outputs. The hooks of `window.rayrepl` are the guide's
+// (docs/guide/playground.md).
 
 import { defaultKeymap, history as undoHistory, historyKeymap, indentWithTab } from "@codemirror/commands";
 import { setDiagnostics, lintGutter } from "@codemirror/lint";
@@ -446,7 +446,7 @@ async function checkLesson() {
   showLesson(reply);
 }
 
-// The hooks for tests and other pages (README, "In the browser").
+// The hooks for tests and other pages (docs/guide/playground.md).
 window.rayrepl = {
   load,
   link,

@@ -1,4 +1,4 @@
-// The playground's numbers (BENCHMARKS.md, "The browser playground"): the
+// The playground's numbers (docs/perf/front-ends.md, "The browser playground"): the
 // render of scenarios/solar.ray at 640x480 in headless Chromium, by one
 // worker and by the page's band workers, against the native binary on one
 // thread, the time to the first picture, and
