@@ -3,7 +3,7 @@
  *
  * It follows grammar/scene.lalrpop (the grammar rayrepl parses with) rule
  * for rule; its keywords are those of the words table (src/lang/words.rs), which a
- * unit test checks (src/lang/words/tree_sitter.rs); strings are in single
+ * test checks (tools/generate/src/tree_sitter.rs); strings are in single
  * quotes, and comments have none, for that test. After a change here:
  * `tree-sitter generate` in this folder, and commit src/ with it.
  */

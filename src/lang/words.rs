@@ -7,11 +7,7 @@ use std::fmt;
 
 use super::token::Token;
 
-pub mod codemirror;
 pub mod highlight;
-pub mod pygments;
-pub mod textmate;
-pub mod tree_sitter;
 
 /// The part a keyword plays in the grammar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -327,22 +323,6 @@ impl fmt::Display for Token {
     }
 }
 
-/// Checks that the file at `path` (from the crate's root), generated from
-/// the table, holds `generated`; with `RAYREPL_BLESS` set, writes it first.
-/// `tests` is the filter of the tests that do this, for the message.
-#[cfg(test)]
-fn assert_generated(path: &str, generated: &str, tests: &str) {
-    let path_on_disk = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
-    if std::env::var_os("RAYREPL_BLESS").is_some() {
-        std::fs::write(&path_on_disk, generated).expect("the generated file is written");
-    }
-    let committed = std::fs::read_to_string(&path_on_disk).unwrap_or_default();
-    assert!(
-        committed == generated,
-        "{path} is not what the words table makes: RAYREPL_BLESS=1 cargo test --release --lib {tests}"
-    );
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -368,36 +348,30 @@ mod tests {
         assert_eq!(with_role(Texture).collect::<Vec<_>>(), ["kd", "ks", "phong", "color"]);
     }
 
-    /// The class of a word of each class, and what the TextMate grammar and
-    /// the Pygments lexer give it (the words from elsewhere are names).
+    /// The class of a word of each class (the words from elsewhere are
+    /// names); tools/generate checks what each highlighter gives a class.
     #[test]
-    fn highlighters_by_class() {
+    fn classes_of_words() {
         use highlight::Class::*;
         let rows = [
-            ("if", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
-            ("else", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
-            ("end", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
-            ("proc", Some(Control), Some("keyword.control.ray"), Some("Keyword")),
-            ("camera", Some(Definition), Some("storage.type.ray"), Some("Keyword.Declaration")),
-            ("put", Some(Instruction), Some("keyword.other.instruction.ray"), Some("Keyword.Reserved")),
-            ("box", Some(Shape), Some("support.type.shape.ray"), Some("Keyword.Type")),
-            (
-                "group",
-                Some(Transformation),
-                Some("support.type.transformation.ray"),
-                Some("Keyword.Type.Transformation"),
-            ),
-            ("radius", Some(Part), Some("keyword.other.part.ray"), Some("Name.Attribute")),
-            ("phong", Some(Texture), Some("keyword.other.texture.ray"), Some("Name.Attribute.Texture")),
-            ("sqrt", Some(Function), Some("support.function.ray"), Some("Name.Builtin")),
-            ("pi", Some(Constant), Some("constant.language.ray"), Some("Keyword.Constant")),
-            ("time", Some(Predefined), Some("variable.language.ray"), Some("Name.Builtin.Pseudo")),
-            ("colour", None, None, None),
+            ("if", Some(Control)),
+            ("else", Some(Control)),
+            ("end", Some(Control)),
+            ("proc", Some(Control)),
+            ("camera", Some(Definition)),
+            ("put", Some(Instruction)),
+            ("box", Some(Shape)),
+            ("group", Some(Transformation)),
+            ("radius", Some(Part)),
+            ("phong", Some(Texture)),
+            ("sqrt", Some(Function)),
+            ("pi", Some(Constant)),
+            ("time", Some(Predefined)),
+            ("colour", None),
         ];
-        for (text, class, scope, token_type) in rows {
+        for (text, class) in rows {
             let word = lookup(text).expect("a word of the table");
-            let given = (highlight::class(word), textmate::scope(word), pygments::token_type(word));
-            assert_eq!(given, (class, scope, token_type), "`{text}`");
+            assert_eq!(highlight::class(word), class, "`{text}`");
         }
         for topic in highlight::CONTROL_TOPICS {
             assert!(lookup(topic).is_some_and(|word| word.topic == topic), "`{topic}` is a help page");

@@ -1,7 +1,7 @@
 """The Pygments lexer of rayrepl's `.ray` scene language.
 
-Generated from the words table (src/lang/words.rs) by src/lang/words/pygments.rs:
-do not edit; RAYREPL_BLESS=1 cargo test --release --lib pygments writes it again.
+Generated from the words table (src/lang/words.rs) by tools/generate/src/pygments.rs:
+do not edit; cargo run -p generate -- write makes it again.
 """
 
 from pygments.lexer import RegexLexer, bygroups, words

@@ -1,5 +1,5 @@
-; Generated from the words table (src/lang/words.rs) by src/lang/words/tree_sitter.rs:
-; do not edit; RAYREPL_BLESS=1 cargo test --release --lib tree_sitter writes it again.
+; Generated from the words table (src/lang/words.rs) by tools/generate/src/tree_sitter.rs:
+; do not edit; cargo run -p generate -- write makes it again.
 ; The last pattern that matches a node gives its capture.
 
 (identifier) @variable

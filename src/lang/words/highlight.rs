@@ -1,10 +1,11 @@
 //! What the highlighters made from the words table share: the class each
 //! word is coloured by, the table's words grouped by what a highlighter
 //! gives them, and the regular expressions of names, numbers and symbols as
-//! the lexer ([`crate::lang::lexer`]) reads them. The TextMate grammar
-//! ([`super::textmate`]) and the Pygments lexer ([`super::pygments`]) are
-//! regular expressions over the text, and both dialects (Oniguruma,
-//! Python's `re`) read these ones alike.
+//! the lexer ([`crate::lang::lexer`]) reads them. The editors' grammars are
+//! made from them by `tools/generate` (`cargo run -p generate -- write`):
+//! the TextMate grammar and the Pygments lexer are regular expressions over
+//! the text, and both dialects (Oniguruma, Python's `re`) read these ones
+//! alike; the tree-sitter queries and the playground's words list them.
 
 use super::{Kind, Role, WORDS, Word};
 use crate::lang::token::Token;

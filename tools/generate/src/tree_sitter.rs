@@ -21,14 +21,11 @@
 //! Neovim and Zed, where the last pattern that matches a node gives its
 //! capture: the one for any name first.
 
-use super::{Kind, Role, WORDS, Word};
-use crate::lang::token::Token;
+use rayrepl::lang::token::Token;
+use rayrepl::lang::words::{Kind, Role, WORDS, Word, highlight};
 
-/// Where the queries are committed, from the crate's root.
+/// Where the queries are committed, from the workspace's root.
 pub const HIGHLIGHTS_PATH: &str = "editors/tree-sitter-ray/queries/highlights.scm";
-
-/// Where the grammar is committed, from the crate's root.
-pub const GRAMMAR_PATH: &str = "editors/tree-sitter-ray/grammar.js";
 
 /// The capture of a keyword; `None` for the words that are not keywords.
 pub fn capture(word: &Word) -> Option<&'static str> {
@@ -45,14 +42,14 @@ pub fn capture(word: &Word) -> Option<&'static str> {
 /// The queries, as the text committed at [`HIGHLIGHTS_PATH`].
 pub fn highlights() -> String {
     let mut text = String::from(
-        "; Generated from the words table (src/lang/words.rs) by src/lang/words/tree_sitter.rs:\n\
-         ; do not edit; RAYREPL_BLESS=1 cargo test --release --lib tree_sitter writes it again.\n\
+        "; Generated from the words table (src/lang/words.rs) by tools/generate/src/tree_sitter.rs:\n\
+         ; do not edit; cargo run -p generate -- write makes it again.\n\
          ; The last pattern that matches a node gives its capture.\n\n\
          (identifier) @variable\n\n\
          (comment) @comment\n\n\
          (number) @number\n\n",
     );
-    for (capture, words) in super::highlight::grouped(capture) {
+    for (capture, words) in highlight::grouped(capture) {
         text.push_str(&list(&words, capture));
     }
     for word in WORDS.iter().filter(|word| word.kind == Kind::Predefined) {
@@ -99,36 +96,30 @@ fn list(nodes: &[&str], capture: &str) -> String {
     text
 }
 
-/// The words written between single quotes in `source` that could be
-/// keywords (lower-case letters only, not the name of a `field(...)`): the
-/// keywords of a tree-sitter grammar whose strings are all in single quotes
-/// and whose comments have none.
-pub fn quoted_words(source: &str) -> Vec<&str> {
-    let mut parts = source.split('\'');
-    let mut words = Vec::new();
-    // The parts alternate: outside quotes, inside, outside...
-    while let (Some(before), Some(inside)) = (parts.next(), parts.next()) {
-        let keyword = !inside.is_empty() && inside.bytes().all(|b| b.is_ascii_lowercase());
-        if keyword && !before.ends_with("field(") {
-            words.push(inside);
-        }
-    }
-    words
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::committed;
+    use rayrepl::lang::words;
 
-    fn committed(path: &str) -> String {
-        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path)).unwrap_or_default()
-    }
+    /// Where the grammar is committed, from the workspace's root.
+    const GRAMMAR_PATH: &str = "editors/tree-sitter-ray/grammar.js";
 
-    /// The committed queries are what the table makes now;
-    /// `RAYREPL_BLESS=1 cargo test --release --lib tree_sitter` writes them again.
-    #[test]
-    fn the_committed_highlights_are_made_from_the_table() {
-        super::super::assert_generated(HIGHLIGHTS_PATH, &highlights(), "tree_sitter");
+    /// The words written between single quotes in `source` that could be
+    /// keywords (lower-case letters only, not the name of a `field(...)`): the
+    /// keywords of a tree-sitter grammar whose strings are all in single quotes
+    /// and whose comments have none.
+    fn quoted_words(source: &str) -> Vec<&str> {
+        let mut parts = source.split('\'');
+        let mut words = Vec::new();
+        // The parts alternate: outside quotes, inside, outside...
+        while let (Some(before), Some(inside)) = (parts.next(), parts.next()) {
+            let keyword = !inside.is_empty() && inside.bytes().all(|b| b.is_ascii_lowercase());
+            if keyword && !before.ends_with("field(") {
+                words.push(inside);
+            }
+        }
+        words
     }
 
     /// The grammar's keywords are the table's, each of them and no other.
@@ -140,14 +131,14 @@ mod tests {
         in_grammar.retain(|word| *word != "ray");
         in_grammar.sort_unstable();
         in_grammar.dedup();
-        let mut in_table: Vec<&str> = super::super::keyword_names().collect();
+        let mut in_table: Vec<&str> = words::keyword_names().collect();
         in_table.sort_unstable();
         assert_eq!(in_grammar, in_table, "the keywords of {GRAMMAR_PATH} are not the words table's");
     }
 
     #[test]
     fn captures_by_role() {
-        let capture_of = |text| super::super::lookup(text).and_then(capture);
+        let capture_of = |text| words::lookup(text).and_then(capture);
         assert_eq!(capture_of("proc"), Some("keyword.function"));
         assert_eq!(capture_of("camera"), Some("keyword"));
         assert_eq!(capture_of("end"), Some("keyword"));

@@ -5,7 +5,7 @@
 //! test checks that the committed file is this text.
 //!
 //! The token types, per kind of word (the classes of
-//! [`super::highlight::Class`], as the TextMate grammar has them):
+//! [`Class`], as the TextMate grammar has them):
 //!
 //! | words | token type |
 //! |---|---|
@@ -31,14 +31,16 @@
 //!
 //! Numbers (`Number.Integer` without a point or an exponent, `Number.Float`
 //! with), `#` comments (`Comment.Single`), operators and punctuation are
-//! read the way the lexer reads them ([`crate::lang::lexer`]); a character
+//! read the way the lexer reads them ([`rayrepl::lang::lexer`]); a character
 //! the lexer rejects, and `//`, `/*`, is `Error`.
 
-use super::Word;
-use super::highlight::{self, ARITHMETIC, COMPARISONS, Class, FOREIGN_COMMENT, LOGICAL, NAME, NUMBER, WORD_END};
-use crate::lang::token::Token;
+use rayrepl::lang::token::Token;
+use rayrepl::lang::words::highlight::{
+    self, ARITHMETIC, COMPARISONS, Class, FOREIGN_COMMENT, LOGICAL, NAME, NUMBER, WORD_END,
+};
+use rayrepl::lang::words::{self, Word};
 
-/// Where the lexer is committed, from the crate's root.
+/// Where the lexer is committed, from the workspace's root.
 pub const PATH: &str = "editors/pygments/rayrepl_pygments/lexer.py";
 
 /// The blanks the lexer skips; any other space, such as U+00A0, it rejects.
@@ -74,8 +76,8 @@ pub fn lexer() -> String {
     let mut text = format!(
         r#""""The Pygments lexer of rayrepl's `.ray` scene language.
 
-Generated from the words table (src/lang/words.rs) by src/lang/words/pygments.rs:
-do not edit; RAYREPL_BLESS=1 cargo test --release --lib pygments writes it again.
+Generated from the words table (src/lang/words.rs) by tools/generate/src/pygments.rs:
+do not edit; cargo run -p generate -- write makes it again.
 """
 
 from pygments.lexer import RegexLexer, bygroups, words
@@ -119,7 +121,7 @@ class RayLexer(RegexLexer):
 /// The rules of the root state: a Python expression for each pattern, and
 /// the token type it gives.
 fn rules() -> Vec<(String, String)> {
-    let proc = super::lookup("proc").expect("`proc` is in the table");
+    let proc = words::lookup("proc").expect("`proc` is in the table");
     let proc_type = token_type(proc).expect("`proc` is a keyword");
     let mut rules = vec![
         // A session's command, in a notebook's cell or a script: its whole
@@ -164,13 +166,6 @@ fn raw(pattern: &str) -> String {
 mod tests {
     use super::*;
 
-    /// The committed lexer is what the table makes now;
-    /// `RAYREPL_BLESS=1 cargo test --release --lib pygments` writes it again.
-    #[test]
-    fn the_committed_lexer_is_made_from_the_table() {
-        super::super::assert_generated(PATH, &lexer(), "pygments");
-    }
-
     /// The blanks are those the lexer skips: a text of them has no token.
     #[test]
     fn the_blanks_are_the_lexers() {
@@ -178,9 +173,9 @@ mod tests {
         let class = BLANK.replace("\\t", "\t").replace("\\r", "\r").replace("\\n", "\n");
         let class = class.replace("\\x0b", "\u{b}").replace("\\x0c", "\u{c}");
         assert_eq!(class, format!("[{blanks}]"));
-        let source = crate::lang::source::SourceId(0);
-        assert_eq!(crate::lang::lexer::tokenize(source, blanks).map(|tokens| tokens.len()).ok(), Some(0));
-        assert!(crate::lang::lexer::tokenize(source, "\u{a0}").is_err(), "U+00A0 is not a blank");
+        let source = rayrepl::lang::source::SourceId(0);
+        assert_eq!(rayrepl::lang::lexer::tokenize(source, blanks).map(|tokens| tokens.len()).ok(), Some(0));
+        assert!(rayrepl::lang::lexer::tokenize(source, "\u{a0}").is_err(), "U+00A0 is not a blank");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! the editor's tokenizer (`web/src/highlight.js`). A test checks that the
 //! committed file is this text.
 //!
-//! The tags, per kind of word (the classes of [`super::highlight::Class`],
+//! The tags, per kind of word (the classes of [`Class`],
 //! as `@lezer/highlight` names its tags, modifiers after a dot, the way
 //! CodeMirror's `StreamLanguage` reads a token's name):
 //!
@@ -22,16 +22,16 @@
 //! | a name before `(` | `variableName.function`, after `proc` with `.definition` |
 //!
 //! Names and numbers are read with the regular expressions of
-//! [`super::highlight`], which are the lexer's; the operators are listed
+//! [`highlight`], which are the lexer's; the operators are listed
 //! longest first, as the tokenizer tries them.
 
 use serde_json::{Map, Value, json};
 
-use super::highlight::{self, ARITHMETIC, COMPARISONS, Class, LOGICAL, NAME, NUMBER};
-use super::{WORDS, Word};
-use crate::lang::token::Token;
+use rayrepl::lang::token::Token;
+use rayrepl::lang::words::highlight::{self, ARITHMETIC, COMPARISONS, Class, LOGICAL, NAME, NUMBER};
+use rayrepl::lang::words::{WORDS, Word};
 
-/// Where the words are committed, from the crate's root.
+/// Where the words are committed, from the workspace's root.
 pub const PATH: &str = "web/src/ray-words.json";
 
 /// The tag of a name called, or defined after `proc` (with `.definition`).
@@ -71,7 +71,7 @@ fn words_value() -> Value {
         tokens.iter().map(|token| token.spelling().expect("a symbol has a spelling")).collect()
     };
     json!({
-        "comment": "Generated from the words table (src/lang/words.rs) by src/lang/words/codemirror.rs: do not edit; RAYREPL_BLESS=1 cargo test --release --lib codemirror writes it again.",
+        "comment": "Generated from the words table (src/lang/words.rs) by tools/generate/src/codemirror.rs: do not edit; cargo run -p generate -- write makes it again.",
         "words": words,
         "name": NAME,
         "number": NUMBER,
@@ -86,24 +86,6 @@ fn words_value() -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The committed words are what the table makes now;
-    /// `RAYREPL_BLESS=1 cargo test --release --lib codemirror` writes them again.
-    #[test]
-    fn the_committed_words_are_made_from_the_table() {
-        super::super::assert_generated(PATH, &words_file(), "codemirror");
-    }
-
-    #[test]
-    fn tags_by_class() {
-        let tag_of = |text| super::super::lookup(text).and_then(tag);
-        assert_eq!(tag_of("if"), Some("controlKeyword"));
-        assert_eq!(tag_of("camera"), Some("definitionKeyword"));
-        assert_eq!(tag_of("sphere"), Some("typeName"));
-        assert_eq!(tag_of("sqrt"), Some("variableName.standard"));
-        assert_eq!(tag_of("time"), Some("variableName.special"));
-        assert_eq!(tag_of("colour"), None);
-    }
 
     #[test]
     fn no_operator_comes_after_one_it_starts_with() {

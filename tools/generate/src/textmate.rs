@@ -21,16 +21,18 @@
 //! | other names | `variable.other.ray` |
 //!
 //! Numbers, comments, operators, commas and parentheses are read the way the
-//! lexer reads them ([`crate::lang::lexer`]); a character the lexer rejects
+//! lexer reads them ([`rayrepl::lang::lexer`]); a character the lexer rejects
 //! (and `//`, `/*`) is `invalid.illegal`.
 
 use serde_json::{Map, Value, json};
 
-use super::Word;
-use super::highlight::{self, ARITHMETIC, COMPARISONS, Class, FOREIGN_COMMENT, LOGICAL, NAME, NUMBER, WORD_END};
-use crate::lang::token::Token;
+use rayrepl::lang::token::Token;
+use rayrepl::lang::words::highlight::{
+    self, ARITHMETIC, COMPARISONS, Class, FOREIGN_COMMENT, LOGICAL, NAME, NUMBER, WORD_END,
+};
+use rayrepl::lang::words::{self, Word};
 
-/// Where the grammar is committed, from the crate's root.
+/// Where the grammar is committed, from the workspace's root.
 pub const PATH: &str = "editors/textmate/ray.tmLanguage.json";
 
 /// The grammar, as the JSON text committed at [`PATH`].
@@ -79,7 +81,7 @@ fn grammar_value() -> Value {
         "name": "Ray",
         "scopeName": "source.ray",
         "fileTypes": ["ray"],
-        "comment": "Generated from the words table (src/lang/words.rs) by src/lang/words/textmate.rs: do not edit; RAYREPL_BLESS=1 cargo test --release --lib textmate writes it again.",
+        "comment": "Generated from the words table (src/lang/words.rs) by tools/generate/src/textmate.rs: do not edit; cargo run -p generate -- write makes it again.",
         "patterns": patterns,
         "repository": repository,
     })
@@ -96,7 +98,7 @@ fn comment() -> Value {
 
 /// `proc` and the name of the procedure it defines.
 fn proc_name() -> Value {
-    let proc = super::lookup("proc").expect("`proc` is in the table");
+    let proc = words::lookup("proc").expect("`proc` is in the table");
     json!({
         "match": format!("({})\\s+({NAME})", proc.text),
         "captures": {
@@ -156,15 +158,8 @@ fn punctuation() -> Value {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Kind, WORDS};
     use super::*;
-
-    /// The committed grammar is what the table makes now;
-    /// `RAYREPL_BLESS=1 cargo test --release --lib textmate` writes it again.
-    #[test]
-    fn the_committed_grammar_is_made_from_the_table() {
-        super::super::assert_generated(PATH, &grammar(), "textmate");
-    }
+    use rayrepl::lang::words::{Kind, WORDS};
 
     /// Every word with a role, and `time`, is in the rule of its scope.
     #[test]
