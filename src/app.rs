@@ -26,14 +26,14 @@ use crate::lang::diagnostic::emit;
 use crate::lang::eval::PrintLog;
 use crate::lang::source::text_of;
 use crate::lang::{Diagnostic, Interpreter, SourceId, SourceMap, parse_file};
-use crate::lint::check_scene;
 use crate::output::{self, FrameSink};
+use crate::pipeline::{Evaluated, Evaluation, Lint, PictureError, render_picture};
 use crate::pov;
 use crate::process::cancel::{CancelSwitch, cancel_flag};
 use crate::process::failure::{end_if_closed_pipe, report_failure, tell};
 use crate::process::interruption::may_block;
 use crate::process::signals;
-use crate::render::{self, RenderControl, RenderOptions, RenderStats, SceneGeometry};
+use crate::render::{self, Region, RenderControl, RenderOptions, RenderStats};
 use crate::scene::Scene;
 use crate::terminal::preview::Preview;
 use crate::terminal::progress::Progress;
@@ -273,27 +273,29 @@ impl ParsedScene {
     /// What `print` writes comes first; the whole scene (not `skip_static`)
     /// is also checked for the mistakes that spoil a picture.
     fn evaluate(&self, time: f64, skip_static: bool) -> Result<Scene, BatchError> {
-        let interpreter = Interpreter::new(time, self.file.limits).skip_static(skip_static).interruptible(self.cancel);
-        self.run(interpreter, !skip_static).map(Interpreter::into_scene)
+        let evaluation = self.evaluation(time, skip_static);
+        self.run(&evaluation, evaluation.interpreter()).map(Interpreter::into_scene)
     }
 
-    /// Runs the program on `interpreter`, printing warnings on stderr (and,
-    /// with `check`, checking the scene), as [`ParsedScene::evaluate`] says.
-    fn run(&self, mut interpreter: Interpreter, check: bool) -> Result<Interpreter, BatchError> {
-        let result = interpreter.run(&self.program);
+    /// How the file is evaluated at `time` (see [`ParsedScene::evaluate`]).
+    fn evaluation(&self, time: f64, skip_static: bool) -> Evaluation {
+        let SceneFile { limits, picture, allowed, .. } = self.file;
+        let lint = (!skip_static).then_some(Lint { picture, allowed });
+        Evaluation { time, limits, cancel: Some(self.cancel), lint, skip_static }
+    }
+
+    /// Runs the program on `interpreter` (one `evaluation` set up, perhaps
+    /// recording more), printing warnings on stderr as
+    /// [`ParsedScene::evaluate`] says.
+    fn run(&self, evaluation: &Evaluation, interpreter: Interpreter) -> Result<Interpreter, BatchError> {
+        let Evaluated { mut interpreter, result, warnings } = evaluation.run_on(interpreter, &self.program);
         let mut printed = self.printed.borrow_mut();
         printed.absorb(interpreter.take_printed());
         for line in printed.take_lines() {
             tell!("{}", line.render(&self.sources));
         }
-        let mut warnings = interpreter.take_warnings();
-        let SceneFile { picture, allowed, diagnostics, .. } = self.file;
-        if result.is_ok() && check {
-            let checked = check_scene(interpreter.scene(), interpreter.origins(), &picture, allowed);
-            warnings.extend(checked.into_iter().map(|warning| warning.diagnostic));
-        }
         for warning in self.warned.borrow_mut().unseen(warnings) {
-            show(&warning, &self.sources, diagnostics);
+            show(&warning, &self.sources, self.file.diagnostics);
         }
         match result {
             Ok(()) => Ok(interpreter),
@@ -315,8 +317,8 @@ fn check(parsed: &ParsedScene) -> Result<(), BatchError> {
 /// Explains pixel `(x, y)` of the image `options` render, in words or
 /// (`json`) as one JSON object, on standard output.
 fn explain(parsed: &ParsedScene, options: &RenderOptions, (x, y): (u32, u32), json: bool) -> Result<(), BatchError> {
-    let interpreter = Interpreter::new(parsed.file.time, parsed.file.limits).recording_calls();
-    let interpreter = parsed.run(interpreter, true)?;
+    let evaluation = parsed.evaluation(parsed.file.time, false);
+    let interpreter = parsed.run(&evaluation, evaluation.interpreter().recording_calls())?;
     render::reserve_for(interpreter.scene(), options).map_err(|error| error.to_string())?;
     let explanation = ExplainedScene::new(&interpreter, &parsed.sources, options).explain(x, y);
     let text = if json { format!("{}\n", explanation.to_json()) } else { explanation.to_string() };
@@ -414,19 +416,21 @@ fn render_still(parsed: &ParsedScene, render: &Render, cancel: &AtomicBool) -> R
     let start = Stopwatch::start();
     let scene = parsed.evaluate(parsed.file.time, false)?;
     let evaluated = start.elapsed();
-    render::reserve_for(&scene, &render.options).map_err(|error| error.to_string())?;
-    let prepared = SceneGeometry::new(&scene);
-    let built = start.elapsed() - evaluated;
     let options = &render.options;
     let progress = Progress::new(u64::from(options.width) * u64::from(options.height), "rendering");
-    let (image, stats) = render_frame(&scene, &prepared, options, &progress, cancel)?;
+    let tick = |pixels: u64| progress.advance(pixels);
+    let control = RenderControl { progress: Some(&tick), cancel: Some(cancel) };
+    let rendered = render_picture(&scene, options, Region::whole(options), &control).map_err(|error| match error {
+        PictureError::OutOfMemory(error) => BatchError::from(error.to_string()),
+        PictureError::Cancelled => BatchError::Interrupted(Vec::new()),
+    })?;
     progress.finish();
     if render.stats {
-        let search = prepared.search();
-        tell!("evaluate {:.3} s, build {:.3} s ({search})", evaluated.as_secs_f64(), built.as_secs_f64());
-        print_stats(&stats, 1);
+        let (search, built) = (rendered.geometry.search(), rendered.built.as_secs_f64());
+        tell!("evaluate {:.3} s, build {built:.3} s ({search})", evaluated.as_secs_f64());
+        print_stats(&rendered.stats, 1);
     }
-    Ok(image)
+    Ok(rendered.image)
 }
 
 /// Renders the scene file again each time it is saved, until Ctrl-C ends
@@ -510,20 +514,6 @@ fn report_done(render: &Render, done: &str, what: &str, start: Stopwatch) {
 /// "1 box", "3 boxes".
 fn counted(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
-}
-
-/// Renders one frame with the progress bar attached, unless `cancel` is
-/// raised.
-fn render_frame(
-    scene: &Scene,
-    prepared: &SceneGeometry,
-    options: &RenderOptions,
-    progress: &Progress,
-    cancel: &AtomicBool,
-) -> Result<(RgbImage, RenderStats), BatchError> {
-    let tick = |pixels: u64| progress.advance(pixels);
-    let control = RenderControl { progress: Some(&tick), cancel: Some(cancel) };
-    render::render(scene, prepared, options, &control).map_err(|_| BatchError::Interrupted(Vec::new()))
 }
 
 /// `error`, or, if `cancel` was raised (Ctrl-C, `kill`: the error comes

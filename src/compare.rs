@@ -21,8 +21,9 @@ pub use pictures::{PictureDifference, compare_pictures, difference_picture};
 
 use crate::lang::number::format_number;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_file};
+use crate::pipeline::{Evaluation, render_picture};
 use crate::playback::Timeline;
-use crate::render::{self, RenderControl, RenderOptions, SceneGeometry};
+use crate::render::{Region, RenderControl, RenderOptions};
 
 /// How close a submission must come to the reference to match it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -172,13 +173,15 @@ fn evaluate_all(sources: &SourceMap, id: SourceId, grading: &Grading) -> Result<
     frames
         .into_iter()
         .map(|frame| {
-            let mut interpreter = Interpreter::new(frame.time, grading.limits);
-            interpreter.run(&program).map_err(|e| (frame, Failure::Scene(Box::new(e))))?;
-            let scene = interpreter.scene();
-            render::reserve_for(scene, &grading.options).map_err(|e| (frame, Failure::Render(e.to_string())))?;
-            let geometry = SceneGeometry::new(scene);
-            let (picture, _) = render::render(scene, &geometry, &grading.options, &RenderControl::default())
-                .expect("nothing cancels a render without a cancel flag");
+            let evaluated = Evaluation::at(frame.time, grading.limits).run(&program);
+            evaluated.result.map_err(|e| (frame, Failure::Scene(Box::new(e))))?;
+            let interpreter = evaluated.interpreter;
+            let options = &grading.options;
+            let whole = Region::whole(options);
+            let picture = match render_picture(interpreter.scene(), options, whole, &RenderControl::default()) {
+                Ok(rendered) => rendered.image,
+                Err(error) => return Err((frame, Failure::Render(error.to_string()))),
+            };
             Ok(Evaluated { frame, interpreter, picture })
         })
         .collect()

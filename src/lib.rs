@@ -25,6 +25,7 @@ pub mod lint;
 #[cfg(feature = "lsp")]
 pub mod lsp;
 pub mod output;
+pub mod pipeline;
 pub mod playback;
 pub mod pov;
 pub mod process;

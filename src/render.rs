@@ -46,8 +46,6 @@ mod pixels;
 pub mod reuse;
 pub mod shade;
 
-use std::ops::Range;
-
 use image::RgbImage;
 
 pub use adaptive::{ADAPTIVE_THRESHOLD, CURVATURE_THRESHOLD, FINE_DETAIL, Glimpse, glimpse_pass, refinement_mask};
@@ -56,7 +54,7 @@ pub use geometry::{Geometry, SceneGeometry, SurfaceHit};
 pub use intersect::Ray;
 pub use memory::{OutOfMemory, reserve_for};
 pub use options::{
-    Cancelled, MAX_DEPTH, REFERENCE_SAMPLES, RayCounts, RenderControl, RenderOptions, RenderStats, Skips,
+    Cancelled, MAX_DEPTH, REFERENCE_SAMPLES, RayCounts, Region, RenderControl, RenderOptions, RenderStats, Skips,
 };
 pub use pixel_paths::{Explainer, PixelPaths};
 pub use pixels::TILE;
@@ -76,32 +74,29 @@ pub fn render(
     options: &RenderOptions,
     control: &RenderControl,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
-    render_with(scene, prepared, options, control, None)
+    render_with(scene, prepared, options, Region::whole(options), control, None)
 }
 
-/// Rows `rows` (top included, bottom not; those past the image's bottom
-/// are left out) of the image [`render`] makes with `options`, the same
-/// bytes, computed on the calling thread: for a front-end that splits one
-/// image into bands over workers of its own (the browser page, whose
-/// WebAssembly has no threads). Every pixel is computed on its own
-/// (`pixels`), so the bands put together are the whole image's bytes.
+/// The pixels of `region` of the image [`render`] makes with `options`,
+/// the same bytes, at any number of samples and with adaptive
+/// anti-aliasing too (whose choice of a pixel looks at its neighbours: the
+/// region's first pass reaches one pixel beyond its edges). Every pixel is
+/// computed on its own (`pixels`), so regions put together are the whole
+/// image's bytes: for a front-end that splits one image over workers of
+/// its own (the browser page's bands) or over machines (tiles).
 ///
 /// # Panics
 ///
-/// If `options` asks for adaptive anti-aliasing, whose choice of pixels
-/// looks at their neighbours across a band's edge.
-pub fn render_rows(
+/// If `region` does not lie within the image ([`Region::fits`]).
+pub fn render_region(
     scene: &Scene,
     prepared: &SceneGeometry,
     options: &RenderOptions,
-    rows: Range<u32>,
+    region: Region,
     control: &RenderControl,
-) -> Result<RgbImage, Cancelled> {
-    assert!(!options.is_adaptive(), "adaptive anti-aliasing renders whole images");
-    let (top, bottom) = (rows.start.min(options.height), rows.end.min(options.height));
-    let mut image = RgbImage::new(options.width, bottom.saturating_sub(top));
-    pixels::Pass::new(scene, prepared, options, control, options.samples).run_rows(top, &mut image)?;
-    Ok(image)
+) -> Result<(RgbImage, RenderStats), Cancelled> {
+    assert!(region.fits(options), "{region:?} lies outside the {}x{} image", options.width, options.height);
+    render_with(scene, prepared, options, region, control, None)
 }
 
 /// [`render`] with adaptive anti-aliasing (`options.adaptive`, more than one
@@ -122,24 +117,26 @@ pub fn render_refining(
     control: &RenderControl,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
     assert_eq!(refined.len(), options.width as usize * options.height as usize, "one flag per pixel");
-    render_with(scene, prepared, options, control, Some(refined))
+    render_with(scene, prepared, options, Region::whole(options), control, Some(refined))
 }
 
-/// [`render`], with the pixels adaptive anti-aliasing refines `given` or,
-/// when `None`, detected by [`refinement_mask`].
+/// [`render_region`], with the pixels adaptive anti-aliasing refines
+/// `given` (one flag per pixel of `region`) or, when `None`, detected by
+/// [`refinement_mask`].
 fn render_with(
     scene: &Scene,
     prepared: &SceneGeometry,
     options: &RenderOptions,
+    region: Region,
     control: &RenderControl,
     given: Option<&[bool]>,
 ) -> Result<(RgbImage, RenderStats), Cancelled> {
     let start = Stopwatch::start();
-    let mut image = RgbImage::new(options.width, options.height);
+    let mut image = RgbImage::new(region.width(), region.height());
     let mut stats = if options.is_adaptive() {
-        adaptive::render_two_passes(scene, prepared, options, control, given, &mut image)?
+        adaptive::render_two_passes(scene, prepared, options, region, control, given, &mut image)?
     } else {
-        let pass = pixels::Pass::new(scene, prepared, options, control, options.samples);
+        let pass = pixels::Pass::new(scene, prepared, options, control, options.samples).over(region);
         RenderStats { rays: pass.run_plain(&mut image, None)?, ..RenderStats::default() }
     };
     stats.elapsed = start.elapsed();
@@ -177,9 +174,42 @@ mod tests {
         let (whole, _) = render(&s, &prepared, &options, &control).expect("runs");
         let mut bands = Vec::new();
         for rows in [0..7, 7..23, 23..40] {
-            bands.extend_from_slice(&render_rows(&s, &prepared, &options, rows, &control).expect("runs"));
+            let band = Region::rows(&options, rows);
+            bands.extend_from_slice(&render_region(&s, &prepared, &options, band, &control).expect("runs").0);
         }
         assert!(bands == whole.into_raw());
+    }
+
+    /// Every region of the image holds the whole image's bytes there, with
+    /// one sample, many, and adaptive anti-aliasing (whose refined pixels
+    /// depend on their neighbours beyond the region's edges), and counts the
+    /// refined pixels inside it only.
+    #[test]
+    fn a_region_holds_the_whole_images_bytes_in_every_sampling_mode() {
+        let s = scene();
+        let prepared = SceneGeometry::new(&s);
+        let control = RenderControl::default();
+        let one = RenderOptions { width: 48, height: 36, ..RenderOptions::default() };
+        let modes = [one, RenderOptions { samples: 9, ..one }, RenderOptions { samples: 9, adaptive: true, ..one }];
+        for options in modes {
+            let (whole, whole_stats) = render(&s, &prepared, &options, &control).expect("runs");
+            let mut refined = 0;
+            // Four tiles of unequal sizes that cover the image, then a
+            // pixel, an empty region and a column at the right edge.
+            let tiles = [(0, 0, 17, 20), (17, 0, 48, 20), (0, 20, 30, 36), (30, 20, 48, 36)];
+            for (left, top, right, bottom) in tiles.into_iter().chain([(5, 7, 6, 8), (9, 9, 9, 9), (47, 0, 48, 36)]) {
+                let region = Region { left, top, right, bottom };
+                let (tile, stats) = render_region(&s, &prepared, &options, region, &control).expect("runs");
+                assert_eq!((tile.width(), tile.height()), (right - left, bottom - top));
+                for (x, y, pixel) in tile.enumerate_pixels() {
+                    assert_eq!(pixel, whole.get_pixel(left + x, top + y), "{options:?} {region:?} ({x}, {y})");
+                }
+                if tiles.contains(&(left, top, right, bottom)) {
+                    refined += stats.refined_pixels;
+                }
+            }
+            assert_eq!(refined, whole_stats.refined_pixels, "{options:?}");
+        }
     }
 
     /// Each pixel of an adaptive render holds the bytes of the pass that

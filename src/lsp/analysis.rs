@@ -10,7 +10,8 @@ use std::time::Duration;
 use crate::lang::ast::Program;
 use crate::lang::names::Names;
 use crate::lang::{Diagnostic, Interpreter, Limits, SourceId, SourceMap, parse_file};
-use crate::lint::{Allowed, Picture, check_scene};
+use crate::lint::{Allowed, Picture};
+use crate::pipeline::{self, Evaluated, Lint};
 use crate::settings::DEFAULTS;
 
 /// How long an evaluation may take before it is stopped: the diagnostics
@@ -77,6 +78,20 @@ impl Analysis {
     }
 }
 
+/// How the server evaluates a document: as the command line renders it by
+/// default (its time, limits and picture, so that the warnings are the
+/// command line's), stopped when it runs past [`EVALUATION_BUDGET`].
+fn as_the_command_line() -> pipeline::Evaluation {
+    let picture = Picture { width: DEFAULTS.width, height: DEFAULTS.height, screen: DEFAULTS.screen, animation: false };
+    pipeline::Evaluation {
+        time: DEFAULTS.time,
+        limits: Limits::default(),
+        cancel: Some(&EVALUATION_STOPPED),
+        lint: Some(Lint { picture, allowed: Allowed::default() }),
+        skip_static: false,
+    }
+}
+
 /// Evaluates `program` at time 0 within [`EVALUATION_BUDGET`]: its
 /// warnings, its error if any, and the warnings about the scene as the
 /// command line renders it at its default size.
@@ -88,20 +103,13 @@ fn evaluate(program: &Program) -> (Evaluation, Vec<Diagnostic>) {
             EVALUATION_STOPPED.store(true, Ordering::Relaxed);
         }
     });
-    let mut interpreter = Interpreter::new(DEFAULTS.time, Limits::default()).interruptible(&EVALUATION_STOPPED);
-    let result = interpreter.run(program);
+    let Evaluated { interpreter, result, warnings: mut diagnostics } = as_the_command_line().run(program);
     drop(finished);
     let _ = watchdog.join();
-    let mut diagnostics = interpreter.take_warnings();
     match result {
         Err(_) if EVALUATION_STOPPED.load(Ordering::Relaxed) => return (Evaluation::TooLong, diagnostics),
         Err(error) => diagnostics.push(error),
-        Ok(()) => {
-            let picture =
-                Picture { width: DEFAULTS.width, height: DEFAULTS.height, screen: DEFAULTS.screen, animation: false };
-            let warnings = check_scene(interpreter.scene(), interpreter.origins(), &picture, Allowed::default());
-            diagnostics.extend(warnings.into_iter().map(|warning| warning.diagnostic));
-        }
+        Ok(()) => {}
     }
     (Evaluation::Done(Box::new(interpreter)), diagnostics)
 }

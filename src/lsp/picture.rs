@@ -10,7 +10,8 @@ use serde_json::{Value, json};
 
 use super::analysis::Analysis;
 use crate::output::{write_image, write_png};
-use crate::render::{self, RenderControl, SceneGeometry};
+use crate::pipeline::render_picture;
+use crate::render::{Region, RenderControl};
 use crate::settings::{DEFAULTS, RenderSettings};
 
 /// The name of the command, as clients call it.
@@ -51,10 +52,10 @@ pub(crate) fn render_command(analysis: &Analysis, asked: Option<&Value>) -> Resu
     };
     settings.validate().map_err(|error| error.to_string())?;
     let options = settings.render_options();
-    let scene = interpreter.scene();
-    render::reserve_for(scene, &options).map_err(|error| error.to_string())?;
-    let (image, _) = render::render(scene, &SceneGeometry::new(scene), &options, &RenderControl::default())
-        .map_err(|_| "the render was stopped".to_string())?;
+    let whole = Region::whole(&options);
+    let image = render_picture(interpreter.scene(), &options, whole, &RenderControl::default())
+        .map_err(|error| error.to_string())?
+        .image;
     let mut png = Vec::new();
     write_png(&mut png, &image).map_err(|error| format!("cannot encode the picture: {error}"))?;
     if let Some(path) = &asked.output {

@@ -14,7 +14,7 @@ use image::RgbImage;
 
 use super::geometry::{SceneGeometry, SurfaceHit};
 use super::intersect::Ray;
-use super::options::{Cancelled, RenderControl, RenderOptions, RenderStats};
+use super::options::{Cancelled, Region, RenderControl, RenderOptions, RenderStats};
 use super::pixels::Pass;
 use super::shade::{LightTerm, PathObserver};
 use crate::scene::Scene;
@@ -162,33 +162,59 @@ pub fn refinement_mask(image: &RgbImage, glimpses: &[Glimpse]) -> Vec<bool> {
     mask
 }
 
-/// Adaptive anti-aliasing's two passes into `image`: every pixel at its
-/// centre, then all `options.samples` samples for the pixels `refined`
-/// flags (one flag per pixel) or, when `None`, those [`refinement_mask`]
-/// picks.
+/// Adaptive anti-aliasing's two passes into `image`, the pixels of
+/// `region`: every pixel at its centre, then all `options.samples` samples
+/// for the pixels `refined` flags (one flag per pixel of the region) or,
+/// when `None`, those [`refinement_mask`] picks. Whether a pixel is picked
+/// depends on its eight neighbours, so the first pass also renders the
+/// pixels around the region (within the image): its pixels are then picked
+/// as they are in the whole image.
 pub(crate) fn render_two_passes(
     scene: &Scene,
     geometry: &SceneGeometry,
     options: &RenderOptions,
+    region: Region,
     control: &RenderControl,
     refined: Option<&[bool]>,
     image: &mut RgbImage,
 ) -> Result<RenderStats, Cancelled> {
-    let first = Pass::new(scene, geometry, options, control, 1);
-    let mut glimpses = vec![Glimpse::start(first.rays.pixel_angle()); image.len() / 3];
-    let mut rays = first.run(image, None, &mut glimpses)?;
+    let seen = region.grown(1, options);
+    let first = Pass::new(scene, geometry, options, control, 1).over(seen);
+    let mut glimpses = vec![Glimpse::start(first.rays.pixel_angle()); seen.width() as usize * seen.height() as usize];
+    let mut centres = RgbImage::new(seen.width(), seen.height());
+    let mut rays = first.run(&mut centres, None, &mut glimpses)?;
     let detected;
     let refined = match refined {
         Some(flags) => flags,
         None => {
-            detected = refinement_mask(image, &glimpses);
+            detected = within(&refinement_mask(&centres, &glimpses), seen, region);
             &detected
         }
     };
-    let second = Pass::new(scene, geometry, options, control, options.samples).without_progress();
+    *image = within_image(&centres, seen, region);
+    let second = Pass::new(scene, geometry, options, control, options.samples).without_progress().over(region);
     rays += second.run_plain(image, Some(refined))?;
     let refined_pixels = refined.iter().filter(|&&f| f).count() as u64;
     Ok(RenderStats { rays, refined_pixels, ..RenderStats::default() })
+}
+
+/// The values of `values` (one per pixel of `outer`, row major) at the
+/// pixels of `inner`, a region inside `outer`.
+fn within<T: Copy>(values: &[T], outer: Region, inner: Region) -> Vec<T> {
+    let width = outer.width() as usize;
+    let (left, right) = ((inner.left - outer.left) as usize, (inner.right - outer.left) as usize);
+    (inner.top..inner.bottom)
+        .flat_map(|y| {
+            let row = (y - outer.top) as usize * width;
+            values[row + left..row + right].iter().copied()
+        })
+        .collect()
+}
+
+/// The pixels of `image` (the pixels of `outer`) at those of `inner`.
+fn within_image(image: &RgbImage, outer: Region, inner: Region) -> RgbImage {
+    let bytes = within(image.as_raw().as_chunks::<3>().0, outer, inner).concat();
+    RgbImage::from_raw(inner.width(), inner.height(), bytes).expect("three bytes a pixel")
 }
 
 /// Adaptive anti-aliasing's first pass alone: every pixel of `scene`

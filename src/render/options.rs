@@ -145,6 +145,63 @@ impl Default for RenderOptions {
     }
 }
 
+/// A rectangle of an image's pixels: columns `left..right` and rows
+/// `top..bottom`, the ends excluded (as pbrt's crop window).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Region {
+    /// The first column.
+    pub left: u32,
+    /// The first row.
+    pub top: u32,
+    /// The column after the last.
+    pub right: u32,
+    /// The row after the last.
+    pub bottom: u32,
+}
+
+impl Region {
+    /// Every pixel of the image `options` describe.
+    pub fn whole(options: &RenderOptions) -> Region {
+        Region { left: 0, top: 0, right: options.width, bottom: options.height }
+    }
+
+    /// The rows `rows` of the image `options` describe, across its width;
+    /// rows past its bottom are left out.
+    pub fn rows(options: &RenderOptions, rows: std::ops::Range<u32>) -> Region {
+        let bottom = rows.end.min(options.height);
+        Region { left: 0, top: rows.start.min(bottom), right: options.width, bottom }
+    }
+
+    /// Its width in pixels.
+    pub fn width(&self) -> u32 {
+        self.right - self.left
+    }
+
+    /// Its height in pixels.
+    pub fn height(&self) -> u32 {
+        self.bottom - self.top
+    }
+
+    /// Whether it lies within the image `options` describe, its ends in order.
+    pub fn fits(&self, options: &RenderOptions) -> bool {
+        self.left <= self.right
+            && self.top <= self.bottom
+            && self.right <= options.width
+            && self.bottom <= options.height
+    }
+
+    /// It and the pixels around it, `by` on each side, within the image
+    /// `options` describe.
+    pub(crate) fn grown(&self, by: u32, options: &RenderOptions) -> Region {
+        Region {
+            left: self.left.saturating_sub(by),
+            top: self.top.saturating_sub(by),
+            right: (self.right + by).min(options.width),
+            bottom: (self.bottom + by).min(options.height),
+        }
+    }
+}
+
 /// Progress reporting and cancellation for one render.
 #[derive(Clone, Copy, Default)]
 pub struct RenderControl<'a> {

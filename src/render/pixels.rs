@@ -13,15 +13,16 @@ use rayon::prelude::*;
 use super::camera::{PrimaryRays, sample_offsets};
 use super::geometry::SceneGeometry;
 use super::isa::Isa;
-use super::options::{Cancelled, RayCounts, RenderControl, RenderOptions};
+use super::options::{Cancelled, RayCounts, Region, RenderControl, RenderOptions};
 use super::shade::{Lighting, PathObserver, Tracer};
 use crate::scene::Scene;
 
 /// Side of a square tile, in pixels; also the height of a band.
 pub const TILE: u32 = 16;
 
-/// One pass over the pixels of an image: everything the loop needs,
-/// shared by all threads.
+/// One pass over the pixels of a region of an image (the whole image
+/// unless [`Pass::over`] says otherwise): everything the loop needs,
+/// shared by all threads. Buffers hold the region's pixels, row major.
 pub(crate) struct Pass<'a> {
     /// The camera rays.
     pub rays: PrimaryRays,
@@ -29,13 +30,16 @@ pub(crate) struct Pass<'a> {
     pub offsets: Vec<DVec2>,
     lighting: Lighting<'a>,
     geometry: &'a SceneGeometry,
+    /// The pixels the pass renders.
+    region: Region,
+    /// The region's width.
     width: u32,
     control: &'a RenderControl<'a>,
     /// Whether progress counts the pixels of this pass.
     reports_progress: bool,
 }
 
-/// A band of rows to render: the first row's number, the band's RGB
+/// A band of rows to render: the first row's number in the region, the band's RGB
 /// bytes, the pixels to render (the band's share of the flags; all of them
 /// without flags) and each pixel's observer.
 struct Band<'b, O> {
@@ -60,10 +64,16 @@ impl<'a> Pass<'a> {
             offsets: sample_offsets(samples),
             lighting: Lighting::new(scene, geometry, options.depth, options.skips),
             geometry,
+            region: Region::whole(options),
             width: options.width,
             control,
             reports_progress: true,
         }
+    }
+
+    /// The same pass over the pixels of `region` only.
+    pub fn over(self, region: Region) -> Pass<'a> {
+        Pass { region, width: region.width(), ..self }
     }
 
     /// The same pass, leaving progress alone: for a second pass over
@@ -111,16 +121,6 @@ impl<'a> Pass<'a> {
         self.run(buffer, flags, &mut vec![(); buffer.len() / 3])
     }
 
-    /// Renders into `buffer` (the RGB bytes of whole rows) the rows from
-    /// row `top` on, on the calling thread. Returns the rays traced.
-    pub fn run_rows(&self, top: u32, buffer: &mut [u8]) -> Result<RayCounts, Cancelled> {
-        if self.width == 0 {
-            return Ok(RayCounts::default());
-        }
-        let observers = &mut vec![(); buffer.len() / 3];
-        self.band(Band { top, pixels: buffer, flags: None, observers })
-    }
-
     /// Renders `band`, tile by tile, in the compiled form [`Isa::chosen`].
     fn band<O: PathObserver>(&self, band: Band<'_, O>) -> Result<RayCounts, Cancelled> {
         match Isa::chosen() {
@@ -159,7 +159,8 @@ impl<'a> Pass<'a> {
                     if flags.is_some_and(|f| !f[index]) {
                         continue;
                     }
-                    let rgb = self.pixel(&mut tracer, i, top + row, &mut observers[index]);
+                    let (x, y) = (self.region.left + i, self.region.top + top + row);
+                    let rgb = self.pixel(&mut tracer, x, y, &mut observers[index]);
                     pixels[index * 3..index * 3 + 3].copy_from_slice(&rgb);
                 }
             }

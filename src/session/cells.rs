@@ -13,7 +13,8 @@ use std::path::Path;
 use image::RgbImage;
 
 use crate::lang::{Entry, EntryState, SourceId, SourceMap, parse_items};
-use crate::render::{OutOfMemory, RenderControl, SceneGeometry, render_rows, reserve_for};
+use crate::pipeline::{PictureError, render_picture};
+use crate::render::{OutOfMemory, Region, RenderControl};
 
 use super::commands::{self, is_command};
 use super::completion::{self, Candidate};
@@ -153,20 +154,20 @@ impl CellSession {
     /// page). Fails, as `:render` does, when the memory the render needs
     /// cannot be had.
     ///
-    /// # Panics
-    ///
-    /// If the session's settings ask for adaptive anti-aliasing (see
-    /// [`render_rows`]).
+    /// A band is a [`Region`] of the picture on the pipeline's one road
+    /// ([`render_picture`]): its bytes are the whole picture's there, at
+    /// any number of samples and with adaptive anti-aliasing too.
     pub fn render_rows(&mut self, rows: Range<u32>, front: &mut dyn FrontEnd) -> Result<RgbImage, OutOfMemory> {
         let session = &self.shell.session;
         let settings = session.settings();
         let size = Size { width: settings.width, height: settings.height };
         notes_before_rendering(session, &mut self.shell.warned, front, size, false);
         let options = render_options(size, settings);
-        reserve_for(session.scene(), &options)?;
-        let scene = session.scene();
-        let rendered = render_rows(scene, &SceneGeometry::new(scene), &options, rows, &RenderControl::default());
-        Ok(rendered.expect("a render without a cancel switch runs to its end"))
+        match render_picture(session.scene(), &options, Region::rows(&options, rows), &RenderControl::default()) {
+            Ok(rendered) => Ok(rendered.image),
+            Err(PictureError::OutOfMemory(error)) => Err(error),
+            Err(PictureError::Cancelled) => unreachable!("a render without a cancel flag runs to its end"),
+        }
     }
 
     /// Makes `image` the session's last picture, as if `:render` had

@@ -23,11 +23,10 @@ use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::{FrontEnd, LessonStep, LessonVerdict, Output, Picture, side_by_side};
 use super::reload;
 use super::render_steps::write_failure;
-use super::rendering::{RenderError, Size, render_image};
+use super::rendering::{Size, render_image};
 use super::shell::Shell;
 use super::state::Session;
 use crate::process::cancel::cancel_flag;
-use crate::render::SceneGeometry;
 pub(crate) use file::Lesson;
 use progress::Progress;
 use tutor::Following;
@@ -307,8 +306,7 @@ fn show_pictures(session: &Session, front: &mut dyn FrontEnd, following: &Follow
 fn render(session: &Session, size: Size) -> Result<RgbImage, String> {
     let never = AtomicBool::new(false);
     let scene = session.scene();
-    render_image(scene, &SceneGeometry::new(scene), size, session.settings(), &never, &|_| {})
-        .map_err(|RenderError::Cancelled| "the render was cancelled".to_string())
+    render_image(scene, size, session.settings(), &never, &|_| {}).map_err(|error| error.to_string())
 }
 
 /// The goal of the step followed, rendered at `size`.

@@ -11,14 +11,15 @@ use crate::clock::Stopwatch;
 use crate::lang::Diagnostic;
 use crate::output::OutputError;
 use crate::playback::Timeline;
-use crate::render::{OutOfMemory, RenderControl, SceneGeometry, reserve_for};
+use crate::render::{OutOfMemory, RenderControl};
 use crate::scene::Scene;
 
 use super::outcome::CommandError;
 use super::outputs::FrontEnd;
-use super::rendering::{RenderError, RenderSettings, Size, render_image, render_options};
+use super::rendering::{RenderSettings, Size, render_image, render_options};
 use super::report::{number, show_scene_warnings};
 use super::state::Session;
+use crate::pipeline::PictureError;
 use crate::warned::Warned;
 
 /// What every command that makes pictures of `size` (frames of an
@@ -69,9 +70,7 @@ pub(crate) fn render_scene(
     let armed = front.cancel().map(|switch| switch.arm());
     let never = AtomicBool::new(false);
     let cancel = armed.as_ref().map_or(&never, |armed| armed.flag());
-    reserve_for(scene, &render_options(size, settings)).map_err(out_of_memory)?;
-    let image =
-        render_image(scene, &SceneGeometry::new(scene), size, settings, cancel, &*tick).map_err(render_failure)?;
+    let image = render_image(scene, size, settings, cancel, &*tick).map_err(render_failure)?;
     Ok((image, started.elapsed()))
 }
 
@@ -105,7 +104,7 @@ pub(crate) fn render_frames(
     match render_animation(1..=frames, evaluate, &options, &control, sink) {
         Ok(_) => Ok(()),
         Err(AnimationError::Failed(error)) => Err(error),
-        Err(AnimationError::Cancelled) => Err(render_failure(RenderError::Cancelled)),
+        Err(AnimationError::Cancelled) => Err(render_failure(PictureError::Cancelled)),
         Err(AnimationError::OutOfMemory(error)) => Err(out_of_memory(error)),
     }
 }
@@ -120,9 +119,10 @@ fn frame_failure(diagnostic: Diagnostic, frame: u32, time: f64) -> CommandError 
     CommandError::Program(Box::new(diagnostic.with_note(note)))
 }
 
-fn render_failure(error: RenderError) -> CommandError {
+fn render_failure(error: PictureError) -> CommandError {
     match error {
-        RenderError::Cancelled => CommandError::Cancelled("render cancelled; the session is as it was".to_string()),
+        PictureError::Cancelled => CommandError::Cancelled("render cancelled; the session is as it was".to_string()),
+        PictureError::OutOfMemory(error) => out_of_memory(error),
     }
 }
 

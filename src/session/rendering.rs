@@ -1,12 +1,13 @@
 //! Turning the session's scene into images with the session's settings:
 //! the render options they give, and a render with progress and
-//! cancellation around it.
+//! cancellation around it, on the pipeline's one road to a picture.
 
 use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use crate::render::{Cancelled, RenderControl, RenderOptions, SceneGeometry, render};
+use crate::pipeline::{PictureError, render_picture};
+use crate::render::{Region, RenderControl, RenderOptions};
 use crate::scene::Scene;
 pub use crate::settings::RenderSettings;
 
@@ -25,32 +26,20 @@ impl std::fmt::Display for Size {
     }
 }
 
-/// Why a render gave no image.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) enum RenderError {
-    /// Ctrl-C was pressed.
-    Cancelled,
-}
-
-/// Renders `scene`, whose geometry is `prepared`, at `size` with the depth,
-/// samples and screen of `settings`.
-///
-/// This is the only place that calls the renderer. It stops when `cancel`
-/// is raised and reports finished pixels to `progress`, for the progress bar.
+/// Renders `scene` at `size` with the depth, samples and screen of
+/// `settings`, on the one road every front-end takes
+/// ([`render_picture`]). It stops when `cancel` is raised and reports
+/// finished pixels to `progress`, for the progress bar.
 pub(crate) fn render_image(
     scene: &Scene,
-    prepared: &SceneGeometry,
     size: Size,
     settings: &RenderSettings,
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<RgbImage, RenderError> {
+) -> Result<RgbImage, PictureError> {
     let options = render_options(size, settings);
     let control = RenderControl { progress: Some(progress), cancel: Some(cancel) };
-    match render(scene, prepared, &options, &control) {
-        Ok((image, _stats)) => Ok(image),
-        Err(Cancelled) => Err(RenderError::Cancelled),
-    }
+    render_picture(scene, &options, Region::whole(&options), &control).map(|rendered| rendered.image)
 }
 
 /// The renderer's options for an image of `size` with the session's settings.
@@ -74,8 +63,8 @@ mod tests {
         let size = Size { width: 64, height: 64 };
         let settings = RenderSettings::default();
         let cancel = AtomicBool::new(true);
-        let result = render_image(&scene, &SceneGeometry::new(&scene), size, &settings, &cancel, &|_| {});
-        assert_eq!(result, Err(RenderError::Cancelled));
+        let result = render_image(&scene, size, &settings, &cancel, &|_| {});
+        assert!(matches!(result, Err(PictureError::Cancelled)));
     }
 
     #[test]
@@ -86,8 +75,7 @@ mod tests {
         let count = |done: u64| {
             pixels.fetch_add(done as usize, Ordering::Relaxed);
         };
-        let image =
-            render_image(&scene, &SceneGeometry::new(&scene), size, &RenderSettings::default(), &cancel, &count);
+        let image = render_image(&scene, size, &RenderSettings::default(), &cancel, &count);
         assert_eq!(image.map(|i| i.dimensions()), Ok((40, 20)));
         assert_eq!(pixels.load(Ordering::Relaxed), 800);
     }

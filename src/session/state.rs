@@ -13,7 +13,8 @@ use crate::lang::name::Name;
 use crate::lang::{
     Diagnostic, Interpreter, Limits, SourceId, SourceMap, Span, parse_items, parse_items_apart, stopped_reading,
 };
-use crate::lint::{Allowed, Picture, check_scene};
+use crate::lint::{Allowed, Picture};
+use crate::pipeline::evaluation::{Evaluation, Lint, scene_warnings};
 use crate::scene::{Counts, Primitive, Scene};
 
 use super::describe::ObjectDescriptions;
@@ -149,7 +150,7 @@ impl Session {
     /// An empty session rendering with `settings`.
     pub fn new(settings: RenderSettings, limits: Limits) -> Session {
         Session {
-            interpreter: Interpreter::new(settings.time, limits),
+            interpreter: Evaluation::at(settings.time, limits).interpreter(),
             interpreter_time: settings.time,
             sources: SourceMap::new(),
             history: Vec::new(),
@@ -174,13 +175,16 @@ impl Session {
         self
     }
 
+    /// How the session evaluates its inputs at `time`: within its limits,
+    /// stopped by Ctrl-C, its scene judged only when a picture is asked for
+    /// ([`Session::scene_warnings`]).
+    fn evaluation(&self, time: f64) -> Evaluation {
+        Evaluation { cancel: self.interrupt, ..Evaluation::at(time, self.limits) }
+    }
+
     /// An empty interpreter with the session's limits and Ctrl-C.
     fn new_interpreter(&self, time: f64) -> Interpreter {
-        let interpreter = Interpreter::new(time, self.limits);
-        match self.interrupt {
-            Some(flag) => interpreter.interruptible(flag),
-            None => interpreter,
-        }
+        self.evaluation(time).interpreter()
     }
 
     /// The same session with the checks `allowed` turned off.
@@ -520,7 +524,7 @@ impl Session {
     /// `time` (the other frames of an animation).
     /// What it prints is kept for [`Session::take_printed`].
     pub(crate) fn replay_at(&self, time: f64, skip_static: bool) -> Result<Interpreter, Diagnostic> {
-        let interpreter = self.new_interpreter(time).skip_static(skip_static);
+        let interpreter = Evaluation { skip_static, ..self.evaluation(time) }.interpreter();
         let mut interpreter = self.replay(interpreter, &self.history)?;
         self.printed.borrow_mut().absorb(interpreter.take_printed());
         Ok(interpreter)
@@ -586,8 +590,7 @@ impl Session {
     /// The warnings about the scene, rendered as `picture` (for the checks
     /// not turned off).
     pub(crate) fn scene_warnings(&self, picture: &Picture) -> Vec<Diagnostic> {
-        let warnings = check_scene(self.scene(), self.interpreter.origins(), picture, self.allowed);
-        warnings.into_iter().map(|warning| warning.diagnostic).collect()
+        scene_warnings(&self.interpreter, &Lint { picture: *picture, allowed: self.allowed })
     }
 
     /// The source texts seen so far, to render diagnostics.
