@@ -21,6 +21,7 @@ mod job;
 #[cfg(feature = "jupyter")]
 pub mod jupyter;
 pub mod lang;
+mod lessons;
 pub mod lint;
 #[cfg(feature = "lsp")]
 pub mod lsp;

@@ -12,7 +12,7 @@
 //! Commands (`:render`, `:save`, `:time`, ...) are defined once in the
 //! registry, `commands`, and run by the modules of their topic below it
 //! (`picture_commands`, `setting_commands`, `file_commands`, `inspect`,
-//! `session_commands`, `play`, `reload`, `write_back`, `lessons`).
+//! `session_commands`, `play`, `reload`, `write_back`, `lesson_commands`).
 
 mod cells;
 pub(crate) mod commands;
@@ -23,7 +23,7 @@ pub(crate) mod file_commands;
 pub(crate) mod help;
 pub(crate) mod inputs;
 pub(crate) mod inspect;
-pub(crate) mod lessons;
+pub(crate) mod lesson_commands;
 pub(crate) mod options;
 mod outcome;
 mod outputs;

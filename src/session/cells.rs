@@ -19,7 +19,7 @@ use crate::render::{OutOfMemory, Region, RenderControl};
 use super::commands::{self, is_command};
 use super::completion::{self, Candidate};
 use super::file_commands::load_text_reporting;
-use super::lessons::check_scene;
+use super::lesson_commands::check_scene;
 use super::options::{SessionOptions, new_session};
 use super::outputs::{Collected, FrontEnd, Output};
 use super::render_steps::notes_before_rendering;

@@ -9,7 +9,7 @@ use crate::lang::suggest::closest;
 use super::file_commands;
 use super::help::{self, Group, Topic, help_page};
 use super::inspect;
-use super::lessons;
+use super::lesson_commands;
 pub(crate) use super::outcome::Flow;
 use super::outcome::{CommandError, CommandResult};
 use super::outputs::FrontEnd;
@@ -60,7 +60,7 @@ pub(crate) const COMMANDS: &[Command] = &[
         },
         usage: ":lesson [NUMBER|FILE|stop]",
         files: Files::Reads,
-        run: lessons::lesson,
+        run: lesson_commands::lesson,
     },
     Command {
         topic: Topic {
@@ -72,7 +72,7 @@ pub(crate) const COMMANDS: &[Command] = &[
         },
         usage: ":goal [FILE.png]",
         files: Files::WritesPictures,
-        run: lessons::goal,
+        run: lesson_commands::goal,
     },
     Command {
         topic: Topic {

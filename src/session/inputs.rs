@@ -3,7 +3,7 @@
 use crate::lang::Diagnostic;
 
 use super::commands;
-use super::lessons;
+use super::lesson_commands;
 use super::outputs::FrontEnd;
 use super::report::{self, show_printed, show_warnings};
 use super::shell::Shell;
@@ -24,7 +24,7 @@ pub(crate) fn report_input(
             let warnings = std::mem::take(&mut accepted.warnings);
             show_warnings(session, &mut shell.warned, front, warnings);
             report::confirm(&accepted, session, front);
-            lessons::check_input(shell, front);
+            lesson_commands::check_input(shell, front);
             Ok(())
         }
         Err(error) => {

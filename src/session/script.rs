@@ -13,7 +13,7 @@ use crate::lang::{Diagnostic, Entry, EntryState, SourceId, parse_entries};
 use super::commands::{self, Flow, is_command};
 use super::file_commands::load_reporting;
 use super::inputs::report_input;
-use super::lessons;
+use super::lesson_commands;
 use super::options::SessionOptions;
 use super::outputs::FrontEnd;
 use super::shell::Shell;
@@ -321,7 +321,7 @@ impl<'s> Script<'s> {
             }
         }
         if let Some(lesson) = &options.lesson {
-            let started = lessons::start_reporting(self.shell, lesson, self.front);
+            let started = lesson_commands::start_reporting(self.shell, lesson, self.front);
             return self.after(started.is_ok());
         }
         Step::Next

@@ -4,8 +4,8 @@
 
 use image::RgbImage;
 
-use super::lessons::tutor::Tutor;
 use super::state::Session;
+use crate::lessons::Tutor;
 use crate::warned::Warned;
 
 /// What the commands work on: the session, and the front-end's state.

@@ -21,7 +21,7 @@ use super::console::Console;
 use crate::session::commands::{self, Flow, is_command};
 use crate::session::file_commands::load_reporting;
 use crate::session::inputs::report_input;
-use crate::session::lessons;
+use crate::session::lesson_commands;
 use crate::session::options::new_session;
 use crate::session::report::counted;
 use crate::session::shell::Shell;
@@ -127,7 +127,7 @@ fn run_entries(lines: impl LineSource, front: &mut dyn FrontEnd, options: &Sessi
         let _ = load_reporting(&mut shell, path, front);
     }
     if let Some(lesson) = &options.lesson {
-        let _ = lessons::start_reporting(&mut shell, lesson, front);
+        let _ = lesson_commands::start_reporting(&mut shell, lesson, front);
     }
     Repl { lines, shell, inputs: 0, queued: VecDeque::new(), several_lines_read: false }.run(front)
 }

@@ -459,19 +459,18 @@ impl Condition {
 mod tests {
     use super::read::parse_number;
     use super::*;
-    use crate::lang::Limits;
-    use crate::session::RenderSettings;
-    use crate::session::lessons::Session;
+    use crate::lessons::evaluation::Evaluation;
+    use crate::settings::RenderSettings;
 
-    fn session(program: &str) -> Session {
-        let mut session = Session::new(RenderSettings::default(), Limits::default());
-        session.submit("<test>", program, 0).expect("the program runs");
-        session
+    fn learner(program: &str) -> Evaluation {
+        let mut learner = Evaluation::new(RenderSettings::default().time);
+        learner.run("<test>", program).expect("the program runs");
+        learner
     }
 
     fn check(check: &str, program: &str) -> Result<(), Shortfall> {
         let check = parse(check).expect("the check reads");
-        holds(&check, &session(program), None)
+        holds(&check, &learner(program), None)
     }
 
     #[test]
@@ -542,11 +541,11 @@ mod tests {
 
     #[test]
     fn a_scene_matches_the_goal_however_it_is_built() {
-        let goal = session("put sphere center 1, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end");
+        let goal = learner("put sphere center 1, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end");
         let same =
-            session("put translate sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 1, 0, 0 end");
+            learner("put translate sphere center 0, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 9 end by 1, 0, 0 end");
         assert_eq!(holds(&Check::MatchesGoal, &same, Some(&goal)), Ok(()));
-        let other = session("put sphere center 1, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 90 end");
+        let other = learner("put sphere center 1, 0, 0 radius 1 kd 1 ks 0 phong 1 color 9, 9, 90 end");
         let shortfall = holds(&Check::MatchesGoal, &other, Some(&goal)).unwrap_err();
         assert!(shortfall.text.contains("colour 9, 9, 90; the goal's has 9, 9, 9"), "{}", shortfall.text);
         assert_eq!(parse("the scene matches the goal"), Ok(Check::MatchesGoal));

@@ -1,65 +1,35 @@
-//! Guided lessons (`:lesson`): each step says what to build, shows the goal
-//! picture beside the learner's render, and checks the learner's scene after
-//! every accepted input: what comes closest and a hint after a wrong try,
-//! the next step on success. The lessons are text files ([`file`], checked
-//! by [`check`]): the nine built in (`lessons/*.md`), or a teacher's.
-//! Progress in the built-in ones is kept between sessions ([`progress`]).
-
-mod check;
-mod file;
-mod progress;
-pub(crate) mod tutor;
+//! The lesson commands (`:lesson`, `:goal`) and what the session does
+//! for the lesson followed (`crate::lessons`): after every accepted input,
+//! the scene checked against the step, what comes closest and a hint after
+//! a wrong try, the next step on success; the goal picture beside the
+//! learner's render. The session's state is the learner the checks read.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
-use std::sync::{Arc, LazyLock};
 
 use image::RgbImage;
 
+use crate::lang::eval::Origins;
+use crate::lang::name::Name;
 use crate::lang::{SourceMap, Span};
+use crate::lessons::{BUILT_IN, Following, Learner, Lesson, Progress, Shortfall};
 use crate::output::{self, Content};
+use crate::scene::{Primitive, Scene};
 
 use super::outcome::{CommandError, CommandResult, Flow};
 use super::outputs::{FrontEnd, LessonStep, LessonVerdict, Output, Picture, side_by_side};
 use super::reload;
 use super::render_steps::write_failure;
-use super::rendering::{Size, render_image};
+use super::rendering::{RenderSettings, Size, render_image};
 use super::shell::Shell;
 use super::state::Session;
 use crate::process::cancel::cancel_flag;
-pub(crate) use file::Lesson;
-use progress::Progress;
-use tutor::Following;
 
 /// Wrong tries of a step after which its example is shown with the hint.
 const TRIES_BEFORE_EXAMPLE: u32 = 2;
 /// Columns of background between the goal picture and the learner's.
 const PICTURE_GAP: u32 = 4;
-
-/// The built-in lessons' files, in order.
-const BUILT_IN_FILES: &[(&str, &str)] = &[
-    ("lessons/1-first-sphere.md", include_str!("../../lessons/1-first-sphere.md")),
-    ("lessons/2-lights.md", include_str!("../../lessons/2-lights.md")),
-    ("lessons/3-textures.md", include_str!("../../lessons/3-textures.md")),
-    ("lessons/4-planes-and-boxes.md", include_str!("../../lessons/4-planes-and-boxes.md")),
-    ("lessons/5-transformations.md", include_str!("../../lessons/5-transformations.md")),
-    ("lessons/6-names.md", include_str!("../../lessons/6-names.md")),
-    ("lessons/7-procedures.md", include_str!("../../lessons/7-procedures.md")),
-    ("lessons/8-recursion.md", include_str!("../../lessons/8-recursion.md")),
-    ("lessons/9-time.md", include_str!("../../lessons/9-time.md")),
-];
-
-/// The built-in lessons, read once. Their files are proved by the tests
-/// (every check, example and answer), so reading them cannot fail.
-static BUILT_IN: LazyLock<Vec<Arc<Lesson>>> = LazyLock::new(|| {
-    let mut sources = SourceMap::new();
-    let read = |(name, text): &(&str, &str)| {
-        let id = sources.add(*name, *text, 0);
-        let lesson = Lesson::parse(text, id);
-        Arc::new(lesson.unwrap_or_else(|d| panic!("{}", d.render(&sources, false))))
-    };
-    BUILT_IN_FILES.iter().map(read).collect()
-});
 
 /// `:lesson` lists the lessons; `:lesson N` starts (or resumes) lesson N;
 /// `:lesson FILE` starts the lesson written in FILE; `:lesson stop` leaves.
@@ -151,9 +121,8 @@ fn check(shell: &mut Shell, front: &mut dyn FrontEnd, undo_offered: bool) {
 }
 
 /// Whether the learner's scene does what the step followed asks.
-fn holds(following: &Following, session: &Session) -> Result<(), check::Shortfall> {
-    let goal = || following.lesson.session_at(following.step + 1, *session.settings());
-    following.lesson.steps[following.step].holds(session, &goal)
+fn holds(following: &Following, session: &Session) -> Result<(), Shortfall> {
+    following.lesson.holds(following.step, session, session.settings().time)
 }
 
 fn list(shell: &Shell, front: &mut dyn FrontEnd) {
@@ -286,7 +255,7 @@ fn show_pictures(session: &Session, front: &mut dyn FrontEnd, following: &Follow
     };
     let half = Size { width: (pair.width.saturating_sub(PICTURE_GAP) / 2).max(1), height: pair.height };
     let pictures = goal_picture(session, following, half)
-        .and_then(|goal| Ok(side_by_side(&goal, &render(session, half)?, PICTURE_GAP)));
+        .and_then(|goal| Ok(side_by_side(&goal, &render(session.scene(), settings, half)?, PICTURE_GAP)));
     match pictures {
         Ok(image) => {
             front.say("goal (left) and yours (right):");
@@ -302,17 +271,18 @@ fn show_pictures(session: &Session, front: &mut dyn FrontEnd, following: &Follow
     }
 }
 
-/// The session's scene rendered at `size`, with its settings.
-fn render(session: &Session, size: Size) -> Result<RgbImage, String> {
+/// `scene` rendered at `size`, with `settings`.
+fn render(scene: &Scene, settings: &RenderSettings, size: Size) -> Result<RgbImage, String> {
     let never = AtomicBool::new(false);
-    let scene = session.scene();
-    render_image(scene, size, session.settings(), &never, &|_| {}).map_err(|error| error.to_string())
+    render_image(scene, size, settings, &never, &|_| {}).map_err(|error| error.to_string())
 }
 
-/// The goal of the step followed, rendered at `size`.
+/// The goal of the step followed, rendered at `size` with the session's
+/// settings.
 fn goal_picture(session: &Session, following: &Following, size: Size) -> Result<RgbImage, String> {
-    let goal = following.lesson.session_at(following.step + 1, *session.settings());
-    render(&goal.ok_or("the lesson's example fails")?, size)
+    let settings = session.settings();
+    let goal = following.lesson.evaluate_at(following.step + 1, settings.time);
+    render(goal.ok_or("the lesson's example fails")?.scene(), settings, size)
 }
 
 /// `:goal` shows the goal of the step followed; `:goal FILE` writes it at
@@ -349,12 +319,51 @@ pub(crate) fn goal(shell: &mut Shell, arguments: &[String], front: &mut dyn Fron
     Ok(Flow::Continue)
 }
 
+/// The learner's state the lessons' checks read: the session's.
+impl Learner for Session {
+    fn scene(&self) -> &Scene {
+        Session::scene(self)
+    }
+
+    fn origins(&self) -> &Origins {
+        Session::origins(self)
+    }
+
+    fn sources(&self) -> &SourceMap {
+        Session::sources(self)
+    }
+
+    fn has_camera(&self) -> bool {
+        Session::has_camera(self)
+    }
+
+    fn has_ambient(&self) -> bool {
+        Session::has_ambient(self)
+    }
+
+    fn numbers(&self) -> Vec<(Name, f64)> {
+        Session::numbers(self)
+    }
+
+    fn object_names(&self) -> Vec<Name> {
+        self.objects().into_iter().map(|(name, _)| name).collect()
+    }
+
+    fn object(&self, name: &str) -> Option<&[Primitive]> {
+        self.global_object(name)
+    }
+
+    fn procedures(&self) -> Vec<(Name, usize)> {
+        let procedures = Session::procedures(self);
+        procedures.into_iter().map(|(name, parameters)| (name, parameters.len())).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::path::{Path, PathBuf};
 
     use super::*;
-    use crate::session::RenderSettings;
 
     /// The size and samples of the pictures of docs/learning.md.
     const DOCS_PICTURE: RenderSettings =
@@ -364,44 +373,12 @@ mod tests {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("docs")
     }
 
-    /// Every built-in lesson reads and proves itself: its checks ask for
-    /// something new at each step, its example and its answers that must
-    /// pass pass, its answers that must fail fail with the words it says;
-    /// and every step has at least two of each.
-    #[test]
-    fn the_built_in_lessons_prove_themselves() {
-        for (name, text) in BUILT_IN_FILES {
-            let mut sources = SourceMap::new();
-            let id = sources.add(*name, *text, 0);
-            let lesson = Lesson::read(text, id).unwrap_or_else(|d| panic!("{}", d.render(&sources, false)));
-            for (index, step) in lesson.steps.iter().enumerate() {
-                let place = format!("{name} step {}", index + 1);
-                assert!(step.passes.len() >= 2 && step.fails.len() >= 2, "{place}: two answers of each kind");
-            }
-        }
-    }
-
-    /// docs/lessons.md documents every word of the checks, and its
-    /// complete lesson reads and proves itself.
-    #[test]
-    fn the_lessons_page_documents_the_format_with_a_lesson_that_proves_itself() {
-        let page = std::fs::read_to_string(docs().join("lessons.md")).expect("docs/lessons.md exists");
-        for word in check::vocabulary() {
-            assert!(page.contains(&format!("`{word}")), "docs/lessons.md does not document `{word}`");
-        }
-        let example = page.split("````markdown\n").nth(1).and_then(|rest| rest.split("\n````").next());
-        let example = example.expect("docs/lessons.md has a complete lesson in a ````markdown block");
-        let mut sources = SourceMap::new();
-        let id = sources.add("docs/lessons.md", example, 0);
-        let lesson = Lesson::read(example, id).unwrap_or_else(|d| panic!("{}", d.render(&sources, false)));
-        assert_eq!(lesson.steps.len(), 2);
-    }
-
     /// The picture of what lesson `index` builds, as docs/learning.md shows it.
     fn lesson_picture(index: usize) -> RgbImage {
         let lesson = &BUILT_IN[index];
-        let session = lesson.session_at(lesson.steps.len(), DOCS_PICTURE).expect("the lesson's examples run");
-        render(&session, Size { width: DOCS_PICTURE.width, height: DOCS_PICTURE.height }).expect("nothing cancels it")
+        let goal = lesson.evaluate_at(lesson.steps.len(), DOCS_PICTURE.time).expect("the lesson's examples run");
+        let size = Size { width: DOCS_PICTURE.width, height: DOCS_PICTURE.height };
+        render(goal.scene(), &DOCS_PICTURE, size).expect("nothing cancels it")
     }
 
     /// docs/learning.md shows every example of every lesson, and the

@@ -9,11 +9,12 @@
 //! must pass, every `fails` answer must not (with the words of its
 //! `Says:`). A mistake is a [`Diagnostic`] pointing at the file's line.
 
-use crate::lang::{Diagnostic, Limits, SourceId, Span};
+use crate::lang::{Diagnostic, SourceId, Span};
+use crate::settings::RenderSettings;
 
-use super::super::rendering::RenderSettings;
-use super::super::state::Session;
 use super::check::{Check, Shortfall, holds, no_degrees, parse};
+use super::evaluation::Evaluation;
+use super::learner::Learner;
 
 /// A lesson: a title, the scene it starts from, its steps.
 #[derive(Debug)]
@@ -54,16 +55,6 @@ pub(crate) struct Refused {
     pub place: Span,
     /// Words the shortfall must contain (`Says:`), if given.
     pub says: Option<String>,
-}
-
-impl Step {
-    /// `Ok` when the `learner`'s scene does everything the step asks;
-    /// `goal` builds the step's goal scene, for a check that compares with it.
-    pub(crate) fn holds(&self, learner: &Session, goal: &dyn Fn() -> Option<Session>) -> Result<(), Shortfall> {
-        no_degrees(learner)?;
-        let goal = self.checks.contains(&Check::MatchesGoal).then(goal).flatten();
-        self.checks.iter().try_for_each(|check| holds(check, learner, goal.as_ref()))
-    }
 }
 
 /// A fenced block being read: its kind, where it opened, its lines.
@@ -128,44 +119,55 @@ impl Lesson {
         text
     }
 
-    /// A session holding the lesson's scene at `step`, with `settings`;
+    /// The lesson's scene at `step` (from 0), evaluated with `time` at the
+    /// value `time`;
     /// `None` if its program fails.
-    pub(crate) fn session_at(&self, step: usize, settings: RenderSettings) -> Option<Session> {
-        let mut session = Session::new(settings, Limits::default());
-        session.submit("<goal>", &self.scene_at(step), 0).ok()?;
-        Some(session)
+    pub(crate) fn evaluate_at(&self, step: usize, time: f64) -> Option<Evaluation> {
+        let mut evaluation = Evaluation::new(time);
+        evaluation.run("<goal>", &self.scene_at(step)).ok()?;
+        Some(evaluation)
+    }
+
+    /// `Ok` when the `learner`'s scene does everything step `step` (from 0)
+    /// asks; the step's goal, for a check that compares with it, is
+    /// evaluated with `time`.
+    pub(crate) fn holds(&self, step: usize, learner: &dyn Learner, time: f64) -> Result<(), Shortfall> {
+        no_degrees(learner)?;
+        let checks = &self.steps[step].checks;
+        let goal = checks.contains(&Check::MatchesGoal).then(|| self.evaluate_at(step + 1, time)).flatten();
+        let goal = goal.as_ref().map(|goal| goal as &dyn Learner);
+        checks.iter().try_for_each(|check| holds(check, learner, goal))
     }
 
     /// Runs every step's answers and example: a lesson whose checks hold
     /// before its step, refuse its own example or its `passes` answers, or
     /// accept its `fails` answers, is wrong.
     fn prove(&self) -> Result<(), Diagnostic> {
-        let settings = RenderSettings::default();
-        let mut session = Session::new(settings, Limits::default());
+        let time = RenderSettings::default().time;
+        let mut evaluation = Evaluation::new(time);
         for (index, step) in self.steps.iter().enumerate() {
             let number = index + 1;
-            let goal = || self.session_at(index + 1, settings);
             let place = step.example_at;
             if index == 0 {
-                run(&mut session, &self.setup, place, "the setup")?;
+                run(&mut evaluation, &self.setup, place, "the setup")?;
             }
-            if step.holds(&session, &goal).is_ok() {
+            if self.holds(index, &evaluation, time).is_ok() {
                 let message = format!("step {number}'s checks hold before it starts: they ask for nothing new");
                 return Err(Diagnostic::error(place, message));
             }
             for (answer, at) in &step.passes {
-                run(&mut session, answer, *at, "this answer")?;
-                let verdict = step.holds(&session, &goal);
-                session.undo().map_err(|_| Diagnostic::error(*at, "this answer cannot be taken back"))?;
+                run(&mut evaluation, answer, *at, "this answer")?;
+                let verdict = self.holds(index, &evaluation, time);
+                evaluation.undo().map_err(|_| Diagnostic::error(*at, "this answer cannot be taken back"))?;
                 if let Err(shortfall) = verdict {
                     let message = format!("step {number} refuses this answer: {}", shortfall.text);
                     return Err(Diagnostic::error(*at, message));
                 }
             }
             for refused in &step.fails {
-                run(&mut session, &refused.program, refused.place, "this answer")?;
-                let verdict = step.holds(&session, &goal);
-                session.undo().map_err(|_| Diagnostic::error(refused.place, "this answer cannot be taken back"))?;
+                run(&mut evaluation, &refused.program, refused.place, "this answer")?;
+                let verdict = self.holds(index, &evaluation, time);
+                evaluation.undo().map_err(|_| Diagnostic::error(refused.place, "this answer cannot be taken back"))?;
                 match (verdict, &refused.says) {
                     (Ok(()), _) => {
                         let message = format!("step {number} accepts this answer, which it must refuse");
@@ -178,8 +180,8 @@ impl Lesson {
                     (Err(_), _) => {}
                 }
             }
-            run(&mut session, &step.example, place, "the example")?;
-            if let Err(shortfall) = step.holds(&session, &goal) {
+            run(&mut evaluation, &step.example, place, "the example")?;
+            if let Err(shortfall) = self.holds(index, &evaluation, time) {
                 let message = format!("step {number} refuses its own example: {}", shortfall.text);
                 return Err(Diagnostic::error(place, message));
             }
@@ -188,13 +190,11 @@ impl Lesson {
     }
 }
 
-/// Runs `program` into `session`; a program that fails is a mistake of
+/// Runs `program` into `evaluation`; a program that fails is a mistake of
 /// the lesson at `place`.
-fn run(session: &mut Session, program: &str, place: Span, what: &str) -> Result<(), Diagnostic> {
-    match session.submit("<lesson>", program, 0) {
-        Ok(_) => Ok(()),
-        Err(failure) => Err(Diagnostic::error(place, format!("{what} does not run: {}", failure.message))),
-    }
+fn run(evaluation: &mut Evaluation, program: &str, place: Span, what: &str) -> Result<(), Diagnostic> {
+    let failed = |failure: Diagnostic| Diagnostic::error(place, format!("{what} does not run: {}", failure.message));
+    evaluation.run("<lesson>", program).map_err(failed)
 }
 
 /// Reads the format, without running anything.

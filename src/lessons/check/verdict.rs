@@ -9,7 +9,7 @@ use crate::lang::degrees::in_radians_help;
 use crate::lang::number::format_number;
 use crate::scene::{Light, Primitive, Shape};
 
-use super::super::super::state::Session;
+use super::super::learner::Learner;
 use super::{
     ARRANGEMENT_STARTS, Arrangement, Check, Comparison, Condition, DIRECTIONS, Direction, LightsWanted, Part, Quantity,
     ShapeKind, ShapesWanted, Shortfall, extents, numbers_in_words,
@@ -17,7 +17,7 @@ use super::{
 
 /// `Ok` when `check` holds in the `learner`'s scene; `goal` is the step's
 /// goal scene, for [`Check::MatchesGoal`] (`None` if it could not be built).
-pub(crate) fn holds(check: &Check, learner: &Session, goal: Option<&Session>) -> Result<(), Shortfall> {
+pub(crate) fn holds(check: &Check, learner: &dyn Learner, goal: Option<&dyn Learner>) -> Result<(), Shortfall> {
     match check {
         Check::Camera(conditions) => camera_holds(conditions, learner),
         Check::Ambient(comparison) => {
@@ -64,7 +64,7 @@ pub(crate) fn holds(check: &Check, learner: &Session, goal: Option<&Session>) ->
 /// `Ok` unless an angle of the learner's program looks like degrees (a
 /// lesson never asks for a turn of 45 radians): the check that comes
 /// before every step's own, since such a turn may still pass them by chance.
-pub(crate) fn no_degrees(learner: &Session) -> Result<(), Shortfall> {
+pub(crate) fn no_degrees(learner: &dyn Learner) -> Result<(), Shortfall> {
     let Some(origin) = learner.origins().degrees.first() else {
         return Ok(());
     };
@@ -79,9 +79,9 @@ pub(crate) fn no_degrees(learner: &Session) -> Result<(), Shortfall> {
     })
 }
 
-/// A session's scene as the grader compares it.
-fn side(session: &Session) -> Side<'_> {
-    Side { scene: session.scene(), origins: session.origins() }
+/// A learner's scene as the grader compares it.
+fn side(learner: &dyn Learner) -> Side<'_> {
+    Side { scene: learner.scene(), origins: learner.origins() }
 }
 
 /// What the conditions that `part` misses say: "radius 1 (the goal: 2) and
@@ -101,7 +101,7 @@ fn distance(conditions: &[Condition], part: Part) -> (usize, f64) {
 /// Where `span` is, as the learner reads it: "at line 3" of a file or a
 /// script; "in input [2]" (its line too, if it has several) of an input
 /// typed in the session, which the prompt numbers.
-fn place_words(learner: &Session, span: Span) -> String {
+fn place_words(learner: &dyn Learner, span: Span) -> String {
     let file = learner.sources().get(span.source);
     let (line, _) = file.line_col(span.start as usize);
     let typed = file.name.strip_prefix("<input ").and_then(|rest| rest.strip_suffix('>'));
@@ -112,7 +112,7 @@ fn place_words(learner: &Session, span: Span) -> String {
     }
 }
 
-fn camera_holds(conditions: &[Condition], learner: &Session) -> Result<(), Shortfall> {
+fn camera_holds(conditions: &[Condition], learner: &dyn Learner) -> Result<(), Shortfall> {
     let camera = learner.scene().camera;
     let made_at = learner.origins().camera.as_ref().map(|origin| origin.item);
     let Some(made_at) = made_at.filter(|_| learner.has_camera()) else {
@@ -127,7 +127,7 @@ fn camera_holds(conditions: &[Condition], learner: &Session) -> Result<(), Short
     }
 }
 
-fn lights_hold(wanted: &LightsWanted, learner: &Session) -> Result<(), Shortfall> {
+fn lights_hold(wanted: &LightsWanted, learner: &dyn Learner) -> Result<(), Shortfall> {
     let scene = learner.scene();
     let origins = learner.origins();
     let lights = || scene.lights.iter().zip(&origins.lights);
@@ -209,14 +209,14 @@ fn sides_words(sides: &[Direction]) -> String {
 
 /// The primitives of the scene, with the `put` that made each and whether it
 /// depends on `time`.
-fn placed(learner: &Session) -> Vec<(&Primitive, Option<Span>, bool)> {
+fn placed(learner: &dyn Learner) -> Vec<(&Primitive, Option<Span>, bool)> {
     let (scene, origins) = (learner.scene(), learner.origins());
     let fixed = scene.primitives.iter().enumerate().map(|(i, p)| (p, origins.primitives.span_of(i), false));
     let timed = scene.timed_primitives.iter().enumerate().map(|(i, p)| (p, origins.timed_primitives.span_of(i), true));
     fixed.chain(timed).collect()
 }
 
-fn shapes_hold(wanted: &ShapesWanted, learner: &Session) -> Result<(), Shortfall> {
+fn shapes_hold(wanted: &ShapesWanted, learner: &dyn Learner) -> Result<(), Shortfall> {
     let kind = wanted.kind;
     let all: Vec<_> = placed(learner).into_iter().filter(|(p, _, _)| ShapeKind::of(&p.shape) == kind).collect();
     if all.is_empty() {
@@ -224,7 +224,7 @@ fn shapes_hold(wanted: &ShapesWanted, learner: &Session) -> Result<(), Shortfall
     }
     let like = match &wanted.like {
         None => None,
-        Some(name) => match learner.global_object(name) {
+        Some(name) => match learner.object(name) {
             Some([first, ..]) => Some(*first),
             _ => return Err(Shortfall::new(format!("there is no object `{name}` to put"))),
         },
@@ -307,7 +307,7 @@ fn close(a: f64, b: f64) -> bool {
 }
 
 /// The heights of the planes of the scene that face up.
-fn floors(learner: &Session) -> Vec<f64> {
+fn floors(learner: &dyn Learner) -> Vec<f64> {
     let up = |normal: DVec3| normal.abs_diff_eq(DVec3::Y, 1e-9);
     let planes = learner.scene().all_primitives().filter_map(|p| match p.shape {
         Shape::Plane { normal, shift } if up(normal) => Some(shift),
@@ -383,7 +383,7 @@ fn missing_name<'a>(name: &str, mut defined: impl Iterator<Item = &'a str>, none
     })
 }
 
-fn number_holds(name: &str, value: Option<&Comparison>, learner: &Session) -> Result<(), Shortfall> {
+fn number_holds(name: &str, value: Option<&Comparison>, learner: &dyn Learner) -> Result<(), Shortfall> {
     let numbers = learner.numbers();
     let Some((_, found)) = numbers.iter().find(|(defined, _)| &**defined == name) else {
         return Err(missing_name(name, numbers.iter().map(|(defined, _)| &**defined), "no number is named"));
@@ -398,10 +398,10 @@ fn number_holds(name: &str, value: Option<&Comparison>, learner: &Session) -> Re
     }
 }
 
-fn object_holds(name: &str, kind: ShapeKind, conditions: &[Condition], learner: &Session) -> Result<(), Shortfall> {
-    let Some(primitives) = learner.global_object(name) else {
-        let objects = learner.objects();
-        return Err(missing_name(name, objects.iter().map(|(defined, _)| &**defined), "no object is named"));
+fn object_holds(name: &str, kind: ShapeKind, conditions: &[Condition], learner: &dyn Learner) -> Result<(), Shortfall> {
+    let Some(primitives) = learner.object(name) else {
+        let objects = learner.object_names();
+        return Err(missing_name(name, objects.iter().map(|defined| &**defined), "no object is named"));
     };
     let [primitive] = primitives else {
         return Err(Shortfall::new(format!(
@@ -420,15 +420,13 @@ fn object_holds(name: &str, kind: ShapeKind, conditions: &[Condition], learner: 
     }
 }
 
-fn procedure_holds(name: &str, parameters: usize, learner: &Session) -> Result<(), Shortfall> {
+fn procedure_holds(name: &str, parameters: usize, learner: &dyn Learner) -> Result<(), Shortfall> {
     let procedures = learner.procedures();
-    let Some((_, params)) = procedures.iter().find(|(defined, _)| &**defined == name) else {
+    let Some((_, takes)) = procedures.iter().find(|(defined, _)| &**defined == name) else {
         return Err(missing_name(name, procedures.iter().map(|(defined, _)| &**defined), "no procedure is named"));
     };
-    match params.len() == parameters {
+    match *takes == parameters {
         true => Ok(()),
-        false => {
-            Err(Shortfall::new(format!("your `{name}` takes {} parameters; the goal: {parameters}", params.len())))
-        }
+        false => Err(Shortfall::new(format!("your `{name}` takes {takes} parameters; the goal: {parameters}"))),
     }
 }
