@@ -16,6 +16,7 @@ pub mod clock;
 pub mod compare;
 mod data_dir;
 pub mod explain;
+pub mod ide;
 #[cfg(feature = "terminal")]
 mod job;
 #[cfg(feature = "jupyter")]

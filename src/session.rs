@@ -16,11 +16,9 @@
 
 mod cells;
 pub(crate) mod commands;
-pub(crate) mod completion;
 mod describe;
 mod excerpt;
 pub(crate) mod file_commands;
-pub(crate) mod help;
 pub(crate) mod inputs;
 pub(crate) mod inspect;
 pub(crate) mod lessons;
@@ -38,7 +36,6 @@ mod session_commands;
 mod setting_commands;
 pub(crate) mod shell;
 mod state;
-pub(crate) mod syntax;
 pub(crate) mod write_back;
 
 pub use crate::process::cancel::CancelSwitch;
@@ -49,5 +46,4 @@ pub use outputs::{
     TextRole, Ticker, Waited, mark_pixel,
 };
 pub use rendering::{RenderSettings, Size};
-pub(crate) use state::Vocabulary;
 pub use state::{MOST_INPUTS, Session};

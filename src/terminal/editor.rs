@@ -17,12 +17,11 @@ use rustyline::hint::{Hinter, HistoryHinter};
 use rustyline::validate::{ValidationContext, ValidationResult, Validator};
 use rustyline::{Context, Helper};
 
+use crate::ide::commands::{self, is_command};
+use crate::ide::completion;
+use crate::ide::names::Vocabulary;
+use crate::ide::scanner::{PieceKind, pieces};
 use crate::lang::{EntryState, entry_state};
-
-use crate::session::Vocabulary;
-use crate::session::commands::{self, is_command};
-use crate::session::completion;
-use crate::session::syntax::{PieceKind, pieces};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
 /// rustyline repaint the whole line at every key, so a long pasted line
