@@ -9,10 +9,12 @@
 //! through a [`Console`], the terminal session (`crate::terminal`) also
 //! previews their pictures, and [`Collected`] keeps them in a list.
 //!
-//! Commands (`:render`, `:save`, `:time`, ...) are defined once in the
-//! registry, `commands`, and run by the modules of their topic below it
-//! (`picture_commands`, `setting_commands`, `file_commands`, `inspect`,
-//! `session_commands`, `play`, `reload`, `write_back`, `lessons`).
+//! Commands (`:render`, `:save`, `:time`, ...) are described once in
+//! [`crate::ide::commands`]; the registry, `commands`, gives each its
+//! handler, in the modules of their topic below it (`picture_commands`,
+//! `setting_commands`, `file_commands`, `inspect`, `session_commands`,
+//! `play`, `reload`, `write_back`, `lessons`). Completion, help and
+//! inspection at a place are the editor services of [`crate::ide`].
 
 mod cells;
 pub(crate) mod commands;

@@ -149,7 +149,7 @@ impl Highlighter for RayHelper {
 impl Helper for RayHelper {}
 
 /// `line` with ANSI colours: keywords, built-ins, numbers, comments and
-/// commands (those the registry knows: a misspelt one stays plain).
+/// commands (those described in [`commands`]: a misspelt one stays plain).
 pub(crate) fn colorize(line: &str) -> String {
     let mut out = String::with_capacity(line.len() * 2);
     for piece in pieces(line) {
