@@ -27,6 +27,7 @@ use jupyter_protocol::{
 };
 
 use crate::clock::Stopwatch;
+use crate::ide::offsets::{byte_of_char, chars_before};
 use crate::process::interruption::Signal;
 use crate::session::{CancelSwitch, CellEnd, CellSession, Completeness, SessionOptions};
 use front::KernelFront;
@@ -278,12 +279,12 @@ impl Kernel {
 
     /// The session's completions at the cursor (which counts characters).
     fn complete(&self, request: &CompleteRequest) -> CompleteReply {
-        let cursor = byte_offset(&request.code, request.cursor_pos);
+        let cursor = byte_of_char(&request.code, request.cursor_pos);
         let completions = self.cells.complete(&request.code, cursor);
         CompleteReply {
             matches: completions.candidates,
-            cursor_start: char_offset(&request.code, completions.start),
-            cursor_end: char_offset(&request.code, completions.end),
+            cursor_start: chars_before(&request.code, completions.start),
+            cursor_end: chars_before(&request.code, completions.end),
             metadata: serde_json::Map::new(),
             status: ReplyStatus::Ok,
             error: None,
@@ -292,7 +293,7 @@ impl Kernel {
 
     /// What the session says of the word at the cursor.
     fn inspect(&mut self, request: &InspectRequest) -> InspectReply {
-        let cursor = byte_offset(&request.code, request.cursor_pos);
+        let cursor = byte_of_char(&request.code, request.cursor_pos);
         let text = self.cells.inspect(&request.code, cursor);
         InspectReply {
             found: text.is_some(),
@@ -343,17 +344,6 @@ fn is_complete(code: &str) -> IsCompleteReply {
     }
 }
 
-/// The byte offset of character `chars` of `text` (the protocol counts
-/// characters), or its end.
-fn byte_offset(text: &str, chars: usize) -> usize {
-    text.char_indices().nth(chars).map_or(text.len(), |(at, _)| at)
-}
-
-/// How many characters come before byte `bytes` of `text`.
-fn char_offset(text: &str, bytes: usize) -> usize {
-    text[..bytes.min(text.len())].chars().count()
-}
-
 /// Whether `text` matches the glob `pattern` (`*` any run, `?` one character).
 fn glob_matches(pattern: &str, text: &str) -> bool {
     let (pattern, text): (Vec<char>, Vec<char>) = (pattern.chars().collect(), text.chars().collect());
@@ -385,13 +375,5 @@ mod tests {
         assert!(!glob_matches("let ?=*", "let ab=1"));
         assert!(glob_matches("*", ""));
         assert!(!glob_matches("a", ""));
-    }
-
-    #[test]
-    fn cursor_positions_count_characters() {
-        let text = "let é = 1";
-        assert_eq!(byte_offset(text, 5), 6);
-        assert_eq!(char_offset(text, 6), 5);
-        assert_eq!(byte_offset(text, 99), text.len());
     }
 }

@@ -4,8 +4,9 @@
 //! ([`lang::parser`]) → evaluation ([`lang::eval`]) → a scene of flat
 //! primitives ([`scene`]), checked for the mistakes that spoil a picture
 //! ([`lint`]) → BVH ([`render::bvh`]) → rays and shading ([`render`]) →
-//! image file ([`output`]) or terminal preview ([`repl`]). [`explain`] tells
-//! why a pixel has its colour.
+//! image file ([`output`]) or terminal preview (`terminal`). [`explain`] tells
+//! why a pixel has its colour; [`ide`] answers what editors of the language
+//! ask (completion, help, hovers), for the session and the language server.
 
 pub mod animation;
 #[cfg(feature = "terminal")]
@@ -16,6 +17,7 @@ pub mod clock;
 pub mod compare;
 mod data_dir;
 pub mod explain;
+pub mod ide;
 #[cfg(feature = "terminal")]
 mod job;
 #[cfg(feature = "jupyter")]

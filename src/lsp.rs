@@ -36,7 +36,7 @@ use lsp_types::{
 };
 use serde_json::Value;
 
-use crate::session::Vocabulary;
+use crate::ide::names::Vocabulary;
 use analysis::Analysis;
 
 /// An open document: its text as the client last sent it, and its
@@ -54,21 +54,22 @@ struct Document {
 impl Document {
     fn new(uri: &Uri, text: String, version: i32, last_names: Option<Vocabulary>) -> Document {
         let analysis = Analysis::of(&display_name(uri), &text);
-        let last_names = match (&analysis.program, last_names) {
-            (None, Some(names)) => names,
-            _ => typing::vocabulary(&analysis, None),
+        let last_names = match &analysis.program {
+            Some(program) => Vocabulary::of_program(program, &analysis.names, None),
+            None => last_names.unwrap_or_default(),
         };
         Document { text, version, analysis, last_names }
     }
 
-    /// The names that may be completed at `position`: with a procedure's
-    /// parameters and locals inside it.
+    /// The names defined at `position`: with a procedure's parameters and
+    /// locals inside it.
     fn names_at(&self, position: lsp_types::Position) -> Vocabulary {
-        if self.analysis.program.is_none() {
-            return self.last_names.clone();
+        match &self.analysis.program {
+            Some(program) => {
+                Vocabulary::of_program(program, &self.analysis.names, Some(text::offset(&self.text, position)))
+            }
+            None => self.last_names.clone(),
         }
-        let inside = typing::procedure_at(&self.analysis, text::Lines::new(&self.text).offset(position));
-        typing::vocabulary(&self.analysis, inside)
     }
 }
 
@@ -211,7 +212,7 @@ fn answer(documents: &HashMap<String, Document>, client: &Client, request: Reque
     let result = match request.method.as_str() {
         HoverRequest::METHOD => handle::<HoverRequest>(documents, request, |doc, params| {
             let at = &params.text_document_position_params;
-            Ok(features::hover(&doc.text, &doc.analysis, at.position))
+            Ok(features::hover(&doc.text, &doc.analysis, &doc.names_at(at.position), at.position))
         }),
         GotoDefinition::METHOD => handle::<GotoDefinition>(documents, request, |doc, params| {
             let at = &params.text_document_position_params;

@@ -9,18 +9,18 @@
 //! through a [`Console`], the terminal session (`crate::terminal`) also
 //! previews their pictures, and [`Collected`] keeps them in a list.
 //!
-//! Commands (`:render`, `:save`, `:time`, ...) are defined once in the
-//! registry, `commands`, and run by the modules of their topic below it
-//! (`picture_commands`, `setting_commands`, `file_commands`, `inspect`,
-//! `session_commands`, `play`, `reload`, `write_back`, `lesson_commands`).
+//! Commands (`:render`, `:save`, `:time`, ...) are described once in
+//! [`crate::ide::commands`]; the registry, `commands`, gives each its
+//! handler, in the modules of their topic below it (`picture_commands`,
+//! `setting_commands`, `file_commands`, `inspect`, `session_commands`,
+//! `play`, `reload`, `write_back`, `lesson_commands`). Completion, help and
+//! inspection at a place are the editor services of [`crate::ide`].
 
 mod cells;
 pub(crate) mod commands;
-pub(crate) mod completion;
 mod describe;
 mod excerpt;
 pub(crate) mod file_commands;
-pub(crate) mod help;
 pub(crate) mod inputs;
 pub(crate) mod inspect;
 pub(crate) mod lesson_commands;
@@ -38,7 +38,6 @@ mod session_commands;
 mod setting_commands;
 pub(crate) mod shell;
 mod state;
-pub(crate) mod syntax;
 pub(crate) mod write_back;
 
 pub use crate::process::cancel::CancelSwitch;
@@ -49,5 +48,4 @@ pub use outputs::{
     TextRole, Ticker, Waited, mark_pixel,
 };
 pub use rendering::{RenderSettings, Size};
-pub(crate) use state::Vocabulary;
 pub use state::{MOST_INPUTS, Session};

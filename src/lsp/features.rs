@@ -13,15 +13,16 @@ use lsp_types::{
 };
 
 use super::analysis::{Analysis, EVALUATION_BUDGET, Evaluation};
-use super::text::{Lines, range};
+use super::text::{end, offset, range};
+use crate::ide::hover::{Subject, hover as hovered};
+use crate::ide::names::Vocabulary;
+use crate::ide::scanner::is_word_char;
 use crate::lang::ast::{Expr, ExprKind, InstrKind, Item};
 use crate::lang::format::format;
 use crate::lang::names::{Binding, Namespace, Occurrence, Scope};
 use crate::lang::number::format_number;
 use crate::lang::walk::{same_level, textures};
 use crate::lang::{Diagnostic, Severity, SourceId, Span, words};
-use crate::session::help;
-use crate::session::syntax::is_word_char;
 
 /// The diagnostics of the document at `uri`, as the protocol gives them.
 pub(crate) fn diagnostics(uri: &Uri, analysis: &Analysis) -> Vec<lsp_types::Diagnostic> {
@@ -115,22 +116,23 @@ pub(crate) fn quick_fixes(uri: &Uri, analysis: &Analysis, wanted: Range) -> Vec<
         .collect()
 }
 
-/// What the word at `position` is: the help page of a word of the
-/// language, a procedure's signature and where it is defined, what a name
-/// holds.
-pub(crate) fn hover(text: &str, analysis: &Analysis, position: Position) -> Option<Hover> {
-    let offset = Lines::new(text).offset(position);
-    let named = analysis.names.at(offset).filter(|occurrence| !analysis.names.bindings_for(occurrence).is_empty());
-    let (span, markdown) = match named {
-        Some(occurrence) => (occurrence.span, describe(analysis, occurrence)),
-        None => {
-            let (start, end) = word_at(text, offset)?;
-            let word = words::lookup(&text[start..end])?;
-            let pages: Vec<&'static help::Topic> = help::LANGUAGE.iter().collect();
-            let page = help::find(word.text, &pages)?;
-            (Span::new(crate::lang::SourceId::default(), start, end), help_markdown(page.text))
+/// What the word at `position` is ([`crate::ide::hover`], `names` being
+/// the names defined there): a procedure's signature and where it is
+/// defined, what a name holds, or the help page of a word of the language.
+pub(crate) fn hover(text: &str, analysis: &Analysis, names: &Vocabulary, position: Position) -> Option<Hover> {
+    let at = offset(text, position);
+    let hover = hovered(text, at, names)?;
+    let markdown = match hover.subject {
+        Subject::Name => {
+            let occurrence = analysis.names.at(at)?;
+            if analysis.names.bindings_for(occurrence).is_empty() {
+                return None;
+            }
+            describe(analysis, occurrence)
         }
+        Subject::Page(page) => help_markdown(page.text),
     };
+    let span = Span::new(SourceId::default(), hover.range.start, hover.range.end);
     Some(Hover {
         contents: HoverContents::Markup(MarkupContent { kind: MarkupKind::Markdown, value: markdown }),
         range: Some(range(span, &analysis.sources)),
@@ -199,13 +201,6 @@ fn line_of(analysis: &Analysis, span: Span) -> usize {
     analysis.sources.get(span.source).line_col(span.start as usize).0
 }
 
-/// The bytes of the word around `offset` (or just before it), if any.
-fn word_at(text: &str, offset: usize) -> Option<(usize, usize)> {
-    let start = text[..offset].rfind(|c: char| !is_word_char(c)).map_or(0, |at| at + 1);
-    let end = text[offset..].find(|c: char| !is_word_char(c)).map_or(text.len(), |at| offset + at);
-    (start < end).then_some((start, end))
-}
-
 /// A help page in Markdown: its first line (the form of the word) and its
 /// examples as `.ray` code, the rest as text.
 fn help_markdown(page: &str) -> String {
@@ -236,7 +231,7 @@ pub(crate) fn definition(
     analysis: &Analysis,
     position: Position,
 ) -> Option<GotoDefinitionResponse> {
-    let occurrence = analysis.names.at(Lines::new(text).offset(position))?;
+    let occurrence = analysis.names.at(offset(text, position))?;
     let locations: Vec<Location> = analysis
         .names
         .bindings_for(occurrence)
@@ -249,14 +244,14 @@ pub(crate) fn definition(
 /// Every place the name at `position` is written, as the same variable,
 /// object or procedure.
 pub(crate) fn references(uri: &Uri, text: &str, analysis: &Analysis, position: Position) -> Option<Vec<Location>> {
-    let occurrence = analysis.names.at(Lines::new(text).offset(position))?;
+    let occurrence = analysis.names.at(offset(text, position))?;
     let all = analysis.names.occurrences_of(occurrence.symbol);
     Some(all.map(|other| Location { uri: uri.clone(), range: range(other.span, &analysis.sources) }).collect())
 }
 
 /// The name a rename at `position` would change.
 pub(crate) fn prepare_rename(text: &str, analysis: &Analysis, position: Position) -> Option<PrepareRenameResponse> {
-    let occurrence = renamable(analysis, Lines::new(text).offset(position)).ok()?;
+    let occurrence = renamable(analysis, offset(text, position)).ok()?;
     let placeholder = analysis.names.symbols[occurrence.symbol].name.to_string();
     Some(PrepareRenameResponse::RangeWithPlaceholder { range: range(occurrence.span, &analysis.sources), placeholder })
 }
@@ -270,7 +265,7 @@ pub(crate) fn rename(
     position: Position,
     new_name: &str,
 ) -> Result<WorkspaceEdit, String> {
-    let occurrence = renamable(analysis, Lines::new(text).offset(position))?;
+    let occurrence = renamable(analysis, offset(text, position))?;
     let names = &analysis.names;
     let symbol = &names.symbols[occurrence.symbol];
     let mut characters = new_name.chars();
@@ -431,6 +426,6 @@ pub(crate) fn formatting(text: &str, analysis: &Analysis) -> Result<Vec<TextEdit
     if formatted == text {
         return Ok(Vec::new());
     }
-    let whole = Range { start: Position::default(), end: Lines::new(text).end() };
+    let whole = Range { start: Position::default(), end: end(text) };
     Ok(vec![TextEdit { range: whole, new_text: formatted }])
 }

@@ -1,73 +1,27 @@
 //! The answers that help while a line is being typed: completion (the
-//! session's rules of what may come where, [`completion::complete`]) and
-//! the signature of the procedure or function being called. The text being
-//! typed rarely parses, so the names come from the last version of the
-//! document that did ([`Vocabulary`]).
+//! editor services' rules of what may come where, [`completion::complete`])
+//! and the signature of the procedure or function being called. The text
+//! being typed rarely parses, so the names come from the last version of
+//! the document that did ([`Vocabulary`]).
 
 use lsp_types::{
     CompletionItem, CompletionItemKind, CompletionResponse, CompletionTextEdit, InsertTextFormat, ParameterInformation,
     ParameterLabel, Position, Range, SignatureHelp, SignatureInformation, TextEdit,
 };
 
-use super::analysis::Analysis;
-use super::text::Lines;
-use crate::lang::ast::Item;
-use crate::lang::names::{Binding, Namespace, Scope};
+use super::text::offset;
+use crate::ide::completion::{self, CandidateKind};
+use crate::ide::names::Vocabulary;
+use crate::ide::scanner::word_start;
 use crate::lang::words::{self, Role};
-use crate::session::Vocabulary;
-use crate::session::completion::{self, CandidateKind};
-
-/// The names a document defines, from its analysis: the globals, the
-/// procedures with their parameters and, inside procedure `inside` (the
-/// index of its item), its parameters and locals.
-pub(crate) fn vocabulary(analysis: &Analysis, inside: Option<usize>) -> Vocabulary {
-    let names = &analysis.names;
-    // Whether each symbol is bound, and as an object: one pass over the occurrences.
-    let mut bound = vec![(false, false); names.symbols.len()];
-    for occurrence in &names.occurrences {
-        let (any, object) = &mut bound[occurrence.symbol];
-        *any |= occurrence.binding.is_some();
-        *object |= occurrence.binding == Some(Binding::Object);
-    }
-    let mut vocabulary = Vocabulary::default();
-    for (symbol, (any, object)) in names.symbols.iter().zip(bound) {
-        let visible = symbol.scope == Scope::Global || symbol.scope == Scope::Procedure(inside.unwrap_or(usize::MAX));
-        if symbol.namespace != Namespace::Value || !visible || !any {
-            continue;
-        }
-        vocabulary.variables.push(symbol.name.to_string());
-        if object {
-            vocabulary.objects.push(symbol.name.to_string());
-        }
-    }
-    let procedures = analysis.program.iter().flat_map(|program| &program.items).filter_map(|item| match item {
-        Item::Proc(procedure) => Some((
-            procedure.name.name.to_string(),
-            procedure.params.iter().map(|param| param.name.to_string()).collect(),
-        )),
-        _ => None,
-    });
-    vocabulary.procedures = procedures.collect();
-    vocabulary
-}
-
-/// The procedure whose definition holds byte `offset`, as the index of its item.
-pub(crate) fn procedure_at(analysis: &Analysis, offset: usize) -> Option<usize> {
-    let items = &analysis.program.as_ref()?.items;
-    items.iter().position(|item| {
-        matches!(item, Item::Proc(procedure) if (procedure.span.start as usize) < offset && offset <= procedure.span.end as usize)
-    })
-}
 
 /// The completions at `position` of `text`, with the names of `vocabulary`.
 /// With `snippets`, a procedure's parameters are placeholders to fill.
 pub(crate) fn complete(text: &str, position: Position, vocabulary: &Vocabulary, snippets: bool) -> CompletionResponse {
-    let offset = Lines::new(text).offset(position);
-    let (start, candidates) = completion::complete(&text[..offset], false, vocabulary);
-    let typed = Range {
-        start: Position { character: position.character - (offset - start) as u32, ..position },
-        end: position,
-    };
+    let at = offset(text, position);
+    let (start, candidates) = completion::complete(&text[..at], false, vocabulary);
+    let typed =
+        Range { start: Position { character: position.character - (at - start) as u32, ..position }, end: position };
     let items = candidates.into_iter().map(|candidate| {
         let word = words::lookup(candidate.replacement.trim_end_matches([' ', '(']));
         let (kind, detail) = match candidate.kind {
@@ -104,9 +58,9 @@ pub(crate) fn complete(text: &str, position: Position, vocabulary: &Vocabulary, 
 /// procedure of `vocabulary` or a function of the language, with the
 /// parameter being typed.
 pub(crate) fn signature(text: &str, position: Position, vocabulary: &Vocabulary) -> Option<SignatureHelp> {
-    let before = &text[..Lines::new(text).offset(position)];
+    let before = &text[..offset(text, position)];
     let (open, commas) = open_call(before)?;
-    let name = &before[completion::word_start(&before[..open])..open];
+    let name = &before[word_start(&before[..open])..open];
     let params: Vec<String> = match vocabulary.procedures.iter().find(|(procedure, _)| procedure == name) {
         Some((_, params)) => params.clone(),
         None if words::lookup(name).and_then(words::Word::role) == Some(Role::Function) => vec!["x".to_string()],

@@ -12,12 +12,16 @@ use std::path::Path;
 
 use image::RgbImage;
 
+use crate::ide::commands::is_command;
+use crate::ide::completion::{self, Candidate};
+use crate::ide::hover::{Subject, hover};
+use crate::ide::offsets::floor_char_boundary;
+use crate::ide::scanner::open_constructs;
 use crate::lang::{Entry, EntryState, SourceId, SourceMap, parse_items};
 use crate::pipeline::{PictureError, render_picture};
 use crate::render::{OutOfMemory, Region, RenderControl};
 
-use super::commands::{self, is_command};
-use super::completion::{self, Candidate};
+use super::commands;
 use super::file_commands::load_text_reporting;
 use super::lesson_commands::check_scene;
 use super::options::{SessionOptions, new_session};
@@ -27,7 +31,6 @@ use super::rendering::{Size, render_options};
 use super::report::show_printed;
 use super::script::{Named, TextRan, run_text};
 use super::shell::Shell;
-use super::syntax::{is_word_char, open_constructs};
 use crate::process::cancel::CancelSwitch;
 
 /// How a cell ended.
@@ -229,19 +232,18 @@ impl CellSession {
         Completions { start: line_start + start, end: cursor, candidates }
     }
 
-    /// What the word at byte `cursor` of `text` is, as the session says it:
-    /// the definition `:show` gives of a name the session defines (a
-    /// procedure's source, a number's value), else the `:help` page of a
-    /// word of the language or a command. `None` for anything else.
+    /// What the word at byte `cursor` of `text` is, as the session says it
+    /// ([`hover`]): the definition `:show` gives of a name the session
+    /// defines (a procedure's source, a number's value), else the `:help`
+    /// page of a word of the language or a command. `None` for anything else.
     pub fn inspect(&mut self, text: &str, cursor: usize) -> Option<String> {
-        let word = word_at(text, floor_char_boundary(text, cursor))?;
-        let defined = self.shell.session.vocabulary();
-        let is_defined = defined.variables.iter().any(|name| name == word)
-            || defined.procedures.iter().any(|(name, _)| name == word)
-            || word == "time";
-        let command = if is_defined { format!(":show {word}") } else { format!(":help {word}") };
+        let hovered = hover(text, cursor, &self.shell.session.vocabulary())?;
+        let name = match hovered.subject {
+            Subject::Page(page) => return Some(page.text.to_string()),
+            Subject::Name => &text[hovered.range],
+        };
         let mut said = Collected::default();
-        commands::execute(&mut self.shell, &command, &mut said).ok()?;
+        commands::execute(&mut self.shell, &format!(":show {name}"), &mut said).ok()?;
         let texts: Vec<String> = said
             .outputs
             .into_iter()
@@ -252,25 +254,6 @@ impl CellSession {
             .collect();
         (!texts.is_empty()).then(|| texts.join("\n"))
     }
-}
-
-/// The word (a name, a word of the language, or a command with its colon)
-/// around byte `at` of `text`.
-fn word_at(text: &str, at: usize) -> Option<&str> {
-    let is_part = |c: char| is_word_char(c) || c == ':';
-    let start = text[..at].char_indices().rev().take_while(|(_, c)| is_part(*c)).last().map_or(at, |(i, _)| i);
-    let end = text[at..].char_indices().find(|(_, c)| !is_part(*c)).map_or(text.len(), |(i, _)| at + i);
-    let word = &text[start..end];
-    (!word.is_empty()).then_some(word)
-}
-
-/// The largest char boundary of `text` at or before `at`.
-fn floor_char_boundary(text: &str, at: usize) -> usize {
-    let mut at = at.min(text.len());
-    while !text.is_char_boundary(at) {
-        at -= 1;
-    }
-    at
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! Running one input of program text and saying what it did, or its error.
 
+use crate::ide::commands;
 use crate::lang::Diagnostic;
 
-use super::commands;
 use super::lesson_commands;
 use super::outputs::FrontEnd;
 use super::report::{self, show_printed, show_warnings};

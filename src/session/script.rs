@@ -7,10 +7,11 @@
 
 use std::io::BufRead;
 
+use crate::ide::commands::{is_command, writes_pictures};
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Entry, EntryState, SourceId, parse_entries};
 
-use super::commands::{self, Flow, is_command};
+use super::commands::{self, Flow};
 use super::file_commands::load_reporting;
 use super::inputs::report_input;
 use super::lesson_commands;
@@ -291,7 +292,7 @@ impl<'s> Script<'s> {
                 Step::Stop
             }
             Ok(Flow::Continue) => {
-                self.wrote |= commands::writes_pictures(line);
+                self.wrote |= writes_pictures(line);
                 self.after(true)
             }
             Err(()) => self.after(false),

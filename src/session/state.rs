@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
+use crate::ide::names::Vocabulary;
 use crate::lang::ast::{Item, Program};
 use crate::lang::eval::{Origins, PrintLog};
 use crate::lang::name::Name;
@@ -94,17 +95,6 @@ pub(crate) enum Undone {
     Reset(usize),
     /// The `:reload` of this file was taken back.
     Reload(PathBuf),
-}
-
-/// Names defined by the session, for completion.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub(crate) struct Vocabulary {
-    /// Global numbers and objects.
-    pub variables: Vec<String>,
-    /// Which of them are objects.
-    pub objects: Vec<String>,
-    /// Procedures with their parameters.
-    pub procedures: Vec<(String, Vec<String>)>,
 }
 
 /// The state of the language in an interactive session or a script run:
@@ -689,17 +679,9 @@ impl Session {
             .collect()
     }
 
-    /// The names completion offers.
+    /// The names the session defines, for completion and inspection.
     pub(crate) fn vocabulary(&self) -> Vocabulary {
-        Vocabulary {
-            variables: self.interpreter.global_names().iter().map(|name| name.to_string()).collect(),
-            objects: self.objects().into_iter().map(|(name, _)| name.to_string()).collect(),
-            procedures: self
-                .procedures()
-                .into_iter()
-                .map(|(name, params)| (name.to_string(), params.iter().map(|p| p.to_string()).collect()))
-                .collect(),
-        }
+        Vocabulary::of_interpreter(&self.interpreter)
     }
 }
 
@@ -761,7 +743,7 @@ mod tests {
 
     #[test]
     fn the_help_and_the_docs_give_the_number_of_versions_kept() {
-        let undo = include_str!("help_pages/commands/undo.txt").split_whitespace().collect::<Vec<_>>().join(" ");
+        let undo = include_str!("../ide/help_pages/commands/undo.txt").split_whitespace().collect::<Vec<_>>().join(" ");
         let readme = include_str!("../../docs/guide/terminal.md");
         let language = include_str!("../../docs/language.md").split_whitespace().collect::<Vec<_>>().join(" ");
         let said = format!("the last {MOST_VERSIONS_UNDONE} ");

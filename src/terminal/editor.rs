@@ -17,12 +17,11 @@ use rustyline::hint::{Hinter, HistoryHinter};
 use rustyline::validate::{ValidationContext, ValidationResult, Validator};
 use rustyline::{Context, Helper};
 
+use crate::ide::commands::{self, is_command};
+use crate::ide::completion;
+use crate::ide::names::Vocabulary;
+use crate::ide::scanner::{PieceKind, pieces};
 use crate::lang::{EntryState, entry_state};
-
-use crate::session::Vocabulary;
-use crate::session::commands::{self, is_command};
-use crate::session::completion;
-use crate::session::syntax::{PieceKind, pieces};
 
 /// Lines longer than this are neither coloured nor hinted: either one makes
 /// rustyline repaint the whole line at every key, so a long pasted line
@@ -150,7 +149,7 @@ impl Highlighter for RayHelper {
 impl Helper for RayHelper {}
 
 /// `line` with ANSI colours: keywords, built-ins, numbers, comments and
-/// commands (those the registry knows: a misspelt one stays plain).
+/// commands (those described in [`commands`]: a misspelt one stays plain).
 pub(crate) fn colorize(line: &str) -> String {
     let mut out = String::with_capacity(line.len() * 2);
     for piece in pieces(line) {

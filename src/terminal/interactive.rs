@@ -15,17 +15,18 @@ use rustyline::error::ReadlineError;
 use rustyline::history::FileHistory;
 
 use crate::clock::Stopwatch;
+use crate::ide::commands::is_command;
+use crate::ide::scanner::open_constructs;
 use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 
 use super::console::Console;
-use crate::session::commands::{self, Flow, is_command};
+use crate::session::commands::{self, Flow};
 use crate::session::file_commands::load_reporting;
 use crate::session::inputs::report_input;
 use crate::session::lesson_commands;
 use crate::session::options::new_session;
 use crate::session::report::counted;
 use crate::session::shell::Shell;
-use crate::session::syntax::open_constructs;
 use crate::session::{FrontEnd, Session, SessionOptions};
 
 use super::editor::RayHelper;

@@ -202,7 +202,7 @@ fn the_limits_are_documented_beside_the_others() {
     assert!(limits.contains(&format!("- **Nesting**: at most {} levels", with_commas(MAX_NESTING))));
     assert!(limits.contains(&format!("- **Inputs of a session**: at most {}", with_commas(MOST_INPUTS))));
     assert!(limits.contains("- **Stack**:"));
-    let help = include_str!("../../src/session/help_pages/commands/limits.txt");
+    let help = include_str!("../../src/ide/help_pages/commands/limits.txt");
     assert!(help.contains(&format!("nested at most {MAX_NESTING} levels")), "{help}");
     assert!(help.contains(&format!("at most {MOST_INPUTS}\n  inputs")), "{help}");
 }

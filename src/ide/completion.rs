@@ -5,15 +5,15 @@
 
 use crate::lang::words::{self, Role};
 
-use super::Vocabulary;
 use super::commands::{self, COMMANDS, Files, help_pages};
 use super::help;
-use super::syntax::is_word_char;
+use super::names::Vocabulary;
+use super::scanner::{is_word_char, word_start};
 
 /// What the grammar lets come where a word is being typed, judged from the
 /// word or sign just before it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Slot {
+enum Slot {
     /// An object: after `put`, a transformation, `group`, `object NAME =`.
     Object,
     /// A number: after an operator, a comma, `(`, `let NAME =` or a part
@@ -30,7 +30,7 @@ pub(crate) enum Slot {
 
 /// What a candidate is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum CandidateKind {
+pub enum CandidateKind {
     /// A word of the language (`sphere`, `put`).
     Keyword,
     /// A function of the language (`sin`), with its parenthesis.
@@ -47,7 +47,7 @@ pub(crate) enum CandidateKind {
 
 /// One completion: what the list shows, and what replaces the word typed.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct Candidate {
+pub struct Candidate {
     /// Shown in the list (`spiral(n, r)`).
     pub display: String,
     /// Put in place of the word typed (`spiral(`).
@@ -57,7 +57,7 @@ pub(crate) struct Candidate {
 }
 
 /// The slot of the word being typed after `before`.
-pub(crate) fn slot(before: &str) -> Slot {
+fn slot(before: &str) -> Slot {
     let before = before.trim_end();
     let Some(last) = before.chars().next_back() else { return Slot::Start };
     if !is_word_char(last) {
@@ -80,18 +80,13 @@ pub(crate) fn slot(before: &str) -> Slot {
     }
 }
 
-/// Where the name that ends at the end of `before` starts.
-pub(crate) fn word_start(before: &str) -> usize {
-    before.char_indices().rev().take_while(|(_, c)| is_word_char(*c)).last().map_or(before.len(), |(i, _)| i)
-}
-
 /// The completions of the word that ends `before` (where it starts, and
 /// the candidates, sorted): after `put` only objects, after `color` only
 /// numbers, and so on. With nothing typed yet, it lists them where they
 /// are few enough to read (an object or a number), and nothing elsewhere.
 /// `inside` says that `before` is a line inside an unfinished construct
 /// whose start is not in it: there, a line's start is not an item's.
-pub(crate) fn complete(before: &str, inside: bool, vocabulary: &Vocabulary) -> (usize, Vec<Candidate>) {
+pub fn complete(before: &str, inside: bool, vocabulary: &Vocabulary) -> (usize, Vec<Candidate>) {
     let start = word_start(before);
     let typed = &before[start..];
     let slot = match slot(&before[..start]) {
@@ -140,7 +135,7 @@ pub(crate) fn complete(before: &str, inside: bool, vocabulary: &Vocabulary) -> (
 /// place asked about: the commands' names while the first word is typed,
 /// the help pages' names after `:help`, nothing after the other commands;
 /// `None` after a command that takes a file (the front-end lists files).
-pub(crate) fn complete_command(before: &str) -> Option<(usize, Vec<Candidate>)> {
+pub fn complete_command(before: &str) -> Option<(usize, Vec<Candidate>)> {
     let start = before.len() - before.trim_start().len();
     let command = |display: &str, replacement: String| Candidate {
         display: display.to_string(),

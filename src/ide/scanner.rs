@@ -1,14 +1,17 @@
-//! A forgiving word scanner for the editor: it colours, completes and finds
-//! open constructs in text that is still being typed.
+//! A forgiving word scanner for editors: it splits text that is still
+//! being typed into pieces to colour, finds the constructs left open and
+//! the word at a place.
 //!
 //! The language's own lexer reports errors; this one never fails, because the
 //! line being edited is usually not a valid program yet.
+
+use std::ops::Range;
 
 use crate::lang::words::{self, Kind, Role};
 
 /// What a piece of text is, for colouring.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum PieceKind {
+pub enum PieceKind {
     /// A reserved word such as `sphere` or `end`.
     Keyword,
     /// `time`, `sin`, `cos`, `sqrt`, `pi`.
@@ -27,7 +30,7 @@ pub(crate) enum PieceKind {
 
 /// One piece of the scanned text: `text[start..end]` is of kind `kind`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Piece {
+pub struct Piece {
     /// Its kind.
     pub kind: PieceKind,
     /// First byte.
@@ -37,7 +40,7 @@ pub(crate) struct Piece {
 }
 
 /// Splits `text` into pieces covering every byte, in order.
-pub(crate) fn pieces(text: &str) -> Vec<Piece> {
+pub fn pieces(text: &str) -> Vec<Piece> {
     let mut pieces = Vec::new();
     let mut rest = text.char_indices().peekable();
     let mut at_line_start = true;
@@ -71,13 +74,27 @@ pub(crate) fn pieces(text: &str) -> Vec<Piece> {
 }
 
 /// Whether `c` can be part of a name.
-pub(crate) fn is_word_char(c: char) -> bool {
+pub fn is_word_char(c: char) -> bool {
     c.is_ascii_alphanumeric() || c == '_'
+}
+
+/// Where the name that ends at the end of `before` starts.
+pub fn word_start(before: &str) -> usize {
+    before.char_indices().rev().take_while(|(_, c)| is_word_char(*c)).last().map_or(before.len(), |(i, _)| i)
+}
+
+/// The bytes of the word around byte `at` of `text` (or just before it): a
+/// name, a word of the language, or a command with its colon.
+pub fn word_at(text: &str, at: usize) -> Option<Range<usize>> {
+    let is_part = |c: char| is_word_char(c) || c == ':';
+    let start = text[..at].char_indices().rev().take_while(|(_, c)| is_part(*c)).last().map_or(at, |(i, _)| i);
+    let end = text[at..].char_indices().find(|(_, c)| !is_part(*c)).map_or(text.len(), |(i, _)| at + i);
+    (start < end).then_some(start..end)
 }
 
 /// The constructs opened in `text` and not yet closed by `end`, outermost
 /// first: for `proc p() put sphere` it is `["proc", "sphere"]`.
-pub(crate) fn open_constructs(text: &str) -> Vec<&'static str> {
+pub fn open_constructs(text: &str) -> Vec<&'static str> {
     let mut open = Vec::new();
     for piece in pieces(text) {
         if piece.kind != PieceKind::Keyword {
@@ -160,6 +177,16 @@ mod tests {
             kinds("let a = b :c"),
             vec![(Keyword, "let"), (Ident, "a"), (Other, "="), (Ident, "b"), (Other, ":"), (Ident, "c")]
         );
+    }
+
+    #[test]
+    fn the_word_at_a_place_takes_a_commands_colon() {
+        let text = "put sphere :render é";
+        assert_eq!(word_at(text, 5), Some(4..10));
+        assert_eq!(word_at(text, 10), Some(4..10), "just after the word");
+        assert_eq!(word_at(text, 13), Some(11..18));
+        assert_eq!(word_at(text, text.len()), None, "after a character that is no part of a word");
+        assert_eq!(word_start("let ab"), 4);
     }
 
     #[test]

@@ -3,8 +3,8 @@
 //!
 //! The pages are plain text files under `help_pages/`, shown as written by
 //! every front-end. This module holds the language's pages and looks pages
-//! up; the commands' pages are in the command registry, which hands the
-//! whole list to the functions here.
+//! up; the commands' pages are in their descriptions (`commands`), which
+//! hand the whole list to the functions here.
 
 use crate::lang::suggest::closest;
 use crate::lang::words::{self, Kind};
@@ -20,7 +20,7 @@ pub(crate) use help_page;
 
 /// One help page.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Topic {
+pub struct Topic {
     /// The name `:help NAME` finds it by.
     pub name: &'static str,
     /// Other names that lead to the same page (`kd` leads to `texture`). A
@@ -37,16 +37,26 @@ pub(crate) struct Topic {
 
 /// The groups of the overview.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Group {
+pub enum Group {
+    /// The lessons.
     Learning,
+    /// The camera, the ambient light and the lights.
     SceneSetUp,
+    /// The shapes and their textures.
     Shapes,
+    /// Transformations and groups.
     MovingShapes,
+    /// Putting, naming, procedures and conditions.
     BuildingTheScene,
+    /// Arithmetic, time, functions, comments and printing.
     Numbers,
+    /// Rendering, saving and animating, and their settings.
     Pictures,
+    /// Loading, watching and writing files.
     Files,
+    /// What the session holds.
     LookingInside,
+    /// Help, undo, reset, limits and leaving.
     TheSession,
 }
 
@@ -86,7 +96,7 @@ impl Group {
 const OVERVIEW: &str = include_str!("help_pages/overview.txt").trim_ascii_end();
 
 /// The pages about the language, in the order the overview lists them.
-pub(crate) const LANGUAGE: &[Topic] = &[
+pub const LANGUAGE: &[Topic] = &[
     Topic {
         name: "camera",
         aliases: &[],
@@ -273,7 +283,7 @@ pub(crate) const LANGUAGE: &[Topic] = &[
 
 /// The page in `pages` for `name` (a page's name or one of its aliases, a
 /// word of the language, or a word from elsewhere that means one), if any.
-pub(crate) fn find(name: &str, pages: &[&'static Topic]) -> Option<&'static Topic> {
+pub fn find(name: &str, pages: &[&'static Topic]) -> Option<&'static Topic> {
     let page = |wanted: &str| pages.iter().copied().find(|page| page.name == wanted || page.aliases.contains(&wanted));
     page(name).or_else(|| page(word_topic(name)?)).or_else(|| {
         // `:help :sphere` or `:help help`: try with and without the colon.
@@ -296,18 +306,18 @@ fn word_topic(name: &str) -> Option<&'static str> {
 
 /// Every name `:help` knows in `pages`, for completion and suggestions: the
 /// pages and their aliases, and the words of the language.
-pub(crate) fn all_names<'a>(pages: &'a [&'static Topic]) -> impl Iterator<Item = &'static str> + 'a {
+pub fn all_names<'a>(pages: &'a [&'static Topic]) -> impl Iterator<Item = &'static str> + 'a {
     let names = pages.iter().flat_map(|page| std::iter::once(page.name).chain(page.aliases.iter().copied()));
     names.chain(words::language().map(|word| word.text))
 }
 
 /// The known name closest to a misspelt one.
-pub(crate) fn suggestion(name: &str, pages: &[&'static Topic]) -> Option<&'static str> {
+pub fn suggestion(name: &str, pages: &[&'static Topic]) -> Option<&'static str> {
     closest(name, all_names(pages))
 }
 
 /// The overview: how to start, then every page by group with its summary.
-pub(crate) fn overview(pages: &[&'static Topic]) -> String {
+pub fn overview(pages: &[&'static Topic]) -> String {
     let mut text = String::from(OVERVIEW);
     for group in Group::IN_ORDER {
         text.push_str(&format!("\n  {}:\n", group.title()));
