@@ -4,9 +4,14 @@
 //! ([`lang::parser`]) → evaluation ([`lang::eval`]) → a scene of flat
 //! primitives ([`scene`]), checked for the mistakes that spoil a picture
 //! ([`lint`]) → BVH ([`render::bvh`]) → rays and shading ([`render`]) →
-//! image file ([`output`]) or terminal preview (`terminal`). [`explain`] tells
+//! image file ([`output`]). [`pipeline`] is the one road from a program to a
+//! picture that every front-end takes; [`session`] keeps a program across
+//! inputs and hands what it shows, pictures included, to a front-end, which
+//! previews them where it can (the terminal's previews are in `terminal`,
+//! the notebook's and the page's pictures are PNG bytes). [`explain`] tells
 //! why a pixel has its colour; [`ide`] answers what editors of the language
 //! ask (completion, help, hovers), for the session and the language server.
+//! ARCHITECTURE.md gives the layers and the rules between them.
 
 pub mod animation;
 #[cfg(feature = "terminal")]

@@ -183,15 +183,18 @@ pub(crate) fn render_two_passes(
     let mut glimpses = vec![Glimpse::start(first.rays.pixel_angle()); seen.width() as usize * seen.height() as usize];
     let mut centres = RgbImage::new(seen.width(), seen.height());
     let mut rays = first.run(&mut centres, None, &mut glimpses)?;
+    // A whole image (the usual case) is its own surroundings: nothing to cut.
+    let whole = seen == region;
     let detected;
     let refined = match refined {
         Some(flags) => flags,
         None => {
-            detected = within(&refinement_mask(&centres, &glimpses), seen, region);
+            let mask = refinement_mask(&centres, &glimpses);
+            detected = if whole { mask } else { within(&mask, seen, region) };
             &detected
         }
     };
-    *image = within_image(&centres, seen, region);
+    *image = if whole { centres } else { within_image(&centres, seen, region) };
     let second = Pass::new(scene, geometry, options, control, options.samples).without_progress().over(region);
     rays += second.run_plain(image, Some(refined))?;
     let refined_pixels = refined.iter().filter(|&&f| f).count() as u64;
