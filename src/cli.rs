@@ -171,15 +171,15 @@ pub enum Command {
     /// Serve the Language Server Protocol on standard input and output, for editors.
     ///
     /// Diagnostics while typing, quick fixes, hovers with the help of each word, definitions, references,
-    /// renames and the outline of `.ray` files. An editor starts it; the README says how to set one up.
+    /// renames and the outline of `.ray` files. An editor starts it; docs/guide/editors.md says how to set one up.
     #[cfg(feature = "lsp")]
     Lsp,
 
     /// Serve a Jupyter notebook kernel (Jupyter starts it), or install its kernelspec (`jupyter install`).
     ///
     /// Each cell holds items and `:` commands, run as a piped script runs them: definitions accumulate across
-    /// cells, a cell stops at its first error, `:render` shows the picture in the notebook. The README's notebook
-    /// section says how to start.
+    /// cells, a cell stops at its first error, `:render` shows the picture in the notebook. docs/guide/notebook.md
+    /// says how to start.
     #[cfg(feature = "jupyter")]
     #[command(after_help = JUPYTER_AFTER_HELP, args_conflicts_with_subcommands = true)]
     Jupyter(JupyterArgs),

@@ -359,7 +359,7 @@ fn animation(cli: &Cli, count: u32, scene: &Path) -> Result<Animation, JobError>
     if format.holds_every_frame() && cli.frames.is_some() {
         return Err(JobError::Output(
             "--frames writes numbered images: use a .png or .ppm name with it, and put the \
-             frames together afterwards with ffmpeg (the README's \"Many machines\" shows how)"
+             frames together afterwards with ffmpeg (docs/guide/scale-out.md shows how)"
                 .into(),
         ));
     }

@@ -1,10 +1,10 @@
-//! The terminal layer: what rayrepl does on a terminal and in a process,
-//! around the session core and the batch renderer. Ctrl-C ([`ctrl_c`]),
-//! previews of pictures ([`preview`]) and animations played in place
+//! The terminal layer: what rayrepl does on a terminal, around the session
+//! core and the batch renderer. Previews of pictures ([`preview`]) and animations played in place
 //! ([`play`]), progress bars ([`progress`]), following a file's saves
 //! ([`watch`]), the line editor ([`editor`]) with its history file
 //! (`history`) and the interactive session ([`interactive`]) with its
-//! front-end (`front_end`). Built with the
+//! front-end (`front_end`), and piped scripts (`script`), whose outputs a
+//! `console` writes on two streams. Built with the
 //! `terminal` feature (on by default), which brings their crates.
 
 mod console;

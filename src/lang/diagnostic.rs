@@ -46,7 +46,7 @@ pub struct Diagnostic {
     pub severity: Severity,
     /// What kind of diagnostic this is, stable and kebab-case
     /// (`unknown-variable`), for tools that read diagnostics as data
-    /// (`--check --json`); the README lists them.
+    /// (`--check --json`); docs/guide/errors.md lists them.
     pub code: &'static str,
     /// What is wrong, in plain words ("expected `end` to close the `sphere`").
     pub message: String,

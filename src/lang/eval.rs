@@ -92,7 +92,7 @@ impl Limits {
     /// The limits of every entry point unless the user raises them. The
     /// primitive limit is set so that a scene at the limit can also be
     /// rendered (the scene and its BVH) within a 24 GB machine, with room to
-    /// spare; the README gives the memory it takes.
+    /// spare; docs/language.md (its limits) gives the memory it takes.
     pub const DEFAULT: Limits =
         Limits { max_call_depth: 100_000, max_primitives: 10_000_000, raised_with: RaisedWith::Flags };
 }

@@ -8,7 +8,7 @@
 //! flag that evaluation, reads and renders poll (recording which signal it
 //! was, for the messages), and at any other time it does what the signal
 //! does by default: end the program (status 130 for all three, as the
-//! README says, with no temporary file left).
+//! guide says, with no temporary file left).
 //!
 //! Two waits poll no flag. A write to a pipe whose reader does not read
 //! blocks in the kernel: if one marked by [`crate::process::interruption::may_block`]

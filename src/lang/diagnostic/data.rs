@@ -75,7 +75,7 @@ fn position(file: &SourceFile, offset: usize) -> Position {
 
 impl Diagnostic {
     /// The diagnostic as one JSON object, its places in `sources` (the
-    /// README's "Diagnostics as JSON" gives the fields).
+    /// docs/guide/errors.md gives the fields).
     pub fn to_json(&self, sources: &SourceMap) -> Value {
         let severity = match self.severity {
             Severity::Error => "error",
