@@ -31,21 +31,38 @@ pub enum Subject {
     Page(&'static Topic),
 }
 
+/// Which help pages a word that names nothing defined may lead to: where
+/// the front-ends differ on purpose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pages {
+    /// The pages of the language's words and of the commands only: a
+    /// document holds a program, whose other words are names (the language
+    /// server).
+    OfWords,
+    /// Any page, by its name or another name, as `:help WORD` finds it
+    /// (`render`, `numbers`, `learn`): a notebook's inspection, where a
+    /// learner asks about what they read in the help.
+    AnyTopic,
+}
+
 /// What the word around byte `offset` of `text` is, `names` being the names
-/// defined there: one of them, or a word of the language or a command
-/// with its help page. `None` for anything else (an unknown name, a
+/// defined there: one of them, or a word with its help page, which `pages`
+/// says where to look for. `None` for anything else (an unknown name, a
 /// number, a sign).
-pub fn hover(text: &str, offset: usize, names: &Vocabulary) -> Option<Hover> {
+pub fn hover(text: &str, offset: usize, names: &Vocabulary, pages: Pages) -> Option<Hover> {
     let range = word_at(text, floor_char_boundary(text, offset))?;
     let word = &text[range.clone()];
-    let subject = if names.defines(word) { Subject::Name } else { Subject::Page(page(word)?) };
+    let subject = if names.defines(word) { Subject::Name } else { Subject::Page(page(word, pages)?) };
     Some(Hover { range, subject })
 }
 
-/// The help page of `word`, if it is a word of the language (or one from
-/// elsewhere that means one) or a command.
-fn page(word: &str) -> Option<&'static Topic> {
-    let known = if word.starts_with(':') { commands::find(word).is_some() } else { words::lookup(word).is_some() };
+/// The help page of `word` in `pages`.
+fn page(word: &str, pages: Pages) -> Option<&'static Topic> {
+    let known = match pages {
+        Pages::AnyTopic => true,
+        Pages::OfWords if word.starts_with(':') => commands::find(word).is_some(),
+        Pages::OfWords => words::lookup(word).is_some(),
+    };
     known.then(|| help::find(word, &help_pages())).flatten()
 }
 
@@ -63,7 +80,7 @@ mod tests {
 
     /// The page's name, or `Name` for a name defined, and the word's bytes.
     fn hovered(text: &str, offset: usize) -> Option<(&'static str, Range<usize>)> {
-        let hover = hover(text, offset, &names())?;
+        let hover = hover(text, offset, &names(), Pages::OfWords)?;
         let what = match hover.subject {
             Subject::Name => "Name",
             Subject::Page(page) => page.name,
@@ -104,5 +121,14 @@ mod tests {
         assert_eq!(hovered("let a = 12", 9), None, "a number");
         assert_eq!(hovered("   ", 1), None);
         assert_eq!(hovered("é🎨", 3), None, "a place inside a character");
+    }
+
+    #[test]
+    fn any_topic_is_found_by_its_names_where_asked() {
+        let page = |word: &str| hover(word, 1, &names(), Pages::AnyTopic).map(|hover| hover.subject);
+        assert!(matches!(page("render"), Some(Subject::Page(topic)) if topic.name == ":render"));
+        assert!(matches!(page("learn"), Some(Subject::Page(topic)) if topic.name == ":lesson"));
+        assert!(matches!(page("size"), Some(Subject::Name)), "a defined name first");
+        assert!(page("blob").is_none());
     }
 }

@@ -14,7 +14,7 @@ use lsp_types::{
 
 use super::analysis::{Analysis, EVALUATION_BUDGET, Evaluation};
 use super::text::{end, offset, range};
-use crate::ide::hover::{Subject, hover as hovered};
+use crate::ide::hover::{Pages, Subject, hover as hovered};
 use crate::ide::names::Vocabulary;
 use crate::ide::scanner::is_word_char;
 use crate::lang::ast::{Expr, ExprKind, InstrKind, Item};
@@ -121,7 +121,7 @@ pub(crate) fn quick_fixes(uri: &Uri, analysis: &Analysis, wanted: Range) -> Vec<
 /// defined, what a name holds, or the help page of a word of the language.
 pub(crate) fn hover(text: &str, analysis: &Analysis, names: &Vocabulary, position: Position) -> Option<Hover> {
     let at = offset(text, position);
-    let hover = hovered(text, at, names)?;
+    let hover = hovered(text, at, names, Pages::OfWords)?;
     let markdown = match hover.subject {
         Subject::Name => {
             let occurrence = analysis.names.at(at)?;

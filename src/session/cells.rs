@@ -14,7 +14,7 @@ use image::RgbImage;
 
 use crate::ide::commands::is_command;
 use crate::ide::completion::{self, Candidate};
-use crate::ide::hover::{Subject, hover};
+use crate::ide::hover::{Pages, Subject, hover};
 use crate::ide::offsets::floor_char_boundary;
 use crate::ide::scanner::open_constructs;
 use crate::lang::{Entry, EntryState, SourceId, SourceMap, parse_items};
@@ -234,10 +234,10 @@ impl CellSession {
 
     /// What the word at byte `cursor` of `text` is, as the session says it
     /// ([`hover`]): the definition `:show` gives of a name the session
-    /// defines (a procedure's source, a number's value), else the `:help`
-    /// page of a word of the language or a command. `None` for anything else.
+    /// defines (a procedure's source, a number's value), else the page
+    /// `:help WORD` gives. `None` for anything else.
     pub fn inspect(&mut self, text: &str, cursor: usize) -> Option<String> {
-        let hovered = hover(text, cursor, &self.shell.session.vocabulary())?;
+        let hovered = hover(text, cursor, &self.shell.session.vocabulary(), Pages::AnyTopic)?;
         let name = match hovered.subject {
             Subject::Page(page) => return Some(page.text.to_string()),
             Subject::Name => &text[hovered.range],
