@@ -17,6 +17,7 @@ const STACK_SEGMENT: usize = 8 * 1024 * 1024;
 
 /// Memory left free beside a new segment, for the work of reporting the
 /// error once the stack is full (the chain of calls, the message).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
 const HEADROOM: usize = 64 * 1024 * 1024;
 
 thread_local! {
