@@ -1,13 +1,16 @@
-//! The session core (SPEC 7) and piped scripts.
+//! The session core (SPEC 7): what a session does with an input or a
+//! command, and what it shows.
 //!
 //! A [`Session`] keeps one interpreter across inputs: items typed one at a
 //! time accumulate into one global environment and one scene, and an input
-//! that fails changes nothing. A [`Shell`] holds it with what a front-end
+//! that fails changes nothing. A `Shell` holds it with what a front-end
 //! keeps beside it (the lesson followed, the last picture). Inputs and
 //! commands hand what they show, as [`Output`] values, to the [`FrontEnd`]
-//! that drives them: piped scripts ([`run_script`]) write them as text
-//! through a [`Console`], the terminal session (`crate::terminal`) also
-//! previews their pictures, and [`Collected`] keeps them in a list.
+//! that drives them: the terminal (`crate::terminal`) writes them as text
+//! and previews their pictures, piped scripts write them as text, the
+//! notebook kernel and the page run cells through a [`CellSession`], and
+//! [`Collected`] keeps them in a list. `script` runs lines of text as a
+//! script, for all of them.
 //!
 //! Commands (`:render`, `:save`, `:time`, ...) are described once in
 //! [`crate::ide::commands`]; the registry, `commands`, gives each its
