@@ -27,6 +27,7 @@ pub mod lsp;
 pub mod output;
 pub mod playback;
 pub mod pov;
+pub mod presentation;
 pub mod process;
 pub mod render;
 pub mod scene;
