@@ -184,11 +184,9 @@ impl<'a> OutputData<'a> {
             Output::Explanation(explanation) => OutputData::Explanation(explanation),
             Output::LessonStep(step) => OutputData::LessonStep { step, text: text() },
             Output::LessonPictures(image) => OutputData::LessonPictures { image: PictureRef::new(first, image) },
-            Output::LessonVerdict(verdict) => OutputData::LessonVerdict {
-                done: matches!(verdict, LessonVerdict::Done { .. }),
-                verdict,
-                text: text(),
-            },
+            Output::LessonVerdict(verdict) => {
+                OutputData::LessonVerdict { done: matches!(verdict, LessonVerdict::Done { .. }), verdict, text: text() }
+            }
         }
     }
 }
@@ -273,4 +271,140 @@ fn wrap(text: &str, first: &str) -> String {
 /// A program shown indented by four spaces.
 fn indent(program: &str) -> String {
     program.lines().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::PathBuf;
+
+    use super::*;
+    use crate::lang::{Diagnostic, Span};
+
+    /// The JSON of `outputs`, pointing into no program text.
+    fn json_of(outputs: &[Output]) -> String {
+        outputs_json(outputs, &SourceMap::new())
+    }
+
+    fn image(width: u32, height: u32, shade: u8) -> RgbImage {
+        RgbImage::from_pixel(width, height, image::Rgb([shade, 0, 0]))
+    }
+
+    #[test]
+    fn text_serialises_with_its_role() {
+        let printed = Output::Text { role: TextRole::PrintedNote, text: "3 lines left out".to_string() };
+        let message = Output::Text { role: TextRole::Message, text: "defined r".to_string() };
+        assert_eq!(
+            json_of(&[printed, message]),
+            r#"[{"kind":"text","role":"printed-note","text":"3 lines left out"},{"kind":"text","role":"message","text":"defined r"}]"#
+        );
+    }
+
+    #[test]
+    fn a_diagnostic_serialises_drawn_and_as_data() {
+        let mut sources = SourceMap::new();
+        let source = sources.add("<cell 1>", "put spehre end", 0);
+        let diagnostic = Diagnostic::error(Span::new(source, 4, 10), "unknown shape `spehre`");
+        let json = outputs_json(&[Output::Diagnostic(Box::new(diagnostic))], &sources);
+        assert_eq!(
+            json,
+            concat!(
+                r#"[{"kind":"diagnostic","rendered":"error: unknown shape `spehre`\n --> <cell 1>:1:5\n  |\n"#,
+                r#"1 | put spehre end\n  |     ^^^^^^\n","data":{"severity":"error","code":"error","#,
+                r#""message":"unknown shape `spehre`","place":{"source":"<cell 1>","line":1,"column":5,"#,
+                r#""column_utf16":5,"end_line":1,"end_column":11,"end_column_utf16":11,"bytes":[4,10],"#,
+                r#""label":null},"related":[],"notes":[],"help":[]}}]"#
+            )
+        );
+    }
+
+    #[test]
+    fn pictures_serialise_numbered_across_the_outputs() {
+        let outputs = [
+            Output::Picture(Picture { image: image(3, 2, 1), marked: Some((1, 0)), saved_to: None }),
+            Output::Frames { frames: vec![image(2, 2, 2), image(2, 2, 3)], fps: 12 },
+            Output::LessonPictures(image(5, 1, 4)),
+            Output::AnimationFile(PathBuf::from("out.gif")),
+        ];
+        assert_eq!(
+            json_of(&outputs),
+            concat!(
+                r#"[{"kind":"picture","marked":[1,0],"image":{"index":0,"width":3,"height":2}},"#,
+                r#"{"kind":"frames","fps":12,"frames":[{"index":1,"width":2,"height":2},{"index":2,"width":2,"height":2}]},"#,
+                r#"{"kind":"lesson-pictures","image":{"index":3,"width":5,"height":1}},"#,
+                r#"{"kind":"animation-file","path":"out.gif"}]"#
+            )
+        );
+        let numbered: Vec<u8> = outputs.iter().flat_map(pictures).map(|picture| picture[(0, 0)][0]).collect();
+        assert_eq!(numbered, [1, 2, 3, 4], "the pictures in the order the JSON numbers them");
+    }
+
+    #[test]
+    fn an_explanation_serialises_as_text_and_data() {
+        let explanation =
+            PixelExplanation { text: "the sphere, lit".to_string(), json: serde_json::json!({ "pixel": [1, 2] }) };
+        assert_eq!(
+            json_of(&[Output::Explanation(Box::new(explanation))]),
+            r#"[{"kind":"explanation","text":"the sphere, lit","data":{"pixel":[1,2]}}]"#
+        );
+    }
+
+    #[test]
+    fn lesson_steps_and_verdicts_serialise_with_their_text() {
+        let step = LessonStep { number: 2, steps: 3, task: "Put a light.".to_string(), example: None };
+        let done = LessonVerdict::Done { number: 2, already: true };
+        let not_yet = LessonVerdict::NotYet {
+            missing: "no light".to_string(),
+            undo: true,
+            hint: "`light`".to_string(),
+            example: Some("light point 0, 5, 0 end".to_string()),
+        };
+        let outputs = [Output::LessonStep(step), Output::LessonVerdict(done), Output::LessonVerdict(not_yet)];
+        assert_eq!(
+            json_of(&outputs),
+            concat!(
+                r#"[{"kind":"lesson-step","number":2,"steps":3,"task":"Put a light.","example":null,"text":"step 2 of 3: Put a light."},"#,
+                r#"{"kind":"lesson-verdict","done":true,"number":2,"already":true,"text":"✓ step 2 done: your scene already does it"},"#,
+                r#"{"kind":"lesson-verdict","done":false,"missing":"no light","undo":true,"hint":"`light`","example":"light point 0, 5, 0 end","#,
+                r#""text":"not yet: no light (`:undo` takes your last input back)\nhint: `light`\nfor example:\n    light point 0, 5, 0 end"}]"#
+            )
+        );
+        assert_eq!(
+            markdown(&outputs[2]).as_deref(),
+            Some(
+                "**Not yet:** no light (`:undo` takes your last input back)\n\n**Hint:** `light`\n\n\
+                 For example:\n\n```ray\nlight point 0, 5, 0 end\n```"
+            )
+        );
+        assert_eq!(markdown(&outputs[0]).as_deref(), Some("**Step 2 of 3.** Put a light."));
+    }
+
+    #[test]
+    fn pictures_are_described_in_words() {
+        let picture = Picture { image: image(4, 3, 0), marked: Some((1, 2)), saved_to: Some(PathBuf::from("a.png")) };
+        assert_eq!(
+            plain_text(&Output::Picture(picture), &SourceMap::new()),
+            "picture 4×3, saved to a.png, pixel (1, 2) marked"
+        );
+    }
+
+    #[test]
+    fn a_picture_is_the_batch_renderers_png_file_and_its_base64() {
+        let picture = image(2, 1, 200);
+        let mut written = Vec::new();
+        crate::output::write_png(&mut written, &picture).expect("a PNG is encoded in memory");
+        let bytes = png(&picture).expect("a PNG is encoded in memory");
+        assert_eq!(bytes, written);
+        assert_eq!(STANDARD.decode(base64(&bytes)).expect("base64"), bytes);
+        assert!(base64(b"ray").eq("cmF5"), "the standard alphabet");
+    }
+
+    #[test]
+    fn text_is_wrapped_under_its_label() {
+        let text = "one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen";
+        assert_eq!(
+            wrap(text, "step 1 of 2: "),
+            "step 1 of 2: one two three four five six seven eight nine ten eleven twelve\n             thirteen fourteen fifteen"
+        );
+        assert_eq!(indent("a\nb"), "    a\n    b");
+    }
 }

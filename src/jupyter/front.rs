@@ -197,3 +197,78 @@ impl FrontEnd for KernelFront<'_> {
         self.history.clone()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use jupyter_protocol::ExecuteRequest;
+    use serde_json::Value;
+
+    use super::*;
+    use crate::presentation::{outputs_json, pictures};
+    use crate::session::{CellSession, Collected, RenderSettings, SessionOptions};
+
+    const CELL: &str = "light vector 0.5, 0, -0.5 intensity 0.8 end\n\
+        put sphere center 0, 0, 0 radius 2 kd 0.7 ks 0.3 phong 20 color 255, 80, 40 end\n\
+        :render\n\
+        :lesson 1";
+
+    /// A session rendering small pictures.
+    fn session() -> CellSession {
+        let settings = RenderSettings { width: 16, height: 12, ..RenderSettings::default() };
+        CellSession::new(&SessionOptions { settings, ..SessionOptions::default() })
+    }
+
+    /// The messages the kernel publishes for [`CELL`], as (type, content).
+    fn kernel_messages() -> Vec<(String, Value)> {
+        let (outgoing, mut published) = Outgoing::kept();
+        let parent = JupyterMessage::new(ExecuteRequest::new(CELL.to_string()), None);
+        let mut front = KernelFront {
+            outgoing: &outgoing,
+            parent: &parent,
+            silent: false,
+            switch: Box::leak(Box::default()),
+            history: Vec::new(),
+            first_error: None,
+            pending: String::new(),
+        };
+        assert_eq!(session().run("<cell 1>", CELL, &mut front), crate::session::CellEnd::Done);
+        front.flush();
+        let mut messages = Vec::new();
+        while let Ok(message) = published.try_recv() {
+            let content = serde_json::to_value(&message.content).expect("a message is JSON");
+            messages.push((message.header.msg_type, content));
+        }
+        messages
+    }
+
+    #[test]
+    fn the_kernel_shows_what_the_page_shows() {
+        let messages = kernel_messages();
+        let kinds: Vec<&str> = messages.iter().map(|(kind, _)| kind.as_str()).collect();
+        // The lines said before the render go out when it starts, before its picture.
+        assert_eq!(kinds[..3], ["stream", "display_data", "stream"], "{messages:?}");
+        assert!(kinds[3..].iter().all(|kind| *kind == "display_data" || *kind == "stream"), "{kinds:?}");
+        assert!(messages[0].1["text"].as_str().is_some_and(|text| text.starts_with("1 light added")), "{messages:?}");
+
+        let mut page = session();
+        let mut collected = Collected::default();
+        page.run("<cell 1>", CELL, &mut collected);
+        let json: Value = serde_json::from_str(&outputs_json(&collected.outputs, page.sources())).expect("JSON");
+        let page_pngs: Vec<String> =
+            collected.outputs.iter().flat_map(pictures).map(|image| base64(&png(image).expect("a PNG"))).collect();
+        let kernel_pngs: Vec<&str> =
+            messages.iter().filter_map(|(_, content)| content["data"]["image/png"].as_str()).collect();
+        assert_eq!(kernel_pngs, page_pngs, "the picture, then the lesson's pair");
+
+        let step = json.as_array().expect("a list").iter().find(|output| output["kind"] == "lesson-step");
+        let step = step.expect("`:lesson 1` shows its first step");
+        let shown = messages.iter().find(|(_, content)| content["data"]["text/markdown"].is_string());
+        let (_, shown) = shown.expect("the kernel shows the step in Markdown");
+        assert_eq!(shown["data"]["text/plain"], step["text"]);
+        let Some(Output::LessonStep(first)) = collected.outputs.iter().find(|o| matches!(o, Output::LessonStep(_)))
+        else {
+            panic!("a step")
+        };
+        assert_eq!(shown["data"]["text/markdown"].as_str(), markdown(&Output::LessonStep(first.clone())).as_deref());
+    }
+}
