@@ -146,22 +146,22 @@ impl KernelFront<'_> {
 
 impl FrontEnd for KernelFront<'_> {
     fn show(&mut self, output: Output, sources: &SourceMap) -> Result<(), String> {
-        let plain = plain_text(&output, sources);
+        let plain = || plain_text(&output, sources);
         match &output {
-            Output::Text { role: TextRole::Error, text } => self.error("error", text, plain),
-            Output::Text { .. } => self.stream(&plain, false),
+            Output::Text { role: TextRole::Error, text } => self.error("error", text, plain()),
+            Output::Text { .. } => self.stream(&plain(), false),
             Output::Diagnostic(diagnostic) => self.diagnostic(diagnostic, sources),
-            Output::Picture(picture) => self.encoded(png(&marked_image(picture)), MediaType::Png, plain),
-            Output::LessonPictures(image) => self.encoded(png(image), MediaType::Png, plain),
-            Output::Frames { frames, fps } => self.encoded(apng(frames, *fps), MediaType::Png, plain),
-            Output::AnimationFile(path) => self.animation_file(path, plain),
+            Output::Picture(picture) => self.encoded(png(&marked_image(picture)), MediaType::Png, plain()),
+            Output::LessonPictures(image) => self.encoded(png(image), MediaType::Png, plain()),
+            Output::Frames { frames, fps } => self.encoded(apng(frames, *fps), MediaType::Png, plain()),
+            Output::AnimationFile(path) => self.animation_file(path, plain()),
             Output::Explanation(explanation) => self.display(vec![
-                MediaType::Plain(plain),
+                MediaType::Plain(plain()),
                 MediaType::Other((EXPLANATION_MIME.to_string(), explanation.json.clone())),
             ]),
             Output::LessonStep(_) | Output::LessonVerdict(_) => {
                 let markdown = markdown(&output).expect("a lesson's steps and verdicts have Markdown");
-                self.display(vec![MediaType::Markdown(markdown), MediaType::Plain(plain)]);
+                self.display(vec![MediaType::Markdown(markdown), MediaType::Plain(plain())]);
             }
         }
         Ok(())
