@@ -14,7 +14,6 @@ mod front;
 pub mod install;
 mod sockets;
 
-use std::cell::RefCell;
 use std::path::Path;
 use std::sync::mpsc;
 use std::time::Duration;
@@ -29,7 +28,7 @@ use jupyter_protocol::{
 use crate::clock::Stopwatch;
 use crate::ide::offsets::{byte_of_char, chars_before};
 use crate::process::interruption::Signal;
-use crate::session::{CancelSwitch, CellEnd, CellSession, Completeness, SessionOptions};
+use crate::session::{CancelSwitch, CellEnd, CellSession, Completeness, FrontEnd, SessionOptions};
 use front::KernelFront;
 use sockets::{Control, Outgoing};
 
@@ -240,7 +239,7 @@ impl Kernel {
             switch: self.switch,
             history: self.history.iter().map(|(_, code)| code.clone()).collect(),
             first_error: None,
-            pending: RefCell::default(),
+            pending: String::new(),
         };
         // Armed for the whole cell: an interrupt between two of its inputs stops it too.
         let armed = self.switch.arm();

@@ -36,6 +36,7 @@ pub mod output;
 pub mod pipeline;
 pub mod playback;
 pub mod pov;
+pub mod presentation;
 pub mod process;
 pub mod render;
 pub mod scene;

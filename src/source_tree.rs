@@ -25,7 +25,7 @@ pub(crate) fn rust_sources() -> Vec<(PathBuf, String)> {
 /// says what each layer does). A module imports only modules of its own
 /// layer or below, and the modules of one layer import each other without
 /// a circle.
-const LAYERS: [&[&str]; 9] = [
+const LAYERS: [&[&str]; 10] = [
     &["clock", "data_dir", "scene"],
     &["lang"],
     &["render", "warned"],
@@ -33,6 +33,7 @@ const LAYERS: [&[&str]; 9] = [
     &["ide"],
     &["process"],
     &["session"],
+    &["presentation"],
     &["jupyter", "lsp", "terminal"],
     &["app", "cli", "job"],
 ];

@@ -2,22 +2,17 @@
 //! `stream`, pictures, animations, explanations and lessons as
 //! `display_data`, errors as `error` (kept for the cell's reply).
 
-use std::cell::RefCell;
+use std::fmt::Display;
 use std::path::Path;
 
-use base64::Engine;
-use base64::engine::general_purpose::STANDARD;
-use image::RgbImage;
 use jupyter_protocol::{
     DisplayData, ErrorOutput, JupyterMessage, JupyterMessageContent, Media, MediaType, ReplyError, StreamContent,
 };
 
 use crate::lang::{Diagnostic, Severity, SourceMap};
-use crate::playback::Playback;
+use crate::presentation::{apng, base64, markdown, marked_image, plain_text, png};
 use crate::process::interruption::Signal;
-use crate::session::{
-    CancelSwitch, FrontEnd, LessonStep, LessonVerdict, Output, Picture, Size, TextRole, Ticker, mark_pixel,
-};
+use crate::session::{CancelSwitch, FrontEnd, Output, Size, TextRole};
 
 use super::sockets::Outgoing;
 
@@ -31,10 +26,11 @@ pub(crate) const MOST_OUTPUT_BYTES: usize = 20 << 20;
 pub(crate) const EXPLANATION_MIME: &str = "application/vnd.rayrepl.explanation+json";
 
 /// Shows a cell's outputs in the notebook, as children of the cell's
-/// request. Lines for standard output are gathered into one `stream`
-/// message until something else is shown, a render starts or the cell
-/// ends (as IPython's kernel buffers them): a cell that prints a thousand
-/// lines sends a few messages, not a thousand.
+/// request, in the forms `crate::presentation` makes of them. Lines for
+/// standard output are gathered into one `stream` message until something
+/// else is shown, a render starts (the session flushes the front-end) or
+/// the cell ends (as IPython's kernel buffers them): a cell that prints a
+/// thousand lines sends a few messages, not a thousand.
 pub(crate) struct KernelFront<'k> {
     /// Where messages go.
     pub outgoing: &'k Outgoing,
@@ -49,13 +45,13 @@ pub(crate) struct KernelFront<'k> {
     /// The first error the cell showed, for its reply.
     pub first_error: Option<ReplyError>,
     /// Lines for standard output not yet sent.
-    pub pending: RefCell<String>,
+    pub pending: String,
 }
 
 impl KernelFront<'_> {
     /// Publishes `content` as a child of the cell's request, after the
     /// lines of standard output before it.
-    fn publish(&self, content: impl Into<JupyterMessageContent>) {
+    fn publish(&mut self, content: impl Into<JupyterMessageContent>) {
         self.flush();
         self.send(content.into());
     }
@@ -66,21 +62,12 @@ impl KernelFront<'_> {
         }
     }
 
-    /// Sends the lines of standard output gathered so far.
-    pub(crate) fn flush(&self) {
-        let pending = std::mem::take(&mut *self.pending.borrow_mut());
-        if !pending.is_empty() {
-            self.send(StreamContent::stdout(&pending).into());
-        }
-    }
-
-    fn stream(&self, text: &str, stderr: bool) {
+    fn stream(&mut self, text: &str, stderr: bool) {
         if stderr {
             self.publish(StreamContent::stderr(&format!("{text}\n")));
         } else {
-            let mut pending = self.pending.borrow_mut();
-            pending.push_str(text);
-            pending.push('\n');
+            self.pending.push_str(text);
+            self.pending.push('\n');
         }
     }
 
@@ -95,13 +82,23 @@ impl KernelFront<'_> {
         self.publish(error);
     }
 
-    fn display(&self, data: Vec<MediaType>) {
+    fn display(&mut self, data: Vec<MediaType>) {
         self.publish(DisplayData::new(Media::new(data)));
     }
 
-    /// Shows `bytes` of an image of `mime` (`image/png`, `image/gif`)
-    /// described by `plain`, or says why not when it is too large.
-    fn image(&self, bytes: &[u8], media: fn(String) -> MediaType, plain: String) {
+    /// Shows the image file `encoded` as `media` (`MediaType::Png`,
+    /// `MediaType::Gif`) described by `plain`, or says why not when it
+    /// could not be encoded.
+    fn encoded(&mut self, encoded: Result<Vec<u8>, impl Display>, media: fn(String) -> MediaType, plain: String) {
+        match encoded {
+            Ok(bytes) => self.image(&bytes, media, plain),
+            Err(error) => self.stream(&format!("{plain}: it could not be encoded: {error}"), true),
+        }
+    }
+
+    /// Shows the image file `bytes` as `media` described by `plain`, or
+    /// says why not when it is too large.
+    fn image(&mut self, bytes: &[u8], media: fn(String) -> MediaType, plain: String) {
         if bytes.len() > MOST_OUTPUT_BYTES {
             self.stream(
                 &format!(
@@ -114,15 +111,7 @@ impl KernelFront<'_> {
             );
             return;
         }
-        self.display(vec![media(STANDARD.encode(bytes)), MediaType::Plain(plain)]);
-    }
-
-    fn picture(&self, image: &RgbImage, plain: String) {
-        let mut bytes = Vec::new();
-        match crate::output::write_png(&mut bytes, image) {
-            Ok(()) => self.image(&bytes, MediaType::Png, plain),
-            Err(error) => self.stream(&format!("{plain}: the picture could not be encoded: {error}"), true),
-        }
+        self.display(vec![media(base64(bytes)), MediaType::Plain(plain)]);
     }
 
     fn diagnostic(&mut self, diagnostic: &Diagnostic, sources: &SourceMap) {
@@ -136,7 +125,7 @@ impl KernelFront<'_> {
         }
     }
 
-    fn animation_file(&self, path: &Path) {
+    fn animation_file(&mut self, path: &Path, plain: String) {
         let media: Option<fn(String) -> MediaType> =
             match path.extension().and_then(|extension| extension.to_str()).map(str::to_ascii_lowercase).as_deref() {
                 Some("png" | "apng") => Some(MediaType::Png),
@@ -144,7 +133,7 @@ impl KernelFront<'_> {
                 _ => None,
             };
         match (media, std::fs::read(path)) {
-            (Some(media), Ok(bytes)) => self.image(&bytes, media, format!("animation {}", path.display())),
+            (Some(media), Ok(bytes)) => self.image(&bytes, media, plain),
             (Some(_), Err(error)) => self.stream(
                 &format!("{} could not be read back to show it: {}", path.display(), crate::output::io_reason(&error)),
                 true,
@@ -157,45 +146,22 @@ impl KernelFront<'_> {
 
 impl FrontEnd for KernelFront<'_> {
     fn show(&mut self, output: Output, sources: &SourceMap) -> Result<(), String> {
-        match output {
-            Output::Text { role: TextRole::Error, text } => self.error("error", &text, text.clone()),
-            Output::Text { text, .. } => self.stream(&text, false),
-            Output::Diagnostic(diagnostic) => self.diagnostic(&diagnostic, sources),
-            Output::Picture(Picture { image, marked, saved_to }) => {
-                let size = format!("{}×{}", image.width(), image.height());
-                let plain = match &saved_to {
-                    Some(path) => format!("picture {size}, saved to {}", path.display()),
-                    None => format!("picture {size}"),
-                };
-                match marked {
-                    Some((x, y)) => {
-                        self.picture(&mark_pixel(&image, x, y), format!("{plain}, pixel ({x}, {y}) marked"))
-                    }
-                    None => self.picture(&image, plain),
-                }
-            }
-            Output::Frames { frames, fps } => {
-                let playback = Playback { fps: Some(f64::from(fps)), loops: None };
-                let plain = format!("animation of {} frames at {fps} a second", frames.len());
-                match crate::output::apng_bytes(&frames, &playback) {
-                    Ok(bytes) => self.image(&bytes, MediaType::Png, plain),
-                    Err(error) => self.stream(&format!("{plain}: it could not be encoded: {error}"), true),
-                }
-            }
-            Output::AnimationFile(path) => self.animation_file(&path),
+        let plain = || plain_text(&output, sources);
+        match &output {
+            Output::Text { role: TextRole::Error, text } => self.error("error", text, plain()),
+            Output::Text { .. } => self.stream(&plain(), false),
+            Output::Diagnostic(diagnostic) => self.diagnostic(diagnostic, sources),
+            Output::Picture(picture) => self.encoded(png(&marked_image(picture)), MediaType::Png, plain()),
+            Output::LessonPictures(image) => self.encoded(png(image), MediaType::Png, plain()),
+            Output::Frames { frames, fps } => self.encoded(apng(frames, *fps), MediaType::Png, plain()),
+            Output::AnimationFile(path) => self.animation_file(path, plain()),
             Output::Explanation(explanation) => self.display(vec![
-                MediaType::Plain(explanation.text),
-                MediaType::Other((EXPLANATION_MIME.to_string(), explanation.json)),
+                MediaType::Plain(plain()),
+                MediaType::Other((EXPLANATION_MIME.to_string(), explanation.json.clone())),
             ]),
-            Output::LessonStep(step) => {
-                self.display(vec![MediaType::Markdown(step_markdown(&step)), MediaType::Plain(step.to_text())]);
-            }
-            Output::LessonPictures(image) => self.picture(&image, "the goal (left) and your scene (right)".to_string()),
-            Output::LessonVerdict(verdict) => {
-                self.display(vec![
-                    MediaType::Markdown(verdict_markdown(&verdict)),
-                    MediaType::Plain(verdict.to_text()),
-                ]);
+            Output::LessonStep(_) | Output::LessonVerdict(_) => {
+                let markdown = markdown(&output).expect("a lesson's steps and verdicts have Markdown");
+                self.display(vec![MediaType::Markdown(markdown), MediaType::Plain(plain())]);
             }
         }
         Ok(())
@@ -219,10 +185,12 @@ impl FrontEnd for KernelFront<'_> {
         }
     }
 
-    /// No progress is drawn; what was said before the work shows while it runs.
-    fn progress(&self, _total: u64, _what: &str) -> Ticker<'_> {
-        self.flush();
-        Box::new(|_| {})
+    /// Sends the lines of standard output gathered so far.
+    fn flush(&mut self) {
+        let pending = std::mem::take(&mut self.pending);
+        if !pending.is_empty() {
+            self.send(StreamContent::stdout(&pending).into());
+        }
     }
 
     fn history(&self) -> Vec<String> {
@@ -230,27 +198,77 @@ impl FrontEnd for KernelFront<'_> {
     }
 }
 
-/// A lesson's step in Markdown: its number, its task, and its example as
-/// a `.ray` block.
-fn step_markdown(step: &LessonStep) -> String {
-    let mut markdown = format!("**Step {} of {}.** {}", step.number, step.steps, step.task);
-    if let Some(example) = &step.example {
-        markdown.push_str(&format!("\n\n```ray\n{example}\n```"));
-    }
-    markdown
-}
+#[cfg(test)]
+mod tests {
+    use jupyter_protocol::ExecuteRequest;
+    use serde_json::Value;
 
-/// A lesson's verdict in Markdown.
-fn verdict_markdown(verdict: &LessonVerdict) -> String {
-    match verdict {
-        LessonVerdict::Done { .. } => verdict.to_text(),
-        LessonVerdict::NotYet { hint, example, .. } => {
-            let shortfall = verdict.shortfall().unwrap_or_default();
-            let mut markdown = format!("**Not yet:** {shortfall}\n\n**Hint:** {hint}");
-            if let Some(example) = example {
-                markdown.push_str(&format!("\n\nFor example:\n\n```ray\n{example}\n```"));
-            }
-            markdown
+    use super::*;
+    use crate::presentation::{outputs_json, pictures};
+    use crate::session::{CellSession, Collected, RenderSettings, SessionOptions};
+
+    const CELL: &str = "light vector 0.5, 0, -0.5 intensity 0.8 end\n\
+        put sphere center 0, 0, 0 radius 2 kd 0.7 ks 0.3 phong 20 color 255, 80, 40 end\n\
+        :render\n\
+        :lesson 1";
+
+    /// A session rendering small pictures.
+    fn session() -> CellSession {
+        let settings = RenderSettings { width: 16, height: 12, ..RenderSettings::default() };
+        CellSession::new(&SessionOptions { settings, ..SessionOptions::default() })
+    }
+
+    /// The messages the kernel publishes for [`CELL`], as (type, content).
+    fn kernel_messages() -> Vec<(String, Value)> {
+        let (outgoing, mut published) = Outgoing::kept();
+        let parent = JupyterMessage::new(ExecuteRequest::new(CELL.to_string()), None);
+        let mut front = KernelFront {
+            outgoing: &outgoing,
+            parent: &parent,
+            silent: false,
+            switch: Box::leak(Box::default()),
+            history: Vec::new(),
+            first_error: None,
+            pending: String::new(),
+        };
+        assert_eq!(session().run("<cell 1>", CELL, &mut front), crate::session::CellEnd::Done);
+        front.flush();
+        let mut messages = Vec::new();
+        while let Ok(message) = published.try_recv() {
+            let content = serde_json::to_value(&message.content).expect("a message is JSON");
+            messages.push((message.header.msg_type, content));
         }
+        messages
+    }
+
+    #[test]
+    fn the_kernel_shows_what_the_page_shows() {
+        let messages = kernel_messages();
+        let kinds: Vec<&str> = messages.iter().map(|(kind, _)| kind.as_str()).collect();
+        // The lines said before the render go out when it starts, before its picture.
+        assert_eq!(kinds[..3], ["stream", "display_data", "stream"], "{messages:?}");
+        assert!(kinds[3..].iter().all(|kind| *kind == "display_data" || *kind == "stream"), "{kinds:?}");
+        assert!(messages[0].1["text"].as_str().is_some_and(|text| text.starts_with("1 light added")), "{messages:?}");
+
+        let mut page = session();
+        let mut collected = Collected::default();
+        page.run("<cell 1>", CELL, &mut collected);
+        let json: Value = serde_json::from_str(&outputs_json(&collected.outputs, page.sources())).expect("JSON");
+        let page_pngs: Vec<String> =
+            collected.outputs.iter().flat_map(pictures).map(|image| base64(&png(image).expect("a PNG"))).collect();
+        let kernel_pngs: Vec<&str> =
+            messages.iter().filter_map(|(_, content)| content["data"]["image/png"].as_str()).collect();
+        assert_eq!(kernel_pngs, page_pngs, "the picture, then the lesson's pair");
+
+        let step = json.as_array().expect("a list").iter().find(|output| output["kind"] == "lesson-step");
+        let step = step.expect("`:lesson 1` shows its first step");
+        let shown = messages.iter().find(|(_, content)| content["data"]["text/markdown"].is_string());
+        let (_, shown) = shown.expect("the kernel shows the step in Markdown");
+        assert_eq!(shown["data"]["text/plain"], step["text"]);
+        let Some(Output::LessonStep(first)) = collected.outputs.iter().find(|o| matches!(o, Output::LessonStep(_)))
+        else {
+            panic!("a step")
+        };
+        assert_eq!(shown["data"]["text/markdown"].as_str(), markdown(&Output::LessonStep(first.clone())).as_deref());
     }
 }

@@ -35,6 +35,15 @@ impl Outgoing {
     pub(crate) fn iopub(&self, message: JupyterMessage) {
         let _ = self.iopub.send(message);
     }
+
+    /// An outgoing end whose IOPub messages are kept in the receiver
+    /// given with it, for tests.
+    #[cfg(test)]
+    pub(crate) fn kept() -> (Outgoing, UnboundedReceiver<JupyterMessage>) {
+        let (shell, _) = unbounded_channel();
+        let (iopub, published) = unbounded_channel();
+        (Outgoing { shell, iopub }, published)
+    }
 }
 
 /// What the control channel does with a request.

@@ -6,13 +6,16 @@
 //! long render's confirmation comes after its picture, as on a terminal).
 //! The terminal session and piped scripts write them as text and preview
 //! pictures; [`Collected`] keeps them in a list, for a front-end that shows
-//! them its own way (a notebook, a browser) and for tests. (The image and
-//! animation files the commands write are `crate::output`'s.)
+//! them its own way (a notebook, a browser) and for tests. The forms those
+//! front-ends show of an output (JSON, PNG bytes, Markdown) are
+//! `crate::presentation`'s; the image and animation files the commands
+//! write are `crate::output`'s.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
+use serde::Serialize;
 use serde_json::Value;
 
 use crate::lang::{Diagnostic, SourceMap};
@@ -56,8 +59,10 @@ pub enum Output {
     LessonVerdict(LessonVerdict),
 }
 
-/// What a text output is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What a text output is; it serialises as its name in kebab-case
+/// (`message`, `printed-note`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum TextRole {
     /// What a command or an input did (`defined r`, `saved out.png`), and
     /// what was asked for (help, listings).
@@ -84,17 +89,18 @@ pub struct Picture {
 }
 
 /// Why one pixel has its colour: the text `:pick` says, and the same as
-/// `--explain --json` gives it.
-#[derive(Debug, Clone, PartialEq)]
+/// `--explain --json` gives it; it serialises as `{ text, data }`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PixelExplanation {
     /// The explanation in words.
     pub text: String,
     /// The explanation as data.
+    #[serde(rename = "data")]
     pub json: Value,
 }
 
 /// What a step of a lesson asks.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LessonStep {
     /// The step's number, from 1.
     pub number: usize,
@@ -107,8 +113,11 @@ pub struct LessonStep {
     pub example: Option<String>,
 }
 
-/// Whether the learner's scene does what a lesson's step asks.
-#[derive(Debug, Clone, PartialEq)]
+/// Whether the learner's scene does what a lesson's step asks. It
+/// serialises as the fields of its variant alone: the presentation says
+/// beside them which it is (`done`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
 pub enum LessonVerdict {
     /// It does: the step is done.
     Done {
@@ -130,62 +139,6 @@ pub enum LessonVerdict {
         /// A program that does it, after a few wrong tries.
         example: Option<String>,
     },
-}
-
-/// The width lessons' texts are wrapped to.
-const TEXT_COLUMNS: usize = 76;
-
-impl LessonStep {
-    /// The step as the terminal shows it: the task wrapped under its
-    /// number, then the example, indented.
-    pub fn to_text(&self) -> String {
-        let task = wrap(&self.task, &format!("step {} of {}: ", self.number, self.steps));
-        match &self.example {
-            Some(example) => format!("{task}\n{}", indent(example)),
-            None => task,
-        }
-    }
-}
-
-impl LessonVerdict {
-    /// What the scene still lacks, with the advice to take the last input
-    /// back when it made that; `None` for a step done.
-    pub fn shortfall(&self) -> Option<String> {
-        let LessonVerdict::NotYet { missing, undo, .. } = self else { return None };
-        let undo = if *undo { " (`:undo` takes your last input back)" } else { "" };
-        Some(format!("{missing}{undo}"))
-    }
-
-    /// The verdict as the terminal shows it.
-    pub fn to_text(&self) -> String {
-        match self {
-            LessonVerdict::Done { number, already: false } => format!("✓ step {number} done"),
-            LessonVerdict::Done { number, already: true } => {
-                format!("✓ step {number} done: your scene already does it")
-            }
-            LessonVerdict::NotYet { hint, example, .. } => {
-                let shortfall = self.shortfall().unwrap_or_default();
-                let mut text = format!("{}\n{}", wrap(&shortfall, "not yet: "), wrap(hint, "hint: "));
-                if let Some(example) = example {
-                    text.push_str(&format!("\nfor example:\n{}", indent(example)));
-                }
-                text
-            }
-        }
-    }
-}
-
-/// `text` wrapped to [`TEXT_COLUMNS`], its first line after `first`, the
-/// others indented by as much.
-fn wrap(text: &str, first: &str) -> String {
-    let rest = " ".repeat(first.chars().count());
-    let options = textwrap::Options::new(TEXT_COLUMNS).initial_indent(first).subsequent_indent(&rest);
-    textwrap::fill(text, options)
-}
-
-/// A program shown indented by four spaces.
-fn indent(program: &str) -> String {
-    program.lines().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
 }
 
 /// How a wait for a save of a watched file ended.
@@ -234,6 +187,13 @@ pub trait FrontEnd {
     fn preview_size(&mut self) -> Option<&mut PreviewSize> {
         None
     }
+
+    /// Shows at once what this front-end has gathered to show together
+    /// (lines of text sent as one message): called before work that takes
+    /// a while (a render), so that what was said before it is seen while it
+    /// runs. A front-end that shows each output when it gets it has nothing
+    /// to do.
+    fn flush(&mut self) {}
 
     /// Progress of work of `total` units labelled `what` ("rendering"),
     /// shown while it runs and gone when the ticker drops.
@@ -436,16 +396,6 @@ mod tests {
             _ => None,
         });
         texts.collect()
-    }
-
-    #[test]
-    fn text_is_wrapped_under_its_label() {
-        let text = "one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen";
-        assert_eq!(
-            wrap(text, "step 1 of 2: "),
-            "step 1 of 2: one two three four five six seven eight nine ten eleven twelve\n             thirteen fourteen fifteen"
-        );
-        assert_eq!(indent("a\nb"), "    a\n    b");
     }
 
     #[test]

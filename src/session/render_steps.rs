@@ -62,10 +62,11 @@ pub(crate) fn render_scene(
     scene: &Scene,
     size: Size,
     settings: &RenderSettings,
-    front: &dyn FrontEnd,
+    front: &mut dyn FrontEnd,
 ) -> Result<(RgbImage, Duration), CommandError> {
     let started = Stopwatch::start();
     let total = size.width as usize * size.height as usize;
+    front.flush();
     let tick = front.progress(total as u64, "rendering");
     let armed = front.cancel().map(|switch| switch.arm());
     let never = AtomicBool::new(false);
@@ -82,11 +83,12 @@ pub(crate) fn render_frames(
     frames: u32,
     timeline: Timeline,
     size: Size,
-    front: &dyn FrontEnd,
+    front: &mut dyn FrontEnd,
     sink: &mut dyn FnMut(usize, RgbImage) -> Result<(), CommandError>,
 ) -> Result<(), CommandError> {
     let timed = session.depends_on_time();
     let total = u64::from(frames) * u64::from(size.width) * u64::from(size.height);
+    front.flush();
     let tick = front.progress(total, "animating");
     let armed = front.cancel().map(|switch| switch.arm());
     let control = RenderControl { progress: Some(&*tick), cancel: armed.as_ref().map(|armed| armed.flag()) };

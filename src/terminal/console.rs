@@ -11,6 +11,7 @@ use anstream::stream::RawStream;
 use anstream::{AutoStream, ColorChoice};
 
 use crate::lang::{Diagnostic, SourceMap};
+use crate::presentation::plain_text;
 use crate::process::failure::end_if_closed_pipe;
 use crate::process::interruption::may_block;
 
@@ -133,8 +134,7 @@ impl FrontEnd for Console<'_> {
             Output::Text { role: TextRole::PrintedNote, text } => self.printed_note(text),
             Output::Diagnostic(diagnostic) => self.diagnostic(&diagnostic, sources),
             Output::Explanation(explanation) => self.say_line(explanation.text),
-            Output::LessonStep(step) => self.say_line(step.to_text()),
-            Output::LessonVerdict(verdict) => self.say_line(verdict.to_text()),
+            Output::LessonStep(_) | Output::LessonVerdict(_) => self.say_line(plain_text(&output, sources)),
             Output::Picture(_) | Output::LessonPictures(_) | Output::Frames { .. } | Output::AnimationFile(_) => {}
         }
         Ok(())

@@ -3,22 +3,19 @@
 //! handing back what the session showed as a [`Reply`]: its outputs as
 //! JSON (text with its role, diagnostics drawn as the terminal draws them
 //! and as data, pixel explanations, lesson steps and verdicts) and its
-//! pictures as bytes. The page (`web/src/`) and the Node test
+//! pictures as bytes, both as `rayrepl::presentation` makes them for the
+//! notebook kernel too. The page (`web/src/`) and the Node test
 //! (`web/test/node.mjs`) call it from JavaScript through wasm-bindgen; the
 //! renderer, the language and the commands are the library's, unchanged,
 //! so the pixels are the bytes the command line writes.
 
-use std::ops::Range;
 use std::path::Path;
 use std::time::Duration;
 
 use image::RgbImage;
 use rayrepl::lang::{Limits, SourceMap};
-use rayrepl::playback::Playback;
-use rayrepl::session::{
-    CellEnd, CellSession, Collected, FrontEnd, LessonVerdict, Output, RenderSettings, SessionOptions, TextRole,
-};
-use serde_json::{Value, json};
+use rayrepl::presentation::{apng, outputs_json, pictures, png};
+use rayrepl::session::{CellEnd, CellSession, Collected, FrontEnd, Output, RenderSettings, SessionOptions, TextRole};
 use wasm_bindgen::prelude::*;
 
 #[wasm_bindgen]
@@ -189,18 +186,15 @@ impl Playground {
     }
 }
 
-/// What a cell showed: its outputs in order, and their pictures.
+/// What a cell showed: its outputs in order, with their pictures.
 #[wasm_bindgen]
 pub struct Reply {
     /// How the cell ended: `done`, `failed`, `interrupted` or `quit`.
     end: &'static str,
-    /// The outputs as a JSON list; a picture names its place in `images`.
-    outputs: String,
-    /// The pictures, in the order the outputs name them.
-    images: Vec<RgbImage>,
-    /// The frames of the animation `:play` showed, if it did: where they
-    /// are in `images`, and the frames a second.
-    animation: Option<(Range<usize>, u32)>,
+    /// The outputs as JSON (`rayrepl::presentation::outputs_json`).
+    json: String,
+    /// The outputs, which hold the pictures the JSON numbers.
+    outputs: Vec<Output>,
     /// The RGBA bytes of the rows [`Playground::render_rows`] rendered;
     /// empty in the reply of anything else.
     band: Vec<u8>,
@@ -214,11 +208,11 @@ impl Reply {
         self.end.to_string()
     }
 
-    /// The outputs, as a JSON list of objects with a `kind` (`describe`
-    /// below gives each kind).
+    /// The outputs, as a JSON list of objects with a `kind`
+    /// (`rayrepl::presentation::outputs_json` gives each kind).
     #[wasm_bindgen(getter)]
     pub fn outputs(&self) -> String {
-        self.outputs.clone()
+        self.json.clone()
     }
 
     /// The RGBA bytes of the rows [`Playground::render_rows`] rendered
@@ -231,27 +225,32 @@ impl Reply {
     /// Picture `index` as RGBA bytes, the canvas's `ImageData`: the RGB
     /// bytes the batch renderer writes, each pixel opaque.
     pub fn rgba(&self, index: usize) -> Result<Vec<u8>, JsError> {
-        Ok(rgba_of(self.image(index)?))
+        Ok(rgba_of(self.picture(index)?))
     }
 
     /// The animation `:play N FPS` showed as an APNG file, the bytes
     /// `rayrepl --anim N --fps FPS -o out.apng` writes; empty without one.
     pub fn apng(&self) -> Result<Vec<u8>, JsError> {
-        let Some((frames, fps)) = &self.animation else { return Ok(Vec::new()) };
-        let playback = Playback { fps: Some(f64::from(*fps)), loops: None };
-        rayrepl::output::apng_bytes(&self.images[frames.clone()], &playback).map_err(|e| JsError::new(&e.to_string()))
+        let played = self.outputs.iter().find_map(|output| match output {
+            Output::Frames { frames, fps } => Some((frames, *fps)),
+            _ => None,
+        });
+        let Some((frames, fps)) = played else { return Ok(Vec::new()) };
+        apng(frames, fps).map_err(|e| JsError::new(&e.to_string()))
     }
 
     /// Picture `index` as a PNG file, the bytes `rayrepl -o out.png` writes.
     pub fn png(&self, index: usize) -> Result<Vec<u8>, JsError> {
-        png_bytes(self.image(index)?)
+        png_bytes(self.picture(index)?)
     }
 }
 
 impl Reply {
-    /// Picture `index`, or the error JavaScript sees for one it does not have.
-    fn image(&self, index: usize) -> Result<&RgbImage, JsError> {
-        self.images.get(index).ok_or_else(|| JsError::new(&format!("the reply has no picture {index}")))
+    /// Picture `index` as the JSON numbers it, or the error JavaScript
+    /// sees for one the reply does not have.
+    fn picture(&self, index: usize) -> Result<&RgbImage, JsError> {
+        let mut all = self.outputs.iter().flat_map(pictures);
+        all.nth(index).ok_or_else(|| JsError::new(&format!("the reply has no picture {index}")))
     }
 
     /// The reply of a cell that ended with `end` after showing `outputs`,
@@ -263,21 +262,7 @@ impl Reply {
             CellEnd::Interrupted => "interrupted",
             CellEnd::Quit => "quit",
         };
-        let mut images = Vec::new();
-        let mut animation = None;
-        let mut listed = Vec::new();
-        for output in outputs {
-            let first = images.len();
-            let fps = match &output {
-                Output::Frames { fps, .. } => Some(*fps),
-                _ => None,
-            };
-            listed.push(describe(output, sources, &mut images));
-            if let Some(fps) = fps {
-                animation = Some((first..images.len(), fps));
-            }
-        }
-        Reply { end, outputs: Value::from(listed).to_string(), images, animation, band: Vec::new() }
+        Reply { end, json: outputs_json(&outputs, sources), outputs, band: Vec::new() }
     }
 }
 
@@ -304,75 +289,5 @@ fn rgb_of(width: u32, height: u32, rgba: &[u8]) -> Result<RgbImage, JsError> {
 
 /// `image` as a PNG file, the bytes `rayrepl -o out.png` writes.
 fn png_bytes(image: &RgbImage) -> Result<Vec<u8>, JsError> {
-    let mut bytes = Vec::new();
-    rayrepl::output::write_png(&mut bytes, image).map_err(|e| JsError::new(&e.to_string()))?;
-    Ok(bytes)
-}
-
-/// `output` as a JSON object, its pictures moved to the end of `images`
-/// and named by their index there.
-fn describe(output: Output, sources: &SourceMap, images: &mut Vec<RgbImage>) -> Value {
-    let mut keep = |image: RgbImage| {
-        let (width, height) = image.dimensions();
-        images.push(image);
-        json!({ "index": images.len() - 1, "width": width, "height": height })
-    };
-    match output {
-        Output::Text { role, text } => json!({ "kind": "text", "role": role_name(role), "text": text }),
-        Output::Diagnostic(diagnostic) => json!({
-            "kind": "diagnostic",
-            "rendered": diagnostic.render(sources, false),
-            "data": diagnostic.to_json(sources),
-        }),
-        Output::Picture(picture) => json!({
-            "kind": "picture",
-            "marked": picture.marked.map(|(x, y)| [x, y]),
-            "image": keep(picture.image),
-        }),
-        Output::Frames { frames, fps } => {
-            let frames: Vec<Value> = frames.into_iter().map(&mut keep).collect();
-            json!({ "kind": "frames", "fps": fps, "frames": frames })
-        }
-        Output::AnimationFile(path) => json!({ "kind": "animation-file", "path": path.display().to_string() }),
-        Output::Explanation(explanation) => {
-            json!({ "kind": "explanation", "text": explanation.text, "data": explanation.json })
-        }
-        Output::LessonStep(step) => json!({
-            "kind": "lesson-step",
-            "number": step.number,
-            "steps": step.steps,
-            "task": step.task,
-            "example": step.example,
-            "text": step.to_text(),
-        }),
-        Output::LessonPictures(image) => json!({ "kind": "lesson-pictures", "image": keep(image) }),
-        Output::LessonVerdict(verdict) => {
-            let text = verdict.to_text();
-            match verdict {
-                LessonVerdict::Done { number, already } => {
-                    json!({ "kind": "lesson-verdict", "done": true, "number": number, "already": already, "text": text })
-                }
-                LessonVerdict::NotYet { missing, undo, hint, example } => json!({
-                    "kind": "lesson-verdict",
-                    "done": false,
-                    "missing": missing,
-                    "undo": undo,
-                    "hint": hint,
-                    "example": example,
-                    "text": text,
-                }),
-            }
-        }
-    }
-}
-
-/// The name of a text's role, as the page reads it.
-fn role_name(role: TextRole) -> &'static str {
-    match role {
-        TextRole::Message => "message",
-        TextRole::Note => "note",
-        TextRole::Error => "error",
-        TextRole::Printed => "printed",
-        TextRole::PrintedNote => "printed-note",
-    }
+    png(image).map_err(|e| JsError::new(&e.to_string()))
 }
