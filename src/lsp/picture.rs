@@ -5,12 +5,12 @@
 
 use std::path::PathBuf;
 
-use base64::Engine as _;
 use serde_json::{Value, json};
 
 use super::analysis::Analysis;
-use crate::output::{write_image, write_png};
+use crate::output::write_image;
 use crate::pipeline::render_picture;
+use crate::presentation;
 use crate::render::{Region, RenderControl};
 use crate::settings::{DEFAULTS, RenderSettings};
 
@@ -56,15 +56,14 @@ pub(crate) fn render_command(analysis: &Analysis, asked: Option<&Value>) -> Resu
     let image = render_picture(interpreter.scene(), &options, whole, &RenderControl::default())
         .map_err(|error| error.to_string())?
         .image;
-    let mut png = Vec::new();
-    write_png(&mut png, &image).map_err(|error| format!("cannot encode the picture: {error}"))?;
+    let png = presentation::png(&image).map_err(|error| format!("cannot encode the picture: {error}"))?;
     if let Some(path) = &asked.output {
         write_image(path, &image).map_err(|error| error.to_string())?;
     }
     Ok(json!({
         "width": image.width(),
         "height": image.height(),
-        "png": base64::engine::general_purpose::STANDARD.encode(&png),
+        "png": presentation::base64(&png),
         "written": asked.output,
     }))
 }
