@@ -7,7 +7,7 @@
 
 use std::io::BufRead;
 
-use crate::ide::commands::{is_command, writes_pictures};
+use crate::ide::commands::{bare_word_command, is_command, writes_pictures};
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Entry, EntryState, SourceId, parse_entries};
 
@@ -206,6 +206,13 @@ impl<'s> Script<'s> {
                     }
                     continue;
                 }
+                None if bare_word_command(line).is_some() => {
+                    if self.run_ready(&mut ready) == Step::Stop {
+                        return;
+                    }
+                    self.front.note(did_you_mean(line, number, self.named.noun));
+                    continue;
+                }
                 None => {
                     first_line = number;
                     Entry::read(line.to_string())
@@ -291,7 +298,7 @@ impl<'s> Script<'s> {
                 self.quit = true;
                 Step::Stop
             }
-            Ok(Flow::Continue) => {
+            Ok(Flow::Continue | Flow::ClearScreen) => {
                 self.wrote |= writes_pictures(line);
                 self.after(true)
             }
@@ -335,6 +342,16 @@ impl<'s> Script<'s> {
         self.errors += 1;
         if self.keep_going { Step::Next } else { Step::Stop }
     }
+}
+
+/// What line `number` of the script (or `noun`), one of the bare words
+/// people type at prompts (`exit`), is taken for: nothing, the command it
+/// means is to be typed. The script goes on, and its exit status is not
+/// changed: the word asked for nothing a script could fail to do.
+fn did_you_mean(line: &str, number: usize, noun: &str) -> String {
+    let word = line.trim();
+    let command = bare_word_command(word).unwrap_or_default();
+    format!("line {number} of the {noun}: `{word}` alone does nothing here; did you mean `{command}`?")
 }
 
 /// Why the input starting at line `first_line` of the script (or `noun`) cannot run.
