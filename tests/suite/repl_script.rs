@@ -490,6 +490,20 @@ fn quit_stops_the_script() {
     assert_eq!(run.out, "a = 1\n");
 }
 
+#[test]
+fn a_word_typed_at_other_prompts_gets_a_did_you_mean_and_the_script_goes_on() {
+    let run = run("exit\nlet a = 1\n  quit \nhelp\nlet clear = 2\nclear\ncls\nlet b = clear\n");
+    assert_eq!(run.code, 0, "{}", run.err);
+    let answers: Vec<&str> = run.out.lines().filter(|line| !line.starts_with("note: ")).collect();
+    assert_eq!(answers, ["a = 1", "clear = 2", "b = 2"]);
+    for (line, word, command) in
+        [(1, "exit", ":quit"), (3, "quit", ":quit"), (4, "help", ":help"), (6, "clear", ":clear"), (7, "cls", ":clear")]
+    {
+        let note = format!("note: line {line} of the script: `{word}` alone does nothing here; did you mean `{command}`?");
+        assert!(run.out.contains(&note), "{note}\n{}", run.out);
+    }
+}
+
 // ------------------------------------------------------------ time
 
 #[test]
