@@ -499,7 +499,8 @@ fn a_word_typed_at_other_prompts_gets_a_did_you_mean_and_the_script_goes_on() {
     for (line, word, command) in
         [(1, "exit", ":quit"), (3, "quit", ":quit"), (4, "help", ":help"), (6, "clear", ":clear"), (7, "cls", ":clear")]
     {
-        let note = format!("note: line {line} of the script: `{word}` alone does nothing here; did you mean `{command}`?");
+        let note =
+            format!("note: line {line} of the script: `{word}` alone does nothing here; did you mean `{command}`?");
         assert!(run.out.contains(&note), "{note}\n{}", run.out);
     }
 }
