@@ -54,7 +54,9 @@ pub(crate) struct Ran {
 /// loaded and `options.lesson` started first, then each input and command
 /// in order until the first that fails (or through all of them with
 /// `options.keep_going`), their diagnostics and messages naming the script
-/// as `named` says. Raising `cancel` stops it.
+/// as `named` says. A line that is only one of the
+/// [`crate::ide::commands::BARE_WORDS`] fails without stopping it. Raising
+/// `cancel` stops it.
 pub(crate) fn run_lines(
     shell: &mut Shell,
     front: &mut dyn FrontEnd,
@@ -210,7 +212,9 @@ impl<'s> Script<'s> {
                     if self.run_ready(&mut ready) == Step::Stop {
                         return;
                     }
-                    self.front.note(did_you_mean(line, number, self.named.noun));
+                    // Counted for the exit status, but the script goes on.
+                    self.front.error(did_you_mean(line, number, self.named.noun));
+                    self.errors += 1;
                     continue;
                 }
                 None => {
@@ -344,10 +348,8 @@ impl<'s> Script<'s> {
     }
 }
 
-/// What line `number` of the script (or `noun`), one of the bare words
-/// people type at prompts (`exit`), is taken for: nothing, the command it
-/// means is to be typed. The script goes on, and its exit status is not
-/// changed: the word asked for nothing a script could fail to do.
+/// Why line `number` of the script (or `noun`), one of the bare words
+/// people type at prompts (`exit`), did nothing, and the command it means.
 fn did_you_mean(line: &str, number: usize, noun: &str) -> String {
     let word = line.trim();
     let command = bare_word_command(word).unwrap_or_default();
