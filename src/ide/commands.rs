@@ -311,6 +311,17 @@ pub const COMMANDS: &[Command] = &[
     },
     Command {
         topic: Topic {
+            name: ":clear",
+            aliases: &[":cls"],
+            summary: "clear the terminal's screen (Ctrl-L does too)",
+            group: Group::TheSession,
+            text: help_page!("commands/clear"),
+        },
+        usage: ":clear",
+        files: Files::None,
+    },
+    Command {
+        topic: Topic {
             name: ":quit",
             aliases: &[":q", ":exit"],
             summary: "leave (Ctrl-D does too)",
@@ -341,6 +352,21 @@ pub fn help_pages() -> Vec<&'static Topic> {
     help::LANGUAGE.iter().chain(COMMANDS.iter().map(|command| &command.topic)).collect()
 }
 
+/// The words people type at prompts out of habit, without the colon, and
+/// the command each means. Typed alone at the terminal a word runs its
+/// command; alone on a line of a script or a cell it is answered with the
+/// command to type. A bare name is never a whole input of the language, so
+/// these words alone mean nothing else (`let clear = 2` stays a definition).
+pub const BARE_WORDS: &[(&str, &str)] =
+    &[("exit", ":quit"), ("quit", ":quit"), ("help", ":help"), ("clear", ":clear"), ("cls", ":clear")];
+
+/// The command meant by `line` when it is one of the [`BARE_WORDS`] alone
+/// (blanks around it allowed).
+pub fn bare_word_command(line: &str) -> Option<&'static str> {
+    let line = line.trim();
+    BARE_WORDS.iter().find(|(word, _)| *word == line).map(|(_, command)| *command)
+}
+
 /// Whether `line` is a command rather than program text.
 pub fn is_command(line: &str) -> bool {
     line.trim_start().starts_with(':')
@@ -368,6 +394,18 @@ mod tests {
         }
         assert_eq!(find(":exit").map(|found| found.topic.name), Some(":quit"));
         assert!(writes_pictures(":save a.png") && !writes_pictures(":write a.ray") && !writes_pictures(":load a.ray"));
+    }
+
+    #[test]
+    fn bare_words_mean_commands_alone_and_are_named_in_the_overview() {
+        let overview = help::overview(&help_pages());
+        for (word, command) in BARE_WORDS {
+            assert!(find(command).is_some(), "`{word}` means `{command}`, which is no command");
+            assert_eq!(bare_word_command(&format!("  {word} ")), Some(*command));
+            assert!(overview.contains(&format!("`{word}`")), "the overview does not name `{word}`");
+        }
+        assert_eq!(bare_word_command("let clear = 2"), None);
+        assert_eq!(bare_word_command("exit now"), None);
     }
 
     #[test]

@@ -288,6 +288,19 @@ mod tests {
     }
 
     #[test]
+    fn a_word_typed_at_other_prompts_is_an_error_that_does_not_stop_the_cell() {
+        let mut cells = session();
+        let mut front = Collected::default();
+        assert_eq!(cells.run("<cell 1>", "exit\nlet after = 1", &mut front), CellEnd::Failed);
+        assert_eq!(cells.shell.session.global_number("after"), Some(1.0));
+        let error = Output::Text {
+            role: TextRole::Error,
+            text: "line 1 of the cell: `exit` alone does nothing here; did you mean `:quit`?".to_string(),
+        };
+        assert!(front.outputs.contains(&error), "{:?}", front.outputs);
+    }
+
+    #[test]
     fn definitions_accumulate_across_cells() {
         let mut cells = session();
         let mut front = Collected::default();

@@ -63,6 +63,7 @@ const HANDLERS: &[Handler] = &[
     Handler { name: ":undo", run: session_commands::undo },
     Handler { name: ":reset", run: session_commands::reset },
     Handler { name: ":limits", run: setting_commands::limits },
+    Handler { name: ":clear", run: session_commands::clear },
     Handler { name: ":quit", run: session_commands::quit },
 ];
 

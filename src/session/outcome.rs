@@ -17,6 +17,8 @@ pub(crate) enum Flow {
     Continue,
     /// Leave.
     Quit,
+    /// Clear the screen, where there is one, then read the next input.
+    ClearScreen,
 }
 
 /// Why a command did not do what was asked.

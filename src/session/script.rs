@@ -7,7 +7,7 @@
 
 use std::io::BufRead;
 
-use crate::ide::commands::{is_command, writes_pictures};
+use crate::ide::commands::{bare_word_command, is_command, writes_pictures};
 use crate::lang::ast::Program;
 use crate::lang::{Diagnostic, Entry, EntryState, SourceId, parse_entries};
 
@@ -54,7 +54,9 @@ pub(crate) struct Ran {
 /// loaded and `options.lesson` started first, then each input and command
 /// in order until the first that fails (or through all of them with
 /// `options.keep_going`), their diagnostics and messages naming the script
-/// as `named` says. Raising `cancel` stops it.
+/// as `named` says. A line that is only one of the
+/// [`crate::ide::commands::BARE_WORDS`] fails without stopping it. Raising
+/// `cancel` stops it.
 pub(crate) fn run_lines(
     shell: &mut Shell,
     front: &mut dyn FrontEnd,
@@ -206,6 +208,15 @@ impl<'s> Script<'s> {
                     }
                     continue;
                 }
+                None if bare_word_command(line).is_some() => {
+                    if self.run_ready(&mut ready) == Step::Stop {
+                        return;
+                    }
+                    // Counted for the exit status, but the script goes on.
+                    self.front.error(did_you_mean(line, number, self.named.noun));
+                    self.errors += 1;
+                    continue;
+                }
                 None => {
                     first_line = number;
                     Entry::read(line.to_string())
@@ -291,7 +302,7 @@ impl<'s> Script<'s> {
                 self.quit = true;
                 Step::Stop
             }
-            Ok(Flow::Continue) => {
+            Ok(Flow::Continue | Flow::ClearScreen) => {
                 self.wrote |= writes_pictures(line);
                 self.after(true)
             }
@@ -335,6 +346,14 @@ impl<'s> Script<'s> {
         self.errors += 1;
         if self.keep_going { Step::Next } else { Step::Stop }
     }
+}
+
+/// Why line `number` of the script (or `noun`), one of the bare words
+/// people type at prompts (`exit`), did nothing, and the command it means.
+fn did_you_mean(line: &str, number: usize, noun: &str) -> String {
+    let word = line.trim();
+    let command = bare_word_command(word).unwrap_or_default();
+    format!("line {number} of the {noun}: `{word}` alone does nothing here; did you mean `{command}`?")
 }
 
 /// Why the input starting at line `first_line` of the script (or `noun`) cannot run.

@@ -1,5 +1,5 @@
-//! The commands that change the session as a whole: `:undo`, `:reset` and
-//! `:quit`.
+//! The commands that change the session as a whole: `:undo`, `:reset`,
+//! `:clear` and `:quit`.
 
 use super::outcome::{CommandError, CommandResult, Flow, no_arguments};
 use super::outputs::FrontEnd;
@@ -26,6 +26,11 @@ pub(crate) fn reset(shell: &mut Shell, arguments: &[String], front: &mut dyn Fro
     session.reset();
     front.say("the session is empty again (`:undo` brings it all back)");
     Ok(Flow::Continue)
+}
+
+pub(crate) fn clear(_shell: &mut Shell, arguments: &[String], _console: &mut dyn FrontEnd) -> CommandResult {
+    no_arguments(arguments)?;
+    Ok(Flow::ClearScreen)
 }
 
 pub(crate) fn quit(_shell: &mut Shell, arguments: &[String], _console: &mut dyn FrontEnd) -> CommandResult {

@@ -15,7 +15,7 @@ use rustyline::error::ReadlineError;
 use rustyline::history::FileHistory;
 
 use crate::clock::Stopwatch;
-use crate::ide::commands::is_command;
+use crate::ide::commands::{bare_word_command, is_command};
 use crate::ide::scanner::open_constructs;
 use crate::lang::{EntryState, Limits, RaisedWith, entry_state};
 
@@ -150,6 +150,9 @@ trait LineSource {
 
     /// Keeps an entry in the history.
     fn remember(&mut self, entry: &str);
+
+    /// Clears the screen, where the lines are typed on one.
+    fn clear_screen(&mut self) {}
 }
 
 /// The line editor on the terminal, with its history file.
@@ -188,6 +191,10 @@ impl LineSource for Terminal {
         if let Some(path) = &self.history {
             let _ = self.editor.append_history(path);
         }
+    }
+
+    fn clear_screen(&mut self) {
+        let _ = self.editor.clear_screen();
     }
 }
 
@@ -298,17 +305,23 @@ impl<L: LineSource> Repl<L> {
             };
             match read {
                 Ok(EnteredLine { text: line, typed }) => {
+                    // A word such as `exit` alone runs the command it means,
+                    // rather than start an input that waits for more.
+                    let meant = bare_word_command(&line).filter(|_| pending.is_empty());
                     // Commands work in the middle of an unfinished input too,
                     // which then goes on (`:help sphere` while typing one).
-                    if is_command(&line) {
+                    if is_command(&line) || meant.is_some() {
                         self.lines.remember(&line);
                         if pending.is_empty() {
                             self.inputs += 1;
                         }
                         let armed = front.cancel().map(|switch| switch.arm());
-                        let flow = commands::execute(&mut self.shell, &line, front);
+                        let flow = commands::execute(&mut self.shell, meant.unwrap_or(&line), front);
                         self.drop_queued_if(armed.as_ref().is_some_and(|armed| armed.pressed()), front);
                         drop(armed);
+                        if flow == Ok(Flow::ClearScreen) {
+                            self.lines.clear_screen();
+                        }
                         let unwritten = self.shell.session.unwritten();
                         if flow == Ok(Flow::Quit) && leave(&pending, unwritten, &mut quit_warned, ":quit", front) {
                             return Ok(());

@@ -518,3 +518,50 @@ fn a_long_line_pasted_without_bracketed_paste_is_written_once() {
     }
     assert_eq!(leave(session), 0);
 }
+
+#[test]
+fn exit_alone_ends_the_session() {
+    let (mut session, _home) = fresh(false);
+    session.send_line("  exit ").unwrap();
+    session.expect(Eof).unwrap();
+}
+
+#[test]
+fn help_alone_shows_the_help_overview() {
+    let (mut session, _home) = fresh(false);
+    session.send_line("help").unwrap();
+    session.expect("`:help NAME` explains one of these:").unwrap();
+    // No input waits for more: the next prompt is a new one.
+    session.expect("[2] ray> ").unwrap();
+    session.send(ControlCode::EndOfTransmission).unwrap();
+    session.expect(Eof).unwrap();
+}
+
+#[test]
+fn quit_alone_with_inputs_not_written_warns_then_leaves() {
+    let (mut session, _home) = fresh(false);
+    session.send_line("let a = 1").unwrap();
+    session.expect("a = 1").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line("quit").unwrap();
+    session.expect("1 input is not written to a file: `:write FILE.ray` keeps it; :quit again leaves").unwrap();
+    session.expect("ray> ").unwrap();
+    session.send_line("quit").unwrap();
+    session.expect(Eof).unwrap();
+}
+
+#[test]
+fn clear_alone_clears_the_screen_even_with_a_number_named_clear() {
+    let (mut session, _home) = fresh(false);
+    session.send_line("let clear = 2").unwrap();
+    session.expect("clear = 2").unwrap();
+    session.expect("[2] ray> ").unwrap();
+    session.send_line("clear").unwrap();
+    // The screen is cleared (the cursor goes home, the screen is erased).
+    session.expect("\x1b[H\x1b[J").unwrap();
+    session.expect("[3] ray> ").unwrap();
+    // What is typed next is an input of its own, not glued onto `clear`.
+    session.send_line("let b = clear + 1").unwrap();
+    session.expect("b = 3").unwrap();
+    assert_eq!(leave(session), 0);
+}

@@ -308,9 +308,9 @@ fn warnings_are_shown_and_do_not_fail() {
 
 #[test]
 fn a_command_typed_without_colon_gets_a_hint() {
-    let run = run("help\n");
+    let run = run("render\n");
     assert_eq!(run.code, 1);
-    assert!(run.out.contains("did you mean `:help`?"), "{}", run.out);
+    assert!(run.out.contains("did you mean `:render`?"), "{}", run.out);
 }
 
 // ------------------------------------------------------------ commands
@@ -488,6 +488,20 @@ fn quit_stops_the_script() {
     let run = run("let a = 1\n:quit\nlet b = oops\n");
     assert_eq!(run.code, 0, "{}", run.err);
     assert_eq!(run.out, "a = 1\n");
+}
+
+#[test]
+fn a_word_typed_at_other_prompts_is_an_error_that_does_not_stop_the_script() {
+    let run = run("exit\nlet a = 1\n  quit \nhelp\nlet clear = 2\nclear\ncls\nlet b = clear\n");
+    assert_eq!(run.code, 1, "{}", run.err);
+    assert_eq!(run.out, "a = 1\nclear = 2\nb = 2\n");
+    for (line, word, command) in
+        [(1, "exit", ":quit"), (3, "quit", ":quit"), (4, "help", ":help"), (6, "clear", ":clear"), (7, "cls", ":clear")]
+    {
+        let error =
+            format!("error: line {line} of the script: `{word}` alone does nothing here; did you mean `{command}`?\n");
+        assert!(run.err.contains(&error), "{error}{}", run.err);
+    }
 }
 
 // ------------------------------------------------------------ time
