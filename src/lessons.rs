@@ -6,13 +6,13 @@
 //!
 //! A check reads the learner's state through the [`Learner`] view, and a
 //! step's goal is its lesson's own program run with the language
-//! ([`evaluation`]): nothing here knows the session, whose command layer
+//! ([`lesson_scene`]): nothing here knows the session, whose command layer
 //! (`:lesson`, `:goal`, the check after each input) uses this module.
 
 mod check;
-mod evaluation;
 mod file;
 mod learner;
+mod lesson_scene;
 mod progress;
 mod tutor;
 

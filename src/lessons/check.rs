@@ -459,11 +459,11 @@ impl Condition {
 mod tests {
     use super::read::parse_number;
     use super::*;
-    use crate::lessons::evaluation::Evaluation;
+    use crate::lessons::lesson_scene::LessonScene;
     use crate::settings::RenderSettings;
 
-    fn learner(program: &str) -> Evaluation {
-        let mut learner = Evaluation::new(RenderSettings::default().time);
+    fn learner(program: &str) -> LessonScene {
+        let mut learner = LessonScene::new(RenderSettings::default().time);
         learner.run("<test>", program).expect("the program runs");
         learner
     }

@@ -13,8 +13,8 @@ use crate::lang::{Diagnostic, SourceId, Span};
 use crate::settings::RenderSettings;
 
 use super::check::{Check, Shortfall, holds, no_degrees, parse};
-use super::evaluation::Evaluation;
 use super::learner::Learner;
+use super::lesson_scene::LessonScene;
 
 /// A lesson: a title, the scene it starts from, its steps.
 #[derive(Debug)]
@@ -122,8 +122,8 @@ impl Lesson {
     /// The lesson's scene at `step` (from 0), evaluated with `time` at the
     /// value `time`;
     /// `None` if its program fails.
-    pub(crate) fn evaluate_at(&self, step: usize, time: f64) -> Option<Evaluation> {
-        let mut evaluation = Evaluation::new(time);
+    pub(crate) fn evaluate_at(&self, step: usize, time: f64) -> Option<LessonScene> {
+        let mut evaluation = LessonScene::new(time);
         evaluation.run("<goal>", &self.scene_at(step)).ok()?;
         Some(evaluation)
     }
@@ -144,7 +144,7 @@ impl Lesson {
     /// accept its `fails` answers, is wrong.
     fn prove(&self) -> Result<(), Diagnostic> {
         let time = RenderSettings::default().time;
-        let mut evaluation = Evaluation::new(time);
+        let mut evaluation = LessonScene::new(time);
         for (index, step) in self.steps.iter().enumerate() {
             let number = index + 1;
             let place = step.example_at;
@@ -192,7 +192,7 @@ impl Lesson {
 
 /// Runs `program` into `evaluation`; a program that fails is a mistake of
 /// the lesson at `place`.
-fn run(evaluation: &mut Evaluation, program: &str, place: Span, what: &str) -> Result<(), Diagnostic> {
+fn run(evaluation: &mut LessonScene, program: &str, place: Span, what: &str) -> Result<(), Diagnostic> {
     let failed = |failure: Diagnostic| Diagnostic::error(place, format!("{what} does not run: {}", failure.message));
     evaluation.run("<lesson>", program).map_err(failed)
 }

@@ -1,7 +1,7 @@
 //! What the checks read of a learner's state: a view that names no
 //! session, so that the lessons sit beside the session rather than inside
 //! it. The session's state gives it for the learner's inputs; an
-//! [`super::evaluation::Evaluation`] gives it for a lesson's own programs (its goals,
+//! [`super::lesson_scene::LessonScene`] gives it for a lesson's own programs (its goals,
 //! the answers it is proved with).
 
 use crate::lang::SourceMap;

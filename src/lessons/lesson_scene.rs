@@ -13,19 +13,19 @@ use super::learner::Learner;
 
 /// Programs evaluated in order into one scene, with the default limits.
 #[derive(Debug)]
-pub(crate) struct Evaluation {
+pub(crate) struct LessonScene {
     /// The value of `time` the programs see.
     time: f64,
     interpreter: Interpreter,
     sources: SourceMap,
-    /// The programs that ran and hold items, for [`Evaluation::undo`].
+    /// The programs that ran and hold items, for [`LessonScene::undo`].
     programs: Vec<Program>,
 }
 
-impl Evaluation {
+impl LessonScene {
     /// Nothing run yet, with `time` bound to `time`.
-    pub(crate) fn new(time: f64) -> Evaluation {
-        Evaluation {
+    pub(crate) fn new(time: f64) -> LessonScene {
+        LessonScene {
             time,
             interpreter: pipeline::Evaluation::at(time, Limits::default()).interpreter(),
             sources: SourceMap::new(),
@@ -61,7 +61,7 @@ impl Evaluation {
     }
 }
 
-impl Learner for Evaluation {
+impl Learner for LessonScene {
     fn scene(&self) -> &Scene {
         self.interpreter.scene()
     }
